@@ -1,0 +1,424 @@
+// The scene loader: the shipped scenes load with the expected contents,
+// defaults are the documented ones, and every kind of mistake gives one
+// SceneError that names the file and the JSON path of the mistake.
+#include <catch2/catch.hpp>
+
+#include "trac0r/scene_loader.h"
+
+#include <dirent.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace trac0r;
+using Catch::Matchers::Contains;
+using Catch::Matchers::Equals;
+using Catch::Matchers::StartsWith;
+
+namespace {
+
+const std::string scenes_dir = std::string(TRAC0R_SOURCE_DIR) + "/scenes";
+
+// A minimal valid scene: one diffuse material, one plane. Tests swap one
+// part for a broken one.
+const std::string white_material = R"("white": {"type": "diffuse", "color": [0.5, 0.5, 0.5]})";
+const std::string plane_shape = R"({"type": "plane", "size": [1, 1], "material": "white"})";
+
+std::string scene_json(const std::string& materials = white_material,
+                       const std::string& shapes = plane_shape, const std::string& extra = "") {
+    return "{" + extra + (extra.empty() ? "" : ", ") + R"("materials": {)" + materials +
+           R"(}, "shapes": [)" + shapes + "]}";
+}
+
+std::string with_shape(const std::string& shape) {
+    return scene_json(white_material, shape);
+}
+
+std::string with_material(const std::string& material) {
+    return scene_json(white_material + ", " + material, plane_shape);
+}
+
+std::string with_extra(const std::string& extra) {
+    return scene_json(white_material, plane_shape, extra);
+}
+
+Scene parse(const std::string& text) {
+    return parse_scene(text, "test.json", "");
+}
+
+// The message of the SceneError that parsing throws; a test fails if it
+// throws nothing or something else.
+std::string scene_error(const std::string& text) {
+    try {
+        parse(text);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    FAIL("no SceneError for: " << text);
+    return "";
+}
+
+const Material& material_named(const Scene& scene, const std::string& name) {
+    for (const Material& m : scene.materials) {
+        if (m.name == name) {
+            return m;
+        }
+    }
+    FAIL("no material named " << name);
+    return scene.materials.front();
+}
+
+std::vector<std::string> scene_files() {
+    std::vector<std::string> names;
+    DIR* dir = opendir(scenes_dir.c_str());
+    REQUIRE(dir != nullptr);
+    while (const dirent* entry = readdir(dir)) {
+        const std::string name = entry->d_name;
+        if (name.size() > 5 && name.compare(name.size() - 5, 5, ".json") == 0) {
+            names.push_back(name);
+        }
+    }
+    closedir(dir);
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+bool same_vec3(const glm::vec3& a, const glm::vec3& b) {
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
+// A directory under /tmp holding files written by a test; removed after.
+class TempDir {
+  public:
+    TempDir() {
+        char name[] = "/tmp/trac0r_scene_loader_XXXXXX";
+        REQUIRE(mkdtemp(name) != nullptr);
+        path_ = name;
+    }
+    ~TempDir() {
+        for (const std::string& f : files_) {
+            std::remove(f.c_str());
+        }
+        rmdir(path_.c_str());
+    }
+    std::string write(const std::string& name, const std::string& text) {
+        const std::string file = path_ + "/" + name;
+        std::ofstream(file) << text;
+        files_.push_back(file);
+        return file;
+    }
+    const std::string& path() const { return path_; }
+
+  private:
+    std::string path_;
+    std::vector<std::string> files_;
+};
+
+const char* const tetrahedron_obj =
+    "v 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n";
+
+}  // namespace
+
+TEST_CASE("every scene in scenes/ loads", "[scene_loader]") {
+    const std::vector<std::string> names = scene_files();
+    CHECK(names.size() >= 4);
+    for (const std::string& name : names) {
+        INFO("scene " << name);
+        CHECK_NOTHROW(load_scene_file(scenes_dir + "/" + name));
+    }
+}
+
+TEST_CASE("the Cornell scene has the thesis' contents", "[scene_loader]") {
+    const Scene scene = load_scene_file(scenes_dir + "/cornell.json");
+    CHECK(scene.materials.size() == 6);
+    REQUIRE(scene.shapes.size() == 10);
+    // 6 planes x 2 + 2 boxes x 12 + 2 icospheres x 20 * 4^2.
+    CHECK(scene.triangle_count() == 6 * 2 + 2 * 12 + 2 * 320);
+    CHECK(scene.render.width == 800);
+    CHECK(scene.render.height == 600);
+    CHECK(scene.render.max_depth == 5);
+    CHECK(same_vec3(scene.camera.position, glm::vec3(0.0f, 0.31f, -1.2f)));
+    CHECK(scene.camera.vertical_fov == 53.13f);
+
+    const Material& lamp = material_named(scene, "lamp");
+    CHECK(lamp.type == MaterialType::emissive);
+    CHECK(lamp.emittance == 15.0f);
+    CHECK(material_named(scene, "glass").ior == 1.51714f);
+    CHECK(material_named(scene, "glossy").roughness == 0.09f);
+    CHECK(material_named(scene, "red").color.x == 0.366046f);
+    // The lamp plane is shape 5 and uses the lamp material.
+    CHECK(scene.materials[static_cast<std::size_t>(scene.shapes[5].material)].name == "lamp");
+}
+
+TEST_CASE("the other shipped scenes have their expected contents", "[scene_loader]") {
+    SECTION("cornell_diffuse: every surface but the lamp is diffuse") {
+        const Scene scene = load_scene_file(scenes_dir + "/cornell_diffuse.json");
+        CHECK(scene.materials.size() == 4);
+        CHECK(scene.shapes.size() == 10);
+        for (const Material& m : scene.materials) {
+            INFO(m.name);
+            CHECK((m.type == MaterialType::diffuse || m.name == "lamp"));
+        }
+        CHECK(scene.camera.vertical_fov == 90.0f);
+        CHECK(scene.render.max_depth == 64);
+    }
+    SECTION("furnace: one emitting diffuse box around the camera") {
+        const Scene scene = load_scene_file(scenes_dir + "/furnace.json");
+        REQUIRE(scene.materials.size() == 1);
+        REQUIRE(scene.shapes.size() == 1);
+        CHECK(scene.triangle_count() == 12);
+        CHECK(scene.materials[0].emittance == 1.0f);
+        CHECK(same_vec3(scene.shapes[0].aabb.min, glm::vec3(-1.0f)));
+        CHECK(same_vec3(scene.shapes[0].aabb.max, glm::vec3(1.0f)));
+        CHECK(same_vec3(scene.camera.position, glm::vec3(0.0f)));
+        CHECK(scene.render.width == 64);
+        CHECK(scene.render.height == 48);
+        CHECK(scene.render.max_depth == 8);
+    }
+    SECTION("mesh_demo: the tetrahedron OBJ, relative to the scene's directory") {
+        const Scene scene = load_scene_file(scenes_dir + "/mesh_demo.json");
+        REQUIRE(scene.shapes.size() == 7);
+        CHECK(scene.shapes.back().triangles.size() == 4);
+    }
+}
+
+TEST_CASE("the built-in scene is scenes/cornell.json", "[scene_loader]") {
+    const Scene builtin = builtin_scene();
+    const Scene file = load_scene_file(scenes_dir + "/cornell.json");
+    CHECK(builtin.triangle_count() == file.triangle_count());
+    REQUIRE(builtin.shapes.size() == file.shapes.size());
+    for (std::size_t i = 0; i < file.shapes.size(); ++i) {
+        CHECK(builtin.shapes[i].material == file.shapes[i].material);
+        CHECK(same_vec3(builtin.shapes[i].aabb.min, file.shapes[i].aabb.min));
+        CHECK(same_vec3(builtin.shapes[i].aabb.max, file.shapes[i].aabb.max));
+    }
+    REQUIRE(builtin.materials.size() == file.materials.size());
+    for (std::size_t i = 0; i < file.materials.size(); ++i) {
+        CHECK(builtin.materials[i].name == file.materials[i].name);
+    }
+    CHECK(same_vec3(builtin.camera.position, file.camera.position));
+    CHECK(same_vec3(builtin.camera.direction, file.camera.direction));
+    CHECK(same_vec3(builtin.camera.world_up, file.camera.world_up));
+    CHECK(builtin.camera.vertical_fov == file.camera.vertical_fov);
+    CHECK(builtin.render.max_depth == file.render.max_depth);
+
+    // The text itself is the file's, without the build's header line.
+    std::ifstream in(scenes_dir + "/cornell.json");
+    std::stringstream text;
+    text << in.rdbuf();
+    CHECK_THAT(builtin_scene_json(), StartsWith(text.str()));
+}
+
+TEST_CASE("optional keys take their documented defaults", "[scene_loader]") {
+    const Scene scene = parse(scene_json(
+        white_material + R"(, "mirror": {"type": "glossy", "color": [1, 1, 1]},
+                              "clear": {"type": "glass", "color": [1, 1, 1]})",
+        plane_shape + R"(, {"type": "icosphere", "radius": 1, "material": "white"})"));
+    const Camera default_camera;
+    CHECK(same_vec3(scene.camera.position, default_camera.position));
+    CHECK(same_vec3(scene.camera.direction, default_camera.direction));
+    CHECK(same_vec3(scene.camera.world_up, default_camera.world_up));
+    CHECK(scene.camera.vertical_fov == default_camera.vertical_fov);
+    CHECK(scene.render.width == 800);
+    CHECK(scene.render.height == 600);
+    CHECK(scene.render.max_depth == 5);
+    CHECK(material_named(scene, "white").emittance == 0.0f);
+    CHECK(material_named(scene, "mirror").roughness == 0.0f);
+    CHECK(material_named(scene, "clear").ior == 1.5f);
+    // Position and orientation 0: the unit plane centred on the origin.
+    CHECK(same_vec3(scene.shapes[0].aabb.min, glm::vec3(-0.5f, 0.0f, -0.5f)));
+    CHECK(same_vec3(scene.shapes[0].aabb.max, glm::vec3(0.5f, 0.0f, 0.5f)));
+    CHECK(scene.shapes[1].triangles.size() == 320);  // 2 subdivisions
+}
+
+TEST_CASE("integers may be written with a zero fraction", "[scene_loader]") {
+    const Scene scene = parse(with_extra(R"("render": {"width": 640.0, "height": 480})"));
+    CHECK(scene.render.width == 640);
+}
+
+TEST_CASE("scene errors: JSON syntax, with line and column", "[scene_loader]") {
+    const std::string text = "{\n  \"materials\": {\n    \"white\": {\"type\": \"diffuse\",}\n";
+    CHECK_THAT(scene_error(text), StartsWith("test.json:3:33: JSON syntax error: "));
+    CHECK_THAT(scene_error(""), StartsWith("test.json:1:1: JSON syntax error: "));
+    CHECK_THAT(scene_error(R"({"render": {"width": 1e400}})"),
+               StartsWith("test.json: ") && Contains("not finite"));
+}
+
+TEST_CASE("scene errors: a missing required key", "[scene_loader]") {
+    CHECK_THAT(scene_error(R"({"shapes": [)" + plane_shape + "]}"),
+               StartsWith("test.json: /materials: required key is missing"));
+    CHECK_THAT(scene_error(R"({"materials": {)" + white_material + "}}"),
+               StartsWith("test.json: /shapes: required key is missing"));
+    CHECK_THAT(scene_error(with_shape(R"({"type": "plane", "material": "white"})")),
+               StartsWith("test.json: /shapes/0/size: required key is missing") &&
+                   Contains("an array of 2 finite positive numbers"));
+    CHECK_THAT(scene_error(with_shape(R"({"type": "plane", "size": [1, 1]})")),
+               StartsWith("test.json: /shapes/0/material: required key is missing"));
+    CHECK_THAT(scene_error(with_shape(R"({"size": [1, 1], "material": "white"})")),
+               StartsWith("test.json: /shapes/0/type: required key is missing"));
+    CHECK_THAT(scene_error(with_material(R"("m": {"type": "diffuse"})")),
+               StartsWith("test.json: /materials/m/color: required key is missing"));
+    CHECK_THAT(scene_error(with_material(R"("m": {"type": "emissive", "color": [1, 1, 1]})")),
+               StartsWith("test.json: /materials/m/emittance: required key is missing"));
+    CHECK_THAT(scene_error(with_shape(R"({"type": "mesh", "material": "white"})")),
+               StartsWith("test.json: /shapes/0/file: required key is missing"));
+}
+
+TEST_CASE("scene errors: a value of the wrong JSON type", "[scene_loader]") {
+    CHECK_THAT(scene_error("[1, 2]"), StartsWith("test.json: (top level): expected a JSON object"));
+    CHECK_THAT(scene_error(with_shape(R"({"type": "plane", "size": "big", "material": "white"})")),
+               Equals("test.json: /shapes/0/size: expected an array of 2 finite positive "
+                      "numbers, got \"big\""));
+    CHECK_THAT(scene_error(with_material(R"("m": {"type": "diffuse", "color": [1, "1", 1]})")),
+               StartsWith("test.json: /materials/m/color: expected an array of 3 numbers in "
+                          "[0, 1], got [1, \"1\", 1]"));
+    CHECK_THAT(scene_error(with_extra(R"("render": {"width": "800"})")),
+               Equals("test.json: /render/width: expected an integer in [1, 16384], got \"800\""));
+    CHECK_THAT(scene_error(with_material(
+                   R"("m": {"type": "glossy", "color": [1, 1, 1], "roughness": true})")),
+               StartsWith("test.json: /materials/m/roughness: expected a number in [0, 1], got "
+                          "true"));
+    CHECK_THAT(scene_error(with_shape(R"({"type": "plane", "size": [1, 1], "material": 3})")),
+               StartsWith("test.json: /shapes/0/material: expected the name of a material"));
+    CHECK_THAT(scene_error(R"({"materials": [], "shapes": [)" + plane_shape + "]}"),
+               StartsWith("test.json: /materials: expected a non-empty object"));
+    CHECK_THAT(scene_error(R"({"materials": {}, "shapes": [)" + plane_shape + "]}"),
+               StartsWith("test.json: /materials: expected a non-empty object"));
+    CHECK_THAT(scene_error(scene_json(white_material, "")),
+               StartsWith("test.json: /shapes: expected a non-empty array of shapes, got []"));
+    CHECK_THAT(scene_error(with_extra(R"("camera": [0, 0, 1])")),
+               StartsWith("test.json: /camera: expected a camera object"));
+    CHECK_THAT(scene_error(with_shape(R"({"type": "mesh", "file": 7, "material": "white"})")),
+               StartsWith("test.json: /shapes/0/file: expected the path of an OBJ file, got 7"));
+}
+
+TEST_CASE("scene errors: an unknown key", "[scene_loader]") {
+    CHECK_THAT(scene_error(with_extra(R"("camra": {})")),
+               StartsWith("test.json: /camra: unknown key in the top level"));
+    CHECK_THAT(scene_error(with_material(
+                   R"("m": {"type": "diffuse", "color": [1, 1, 1], "roughness": 0.5})")),
+               StartsWith("test.json: /materials/m/roughness: unknown key in a diffuse material") &&
+                   Contains("allowed keys: type, color, emittance"));
+    CHECK_THAT(scene_error(with_material(
+                   R"("m": {"type": "glass", "color": [1, 1, 1], "emittance": 1})")),
+               StartsWith("test.json: /materials/m/emittance: unknown key in a glass material"));
+    CHECK_THAT(
+        scene_error(with_shape(R"({"type": "plane", "size": [1, 1], "radius": 1, "material": "white"})")),
+        StartsWith("test.json: /shapes/0/radius: unknown key in a plane shape"));
+    CHECK_THAT(scene_error(with_shape(
+                   R"({"type": "icosphere", "radius": 1, "scale": [1, 1, 1], "material": "white"})")),
+               StartsWith("test.json: /shapes/0/scale: unknown key in an icosphere shape"));
+    CHECK_THAT(scene_error(with_extra(R"("camera": {"fov": 40})")),
+               StartsWith("test.json: /camera/fov: unknown key in the camera"));
+    CHECK_THAT(scene_error(with_extra(R"("render": {"depth": 4})")),
+               StartsWith("test.json: /render/depth: unknown key in the render settings"));
+}
+
+TEST_CASE("scene errors: a key given twice", "[scene_loader]") {
+    CHECK_THAT(scene_error(scene_json(white_material + ", " + white_material)),
+               StartsWith("test.json: /materials/white: duplicate key"));
+    CHECK_THAT(
+        scene_error(with_shape(R"({"type": "plane", "size": [1, 1], "size": [2, 2], "material": "white"})")),
+        StartsWith("test.json: /shapes/0/size: duplicate key"));
+    CHECK_THAT(scene_error(scene_json(white_material, plane_shape + ", " +
+                                                          R"({"type": "box", "size": [1, 1, 1],
+                                                              "material": "white", "type": "box"})")),
+               StartsWith("test.json: /shapes/1/type: duplicate key"));
+}
+
+TEST_CASE("scene errors: unknown names and types", "[scene_loader]") {
+    CHECK_THAT(scene_error(with_shape(R"({"type": "plane", "size": [1, 1], "material": "whte"})")),
+               Equals("test.json: /shapes/0/material: unknown material \"whte\" (known "
+                      "materials: \"white\")"));
+    CHECK_THAT(scene_error(with_material(R"("m": {"type": "metal", "color": [1, 1, 1]})")),
+               Equals("test.json: /materials/m/type: expected one of \"emissive\", \"diffuse\", "
+                      "\"glass\", \"glossy\", got \"metal\""));
+    CHECK_THAT(scene_error(with_shape(R"({"type": "sphere", "radius": 1, "material": "white"})")),
+               StartsWith("test.json: /shapes/0/type: expected one of \"plane\", \"box\", "
+                          "\"icosphere\", \"mesh\", got \"sphere\""));
+}
+
+TEST_CASE("scene errors: a mesh file that cannot be read", "[scene_loader]") {
+    CHECK_THAT(
+        scene_error(with_shape(R"({"type": "mesh", "file": "no/such.obj", "material": "white"})")),
+        StartsWith("test.json: /shapes/0/file: ") && Contains("no/such.obj"));
+}
+
+TEST_CASE("scene errors: numbers out of range", "[scene_loader]") {
+    CHECK_THAT(scene_error(with_shape(R"({"type": "plane", "size": [1, -2], "material": "white"})")),
+               Equals("test.json: /shapes/0/size: expected an array of 2 finite positive "
+                      "numbers, got [1, -2]"));
+    CHECK_THAT(
+        scene_error(with_shape(R"({"type": "plane", "size": [1e39, 1], "material": "white"})")),
+        StartsWith("test.json: /shapes/0/size: ") && Contains("not finite"));
+    CHECK_THAT(scene_error(with_material(
+                   R"("m": {"type": "emissive", "color": [1, 1, 1], "emittance": 1e39})")),
+               StartsWith("test.json: /materials/m/emittance: ") && Contains("not finite"));
+    CHECK_THAT(scene_error(with_shape(R"({"type": "icosphere", "radius": 0, "material": "white"})")),
+               Equals("test.json: /shapes/0/radius: expected a finite positive number, got 0"));
+    CHECK_THAT(scene_error(with_shape(
+                   R"({"type": "icosphere", "radius": 1, "subdivisions": 8, "material": "white"})")),
+               StartsWith("test.json: /shapes/0/subdivisions: expected an integer in [0, 7]"));
+    CHECK_THAT(scene_error(with_shape(
+                   R"({"type": "mesh", "file": "x.obj", "scale": [1, 0, 1], "material": "white"})")),
+               StartsWith("test.json: /shapes/0/scale: expected an array of 3 finite non-zero"));
+    CHECK_THAT(scene_error(with_material(R"("m": {"type": "diffuse", "color": [1.2, 0, 0]})")),
+               StartsWith("test.json: /materials/m/color: expected an array of 3 numbers in "
+                          "[0, 1], got [1.2, 0, 0]"));
+    CHECK_THAT(scene_error(with_material(
+                   R"("m": {"type": "emissive", "color": [1, 1, 1], "emittance": 0})")),
+               StartsWith("test.json: /materials/m/emittance: expected a finite positive number"));
+    CHECK_THAT(scene_error(with_extra(R"("render": {"width": 2.5})")),
+               Equals("test.json: /render/width: expected an integer in [1, 16384], got 2.5"));
+    CHECK_THAT(scene_error(with_extra(R"("render": {"max_depth": 0})")),
+               StartsWith("test.json: /render/max_depth: expected an integer in [1, 100000]"));
+    // An emitter's color is radiance, not reflectance: above 1 is fine.
+    CHECK_NOTHROW(parse(with_material(
+        R"("m": {"type": "emissive", "color": [2, 2, 2], "emittance": 1})")));
+}
+
+TEST_CASE("scene errors: a camera that cannot form an image", "[scene_loader]") {
+    CHECK_THAT(scene_error(with_extra(R"("camera": {"direction": [0, 1, 0]})")),
+               StartsWith("test.json: /camera: ") && Contains("parallel"));
+    CHECK_THAT(scene_error(with_extra(R"("camera": {"direction": [0, 0, 0]})")),
+               StartsWith("test.json: /camera: ") && Contains("direction"));
+    CHECK_THAT(scene_error(with_extra(R"("camera": {"vertical_fov": 180})")),
+               Equals("test.json: /camera/vertical_fov: expected a number of degrees in "
+                      "(0, 180), got 180"));
+}
+
+TEST_CASE("scene files: errors name the file; meshes are relative to it", "[scene_loader]") {
+    TempDir dir;
+    SECTION("a file that does not exist") {
+        const std::string path = dir.path() + "/absent.json";
+        REQUIRE_THROWS_WITH(load_scene_file(path), Equals(path + ": cannot open scene file"));
+    }
+    SECTION("a directory") {
+        REQUIRE_THROWS_WITH(load_scene_file(dir.path()), StartsWith(dir.path() + ": cannot"));
+    }
+    SECTION("a syntax error") {
+        const std::string path = dir.write("broken.json", "{\n  \"materials\": {,\n}\n");
+        REQUIRE_THROWS_WITH(load_scene_file(path), StartsWith(path + ":2:17: JSON syntax error"));
+    }
+    SECTION("a relative mesh path resolves against the scene's directory") {
+        dir.write("tet.obj", tetrahedron_obj);
+        const std::string path = dir.write(
+            "mesh.json", with_shape(R"({"type": "mesh", "file": "tet.obj", "material": "white"})"));
+        const Scene scene = load_scene_file(path);
+        CHECK(scene.shapes[0].triangles.size() == 4);
+    }
+    SECTION("a missing mesh names the scene file, the JSON path and the OBJ file") {
+        const std::string path = dir.write(
+            "mesh.json",
+            with_shape(R"({"type": "mesh", "file": "missing.obj", "material": "white"})"));
+        REQUIRE_THROWS_WITH(load_scene_file(path),
+                            StartsWith(path + ": /shapes/0/file: ") &&
+                                Contains(dir.path() + "/missing.obj"));
+    }
+}

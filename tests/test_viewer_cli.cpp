@@ -1,0 +1,111 @@
+// The trac0r_viewer program as a user runs it: headless renders, files it
+// writes, and the messages and exit codes of bad command lines.
+#include <catch2/catch.hpp>
+
+#include "trac0r/image_io.h"
+
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct Run {
+    int exit_code;
+    std::string output;  // stdout and stderr together
+};
+
+Run run_viewer(const std::string& args) {
+    const std::string command = std::string(TRAC0R_VIEWER) + " " + args + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    std::string output;
+    char buffer[4096];
+    while (std::fgets(buffer, sizeof buffer, pipe)) {
+        output += buffer;
+    }
+    const int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+std::string read_bytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+const std::string cornell = std::string(TRAC0R_SOURCE_DIR) + "/scenes/cornell.json";
+
+}  // namespace
+
+TEST_CASE("a headless render of cornell.json is deterministic and finite", "[cli]") {
+    const std::string args = cornell + " --headless --width 80 --height 60 --spp 4 --seed 5 ";
+    const Run a = run_viewer(args + "--output cli_a.pfm");
+    const Run b = run_viewer(args + "--output cli_b.pfm");
+    INFO(a.output);
+    REQUIRE(a.exit_code == 0);
+    REQUIRE(b.exit_code == 0);
+    REQUIRE(a.output.find("wrote cli_a.pfm") != std::string::npos);
+    const std::string bytes = read_bytes("cli_a.pfm");
+    REQUIRE(bytes.size() > 80 * 60 * 12);
+    REQUIRE(bytes == read_bytes("cli_b.pfm"));
+
+    const trac0r::Image image = trac0r::read_pfm("cli_a.pfm");
+    REQUIRE(image.width == 80);
+    REQUIRE(image.height == 60);
+    double total = 0.0;
+    for (const glm::vec3& p : image.pixels) {
+        REQUIRE(std::isfinite(p.x + p.y + p.z));
+        total += p.x + p.y + p.z;
+    }
+    REQUIRE(total > 0.0);  // the lamp lights the box
+}
+
+TEST_CASE("a PNG is written for the built-in scene", "[cli]") {
+    const Run r = run_viewer("--headless --width 40 --height 30 --spp 2 --output cli.png");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    const std::string png = read_bytes("cli.png");
+    REQUIRE(png.size() > 8);
+    REQUIRE(png.compare(1, 3, "PNG") == 0);
+}
+
+TEST_CASE("--help lists the options and exits 0", "[cli]") {
+    const Run r = run_viewer("--help");
+    REQUIRE(r.exit_code == 0);
+    REQUIRE(r.output.find("--headless") != std::string::npos);
+    REQUIRE(r.output.find("--spp") != std::string::npos);
+}
+
+TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]") {
+    struct Case {
+        std::string args;
+        std::string expected;  // part of the message
+    };
+    const Case cases[] = {
+        {"--headless --spp abc --output x.png", "--spp: expected an integer"},
+        {"--headless --spp 0 --output x.png", "--spp: expected an integer in [1"},
+        {"--frobnicate", "--frobnicate: unknown option"},
+        {"--headless --output x.jpg", "expected a .png or .pfm"},
+        {"--headless", "give --output FILE"},
+        {"--headless --seconds -1 --output x.png", "--seconds: expected a positive number"},
+        {"--headless --accel kd --output x.png", "--accel: expected one of flat|bvh|auto"},
+        {"--headless --width", "--width: expected a value"},
+        {"no_such_scene.json --headless --output x.png", "no_such_scene.json"},
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.args);
+        const Run r = run_viewer(c.args);
+        CAPTURE(r.output);
+        REQUIRE(r.exit_code != 0);
+        REQUIRE(r.output.find(c.expected) != std::string::npos);
+        // One message: a single line, no progress bar, no crash.
+        REQUIRE(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+    }
+}

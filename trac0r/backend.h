@@ -1,0 +1,31 @@
+// A rendering backend: runs the kernel over every pixel and accumulates.
+#ifndef TRAC0R_BACKEND_H
+#define TRAC0R_BACKEND_H
+
+#include "trac0r/kernel/types.h"
+#include "trac0r/packed_scene.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace trac0r {
+
+class Backend {
+  public:
+    virtual ~Backend() = default;
+    virtual std::string name() const = 0;    // "cpu", "opencl"
+    virtual std::string device() const = 0;  // what it runs on, for people
+    // Called once per scene change.
+    virtual void set_scene(const PackedScene& scene) = 0;
+    // Clears the accumulator (new size, camera or settings).
+    virtual void reset(int width, int height) = 0;
+    // One sample per pixel, accumulated.
+    virtual void render_frame(const kernel::CameraRecord& camera, std::uint64_t seed,
+                              std::uint32_t frame, int max_depth) = 0;
+    virtual void read_accumulator(std::vector<kernel::AccumPixel>& out) = 0;
+};
+
+}  // namespace trac0r
+
+#endif

@@ -1,0 +1,60 @@
+#include "trac0r/camera.h"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace trac0r {
+
+namespace {
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+}  // namespace
+
+const char* camera_problem(const Camera& camera) {
+    if (!finite(camera.position)) {
+        return "camera.position must be finite";
+    }
+    if (!finite(camera.direction) || glm::length(camera.direction) == 0.0f) {
+        return "camera.direction must be a finite, non-zero vector";
+    }
+    if (!finite(camera.world_up) || glm::length(camera.world_up) == 0.0f) {
+        return "camera.world_up must be a finite, non-zero vector";
+    }
+    const glm::vec3 right = glm::cross(camera.world_up, camera.direction);
+    if (glm::length(right) <=
+        1e-6f * glm::length(camera.world_up) * glm::length(camera.direction)) {
+        return "camera.direction is parallel to camera.world_up, so the image has no "
+               "'right'; choose another world_up";
+    }
+    if (!(camera.vertical_fov > 0.0f && camera.vertical_fov < 180.0f)) {
+        return "camera.vertical_fov must be in (0, 180) degrees";
+    }
+    return nullptr;
+}
+
+kernel::CameraRecord make_camera_record(const Camera& camera, int width, int height) {
+    if (const char* problem = camera_problem(camera)) {
+        throw std::invalid_argument(problem);
+    }
+    if (width <= 0 || height <= 0) {
+        throw std::invalid_argument("image size must be positive, got " + std::to_string(width) +
+                                    " x " + std::to_string(height));
+    }
+    const glm::vec3 forward = glm::normalize(camera.direction);
+    const glm::vec3 right = glm::normalize(glm::cross(camera.world_up, forward));
+    const glm::vec3 up = glm::cross(forward, right);
+    const float half_height = std::tan(0.5f * glm::radians(camera.vertical_fov));
+    const float aspect = static_cast<float>(width) / static_cast<float>(height);
+    kernel::CameraRecord r;
+    r.position = glm::vec4(camera.position, 1.0f);
+    r.forward = glm::vec4(forward, 0.0f);
+    r.right = glm::vec4(right, 0.0f);
+    r.up = glm::vec4(up, 0.0f);
+    r.extent = glm::vec4(half_height * aspect, half_height, 0.0f, 0.0f);
+    r.size = glm::uvec4(static_cast<unsigned>(width), static_cast<unsigned>(height), 0u, 0u);
+    return r;
+}
+
+}  // namespace trac0r

@@ -1,0 +1,28 @@
+// The pinhole camera of a scene.
+#ifndef TRAC0R_CAMERA_H
+#define TRAC0R_CAMERA_H
+
+#include "trac0r/kernel/types.h"
+
+#include <glm/glm.hpp>
+
+namespace trac0r {
+
+struct Camera {
+    glm::vec3 position{0.0f, 0.31f, -1.2f};
+    glm::vec3 direction{0.0f, 0.0f, 1.0f};
+    glm::vec3 world_up{0.0f, 1.0f, 0.0f};
+    float vertical_fov = 53.13f;  // degrees, a true field of view
+};
+
+// Why a camera cannot form an image, or nullptr when it can: a zero or
+// non-finite vector, direction parallel to world_up, fov outside (0, 180).
+const char* camera_problem(const Camera& camera);
+
+// The kernel's view of the camera for a width x height image. Throws
+// std::invalid_argument when camera_problem() reports one.
+kernel::CameraRecord make_camera_record(const Camera& camera, int width, int height);
+
+}  // namespace trac0r
+
+#endif

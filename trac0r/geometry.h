@@ -1,0 +1,43 @@
+// Host geometry: axis-aligned boxes and triangles.
+#ifndef TRAC0R_GEOMETRY_H
+#define TRAC0R_GEOMETRY_H
+
+#include <glm/glm.hpp>
+
+#include <limits>
+
+namespace trac0r {
+
+struct AABB {
+    glm::vec3 min{std::numeric_limits<float>::max()};
+    glm::vec3 max{-std::numeric_limits<float>::max()};
+
+    void extend(const glm::vec3& p) {
+        min = glm::min(min, p);
+        max = glm::max(max, p);
+    }
+    void extend(const AABB& b) {
+        min = glm::min(min, b.min);
+        max = glm::max(max, b.max);
+    }
+    bool empty() const { return min.x > max.x || min.y > max.y || min.z > max.z; }
+    glm::vec3 center() const { return 0.5f * (min + max); }
+};
+
+// A triangle with its normal (from the winding v0 -> v1 -> v2), centroid and
+// area precomputed. The area is computed in double so that needle-thin
+// triangles are told from degenerate ones.
+struct Triangle {
+    glm::vec3 v0, v1, v2;
+    glm::vec3 normal{0.0f};
+    glm::vec3 centroid{0.0f};
+    float area = 0.0f;
+
+    Triangle() = default;
+    Triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
+    AABB bounds() const;
+};
+
+}  // namespace trac0r
+
+#endif

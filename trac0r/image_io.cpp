@@ -1,0 +1,119 @@
+#include "trac0r/image_io.h"
+
+#include <stb_image_write.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace trac0r {
+
+namespace {
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+    if (s.size() < suffix.size()) {
+        return false;
+    }
+    std::string tail = s.substr(s.size() - suffix.size());
+    std::transform(tail.begin(), tail.end(), tail.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return tail == suffix;
+}
+
+bool host_is_little_endian() {
+    const std::uint32_t one = 1;
+    unsigned char first;
+    std::memcpy(&first, &one, 1);
+    return first == 1;
+}
+
+}  // namespace
+
+std::uint8_t tonemap_channel(float linear, float exposure) {
+    float v = linear * exposure;
+    if (!(v > 0.0f)) {
+        return 0;  // also NaN
+    }
+    v = std::min(v, 1.0f);
+    const float srgb = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
+    return static_cast<std::uint8_t>(std::lround(srgb * 255.0f));
+}
+
+void write_png(const std::string& path, const Image& image, float exposure) {
+    std::vector<std::uint8_t> bytes(image.pixels.size() * 3);
+    for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+            bytes[3 * i + c] = tonemap_channel(image.pixels[i][c], exposure);
+        }
+    }
+    if (!stbi_write_png(path.c_str(), image.width, image.height, 3, bytes.data(),
+                        image.width * 3)) {
+        throw std::runtime_error(path + ": cannot write PNG");
+    }
+}
+
+void write_pfm(const std::string& path, const Image& image) {
+    std::ofstream out(path, std::ios::binary);
+    if (!out) {
+        throw std::runtime_error(path + ": cannot open for writing");
+    }
+    // A negative scale says little-endian.
+    out << "PF\n" << image.width << " " << image.height << "\n"
+        << (host_is_little_endian() ? "-1.0" : "1.0") << "\n";
+    for (int y = image.height - 1; y >= 0; --y) {  // PFM stores the bottom row first
+        out.write(reinterpret_cast<const char*>(&image.pixels[static_cast<std::size_t>(y) *
+                                                              image.width]),
+                  static_cast<std::streamsize>(sizeof(glm::vec3)) * image.width);
+    }
+    if (!out) {
+        throw std::runtime_error(path + ": write failed");
+    }
+}
+
+Image read_pfm(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw std::runtime_error(path + ": cannot open PFM");
+    }
+    std::string magic;
+    Image image;
+    double scale = 0.0;
+    in >> magic >> image.width >> image.height >> scale;
+    if (!in || magic != "PF" || image.width <= 0 || image.height <= 0 || scale == 0.0) {
+        throw std::runtime_error(path + ": not a colour PFM (expected 'PF', size and scale)");
+    }
+    in.get();  // the single whitespace after the scale
+    const bool file_little = scale < 0.0;
+    image.pixels.resize(static_cast<std::size_t>(image.width) * image.height);
+    for (int y = image.height - 1; y >= 0; --y) {
+        char* row = reinterpret_cast<char*>(&image.pixels[static_cast<std::size_t>(y) *
+                                                          image.width]);
+        const std::size_t bytes = sizeof(glm::vec3) * image.width;
+        if (!in.read(row, static_cast<std::streamsize>(bytes))) {
+            throw std::runtime_error(path + ": PFM data is truncated");
+        }
+        if (file_little != host_is_little_endian()) {
+            for (std::size_t i = 0; i < bytes; i += 4) {
+                std::swap(row[i], row[i + 3]);
+                std::swap(row[i + 1], row[i + 2]);
+            }
+        }
+    }
+    return image;
+}
+
+void write_image(const std::string& path, const Image& image, float exposure) {
+    if (ends_with(path, ".png")) {
+        write_png(path, image, exposure);
+    } else if (ends_with(path, ".pfm")) {
+        write_pfm(path, image);
+    } else {
+        throw std::runtime_error(path + ": unknown image format (expected .png or .pfm)");
+    }
+}
+
+}  // namespace trac0r

@@ -1,0 +1,37 @@
+// Writing and reading images. Pixels are linear RGB, row 0 at the top.
+#ifndef TRAC0R_IMAGE_IO_H
+#define TRAC0R_IMAGE_IO_H
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace trac0r {
+
+struct Image {
+    int width = 0;
+    int height = 0;
+    std::vector<glm::vec3> pixels;  // row-major, row 0 at the top
+
+    glm::vec3& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
+    const glm::vec3& at(int x, int y) const {
+        return pixels[static_cast<std::size_t>(y) * width + x];
+    }
+};
+
+// Linear radiance to an 8-bit sRGB value: exposure, clamp, sRGB curve.
+std::uint8_t tonemap_channel(float linear, float exposure);
+
+// .png (tone-mapped sRGB) or .pfm (linear float), chosen by the extension.
+// Throws std::runtime_error naming the file on failure or another extension.
+void write_image(const std::string& path, const Image& image, float exposure = 1.0f);
+void write_png(const std::string& path, const Image& image, float exposure = 1.0f);
+// PFM ("PF", little-endian scale -1), rows bottom first as the format says.
+void write_pfm(const std::string& path, const Image& image);
+Image read_pfm(const std::string& path);
+
+}  // namespace trac0r
+
+#endif

@@ -1,0 +1,157 @@
+// Ray/AABB and ray/triangle tests, the flat structure's traversal, and the
+// offset that keeps a new ray from hitting the surface it leaves.
+#ifndef TRAC0R_KERNEL_INTERSECT_H
+#define TRAC0R_KERNEL_INTERSECT_H
+
+#include "types.h"
+
+// A ray is parallel to a triangle when |cos(angle to its plane's normal)|
+// is below this: relative to the triangle's own size, so the test behaves
+// the same at every scene scale (Möller–Trumbore's det is -|e1 x e2| cos).
+#define T0_PARALLEL_COSINE 1e-7f
+#define T0_NO_HIT 3.402823e38f
+
+T0_NAMESPACE_BEGIN
+
+typedef struct Ray {
+    float3 origin;
+    float3 direction;      // unit length
+    float3 inv_direction;  // finite: zero components are nudged to +-1e-30
+} Ray;
+
+typedef struct Hit {
+    float t;
+    float u;
+    float v;
+    int triangle;  // -1: nothing was hit
+} Hit;
+
+T0_INLINE float safe_inverse(float d) {
+    return 1.0f / (fabs(d) > 1e-30f ? d : copysign(1e-30f, d));
+}
+
+T0_INLINE Ray make_ray(float3 origin, float3 direction) {
+    Ray r;
+    r.origin = origin;
+    r.direction = direction;
+    r.inv_direction = make_float3(safe_inverse(direction.x), safe_inverse(direction.y),
+                                  safe_inverse(direction.z));
+    return r;
+}
+
+// Slab test. inv_direction is finite, so a ray parallel to a slab gets
+// +-huge instead of +-inf and 0 * inv never makes a NaN; a ray lying in a
+// slab's boundary plane counts as inside (bounds are conservative).
+T0_INLINE int intersect_aabb(float3 box_min, float3 box_max, Ray ray, float t_max) {
+    const float3 t0 = (box_min - ray.origin) * ray.inv_direction;
+    const float3 t1 = (box_max - ray.origin) * ray.inv_direction;
+    const float3 t_small = vmin3(t0, t1);
+    const float3 t_large = vmax3(t0, t1);
+    const float t_enter = fmax(fmax(t_small.x, t_small.y), fmax(t_small.z, 0.0f));
+    const float t_exit = fmin(fmin(t_large.x, t_large.y), fmin(t_large.z, t_max));
+    return t_enter <= t_exit;
+}
+
+// Möller–Trumbore. Returns the distance along the ray, or T0_NO_HIT; the
+// barycentrics of the hit go to *u, *v. Edges count as inside.
+T0_INLINE float intersect_triangle(T0_GLOBAL const TriangleRecord* tri, Ray ray, float* u,
+                                   float* v) {
+    const float3 e1 = xyz(tri->edge1);
+    const float3 e2 = xyz(tri->edge2);
+    const float3 p = cross(ray.direction, e2);
+    const float det = dot(e1, p);
+    // Not '<=': a NaN det (never expected) must also miss.
+    if (!(fabs(det) > T0_PARALLEL_COSINE * tri->normal.w)) {
+        return T0_NO_HIT;
+    }
+    const float inv_det = 1.0f / det;
+    const float3 s = ray.origin - xyz(tri->v0);
+    const float bu = dot(s, p) * inv_det;
+    if (bu < 0.0f || bu > 1.0f) {
+        return T0_NO_HIT;
+    }
+    const float3 q = cross(s, e1);
+    const float bv = dot(ray.direction, q) * inv_det;
+    if (bv < 0.0f || bu + bv > 1.0f) {
+        return T0_NO_HIT;
+    }
+    const float t = dot(e2, q) * inv_det;
+    if (!(t > 0.0f)) {
+        return T0_NO_HIT;
+    }
+    *u = bu;
+    *v = bv;
+    return t;
+}
+
+// The thesis' structure: every shape's AABB, then its triangles.
+T0_INLINE Hit intersect_flat(const SceneView* scene, Ray ray) {
+    Hit hit;
+    hit.t = T0_NO_HIT;
+    hit.u = 0.0f;
+    hit.v = 0.0f;
+    hit.triangle = -1;
+    for (t0_u32 s = 0; s < scene->shape_count; ++s) {
+        T0_GLOBAL const ShapeRecord* shape = &scene->shapes[s];
+        if (!intersect_aabb(xyz(shape->aabb_min), xyz(shape->aabb_max), ray, hit.t)) {
+            continue;
+        }
+        const t0_u32 end = shape->range.x + shape->range.y;
+        for (t0_u32 i = shape->range.x; i < end; ++i) {
+            float u;
+            float v;
+            const float t = intersect_triangle(&scene->triangles[i], ray, &u, &v);
+            if (t < hit.t) {
+                hit.t = t;
+                hit.u = u;
+                hit.v = v;
+                hit.triangle = (int)i;
+            }
+        }
+    }
+    return hit;
+}
+
+T0_INLINE Hit intersect_scene(const SceneView* scene, Ray ray) {
+    return intersect_flat(scene, ray);
+}
+
+// The hit point from the barycentrics (more accurate than origin + t dir)
+// and the magnitude of the numbers it was computed from.
+T0_INLINE float3 hit_position(T0_GLOBAL const TriangleRecord* tri, Hit hit) {
+    return xyz(tri->v0) + xyz(tri->edge1) * hit.u + xyz(tri->edge2) * hit.v;
+}
+
+T0_INLINE float max_abs3(float3 a) {
+    const float3 m = vabs3(a);
+    return fmax(m.x, fmax(m.y, m.z));
+}
+
+T0_INLINE float hit_magnitude(T0_GLOBAL const TriangleRecord* tri, float3 position) {
+    return fmax(max_abs3(position), max_abs3(xyz(tri->v0)) + max_abs3(xyz(tri->edge1)) +
+                                        max_abs3(xyz(tri->edge2)));
+}
+
+// Moves p off its surface along unit n (pointing to the side the new ray
+// leaves into). Ray Tracing Gems ch. 6 (Wächter & Binder): 256 units in the
+// last place of each coordinate, which grows with the coordinate; coordinates
+// much smaller than the hit's magnitude (where the ULP step would be too
+// small for the rounding error of the others) move by a fixed fraction of
+// that magnitude instead of the chapter's absolute 1/65536, so the offset
+// scales with the scene.
+T0_INLINE float offset_coordinate(float p, float n, float magnitude) {
+    if (fabs(p) < magnitude * (1.0f / 32.0f)) {
+        return p + n * magnitude * (1.0f / 65536.0f);
+    }
+    const int ulps = (int)(256.0f * n);
+    return bits_float(float_bits(p) + (p < 0.0f ? -ulps : ulps));
+}
+
+T0_INLINE float3 offset_ray_origin(float3 p, float3 n, float magnitude) {
+    return make_float3(offset_coordinate(p.x, n.x, magnitude), offset_coordinate(p.y, n.y, magnitude),
+                       offset_coordinate(p.z, n.z, magnitude));
+}
+
+T0_NAMESPACE_END
+
+#endif

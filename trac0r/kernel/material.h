@@ -1,0 +1,138 @@
+// The four materials: what they emit and how they scatter.
+//
+// A scatter sample returns the new direction, the weight f cos / pdf, the
+// pdf, and says when it failed (weight zero), never a NaN.
+#ifndef TRAC0R_KERNEL_MATERIAL_H
+#define TRAC0R_KERNEL_MATERIAL_H
+
+#include "rng.h"
+#include "sampling.h"
+#include "types.h"
+
+T0_NAMESPACE_BEGIN
+
+typedef struct ScatterSample {
+    float3 direction;
+    float3 weight;  // f cos / pdf; zero when the sample failed
+    float pdf;      // zero for delta (mirror and glass) directions
+    int is_delta;
+} ScatterSample;
+
+T0_INLINE ScatterSample scatter_failed(void) {
+    ScatterSample s;
+    s.direction = make_float3(0.0f, 0.0f, 1.0f);
+    s.weight = float3_splat(0.0f);
+    s.pdf = 0.0f;
+    s.is_delta = 0;
+    return s;
+}
+
+// Emitted radiance: colour x emittance, on both sides (as in the thesis).
+T0_INLINE float3 material_emission(T0_GLOBAL const MaterialRecord* m) {
+    return xyz(m->color) * m->params.x;
+}
+
+T0_INLINE float3 reflect_direction(float3 d, float3 n) { return d - n * (2.0f * dot(d, n)); }
+
+// Unpolarised Fresnel reflectance of a dielectric interface.
+// cos_i: cosine of the incident angle (>= 0); eta = eta_incident/eta_transmitted.
+// Returns 1 for total internal reflection and at exactly grazing incidence.
+T0_INLINE float fresnel_dielectric(float cos_i, float eta) {
+    cos_i = fmin(fmax(cos_i, 0.0f), 1.0f);
+    const float sin2_t = eta * eta * (1.0f - cos_i * cos_i);
+    if (sin2_t >= 1.0f) {
+        return 1.0f;
+    }
+    const float cos_t = sqrt(1.0f - sin2_t);
+    const float perp_den = eta * cos_i + cos_t;
+    const float parallel_den = cos_i + eta * cos_t;
+    if (!(perp_den > 0.0f) || !(parallel_den > 0.0f)) {
+        return 1.0f;
+    }
+    const float r_perp = (eta * cos_i - cos_t) / perp_den;
+    const float r_parallel = (cos_i - eta * cos_t) / parallel_den;
+    return 0.5f * (r_perp * r_perp + r_parallel * r_parallel);
+}
+
+// Lambertian: BRDF colour/pi, cosine-weighted sampling, so the weight is the
+// colour itself.
+T0_INLINE ScatterSample scatter_diffuse(T0_GLOBAL const MaterialRecord* m, float3 facing_normal,
+                                        Rng* rng) {
+    const float u1 = rng_float(rng);
+    const float u2 = rng_float(rng);
+    const DirectionSample d = sample_cosine_hemisphere(facing_normal, u1, u2);
+    ScatterSample s;
+    s.direction = d.direction;
+    s.weight = xyz(m->color);
+    s.pdf = d.pdf;
+    s.is_delta = 0;
+    return s;
+}
+
+// The thesis' glossy model: a cosine-weighted cone of half-angle
+// roughness * pi/2 around the mirror direction; the lobe is its own
+// sampling density, so the weight is the colour. Roughness 0 is a mirror.
+// Directions below the surface are absorbed (a failed sample).
+T0_INLINE ScatterSample scatter_glossy(T0_GLOBAL const MaterialRecord* m, float3 incoming,
+                                       float3 facing_normal, Rng* rng) {
+    const float3 mirror = reflect_direction(incoming, facing_normal);
+    const float u1 = rng_float(rng);
+    const float u2 = rng_float(rng);
+    const DirectionSample d = sample_cosine_cone(mirror, m->params.y * 0.5f * T0_PI, u1, u2);
+    if (!(dot(d.direction, facing_normal) > 0.0f)) {
+        return scatter_failed();
+    }
+    ScatterSample s;
+    s.direction = d.direction;
+    s.weight = xyz(m->color);
+    s.pdf = d.pdf;
+    s.is_delta = d.pdf == 0.0f ? 1 : 0;
+    return s;
+}
+
+// Smooth dielectric. Reflection or refraction is chosen with the Fresnel
+// probability, so each has weight one; refraction is tinted by the colour.
+// geometric_normal is the triangle's outward normal: it tells entering from
+// leaving.
+T0_INLINE ScatterSample scatter_glass(T0_GLOBAL const MaterialRecord* m, float3 incoming,
+                                      float3 geometric_normal, Rng* rng) {
+    const int entering = dot(incoming, geometric_normal) < 0.0f;
+    const float3 n = entering ? geometric_normal : -geometric_normal;
+    const float ior = m->params.z;
+    const float eta = entering ? 1.0f / ior : ior;
+    const float cos_i = fmin(fmax(-dot(incoming, n), 0.0f), 1.0f);
+    const float reflectance = fresnel_dielectric(cos_i, eta);
+    ScatterSample s;
+    s.pdf = 0.0f;
+    s.is_delta = 1;
+    if (rng_float(rng) < reflectance) {
+        s.direction = reflect_direction(incoming, n);
+        s.weight = float3_splat(1.0f);
+        return s;
+    }
+    const float sin2_t = eta * eta * (1.0f - cos_i * cos_i);
+    const float cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
+    s.direction = normalize(incoming * eta + n * (eta * cos_i - cos_t));
+    s.weight = xyz(m->color);
+    return s;
+}
+
+T0_INLINE ScatterSample scatter_material(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
+                                         float3 incoming, float3 geometric_normal,
+                                         float3 facing_normal, Rng* rng) {
+    const t0_u32 type = m->type.x;
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_DIFFUSE) && type == T0_MATERIAL_DIFFUSE) {
+        return scatter_diffuse(m, facing_normal, rng);
+    }
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_GLASS) && type == T0_MATERIAL_GLASS) {
+        return scatter_glass(m, incoming, geometric_normal, rng);
+    }
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_GLOSSY) && type == T0_MATERIAL_GLOSSY) {
+        return scatter_glossy(m, incoming, facing_normal, rng);
+    }
+    return scatter_failed();  // emissive: a pure emitter ends the path
+}
+
+T0_NAMESPACE_END
+
+#endif

@@ -1,0 +1,114 @@
+// Buffer structs shared by the host and both backends, and the feature mask.
+//
+// Only 16-byte vector members (float4/uint4), so C++ and OpenCL C lay them
+// out identically; the C++ side static_asserts size and alignment.
+#ifndef TRAC0R_KERNEL_TYPES_H
+#define TRAC0R_KERNEL_TYPES_H
+
+#include "compat.h"
+
+// Material types; the values are stored in MaterialRecord.type.x.
+#define T0_MATERIAL_EMISSIVE 1u
+#define T0_MATERIAL_DIFFUSE 2u
+#define T0_MATERIAL_GLASS 3u
+#define T0_MATERIAL_GLOSSY 4u
+
+// The feature mask: what a packed scene uses. The OpenCL program is built
+// with T0_FEATURES defined to the mask, so code behind a bit the scene does
+// not set is compiled out; the CPU backend tests the same bits at run time.
+#define T0_FEATURE_EMISSIVE (1u << 0)   // pure emitters
+#define T0_FEATURE_DIFFUSE (1u << 1)
+#define T0_FEATURE_GLASS (1u << 2)
+#define T0_FEATURE_GLOSSY (1u << 3)
+#define T0_FEATURE_EMITTANCE (1u << 4)  // any surface that emits light
+#define T0_FEATURE_FLAT (1u << 5)       // the thesis' flat list of shapes
+#define T0_FEATURE_BVH (1u << 6)        // reserved for the BVH
+#define T0_FEATURE_NEE (1u << 7)        // reserved for next-event estimation
+#define T0_FEATURE_COUNT 8
+
+T0_NAMESPACE_BEGIN
+
+// One triangle, ready for Möller–Trumbore: a vertex, the two edges from it,
+// the unit geometric normal (w: twice the area, |e1 x e2|) and indices.
+typedef struct T0_ALIGN16 TriangleRecord {
+    float4 v0;      // xyz: first vertex
+    float4 edge1;   // xyz: v1 - v0
+    float4 edge2;   // xyz: v2 - v0
+    float4 normal;  // xyz: normalize(e1 x e2), w: |e1 x e2|
+    uint4 ids;      // x: material index, y: shape index
+} TriangleRecord;
+
+// One shape of the flat structure: its AABB and its run of triangles.
+typedef struct T0_ALIGN16 ShapeRecord {
+    float4 aabb_min;  // xyz
+    float4 aabb_max;  // xyz
+    uint4 range;      // x: first triangle, y: triangle count, z: material
+} ShapeRecord;
+
+typedef struct T0_ALIGN16 MaterialRecord {
+    float4 color;   // xyz: colour (albedo, or emitted colour), w: unused
+    float4 params;  // x: emittance, y: roughness, z: ior
+    uint4 type;     // x: T0_MATERIAL_*
+} MaterialRecord;
+
+// The camera as the kernel needs it: an orthonormal frame and the image
+// plane's half extents at distance one.
+typedef struct T0_ALIGN16 CameraRecord {
+    float4 position;  // xyz
+    float4 forward;   // xyz, unit
+    float4 right;     // xyz, unit: normalize(cross(world_up, forward))
+    float4 up;        // xyz, unit: cross(forward, right)
+    float4 extent;    // x: tan(vfov/2) * aspect, y: tan(vfov/2)
+    uint4 size;       // x: width, y: height
+} CameraRecord;
+
+// Per pixel: a compensated (Kahan) sum of the radiance samples, so the mean
+// stays exact over very many frames, and Welford moments of the luminance
+// for the noise estimate.
+typedef struct T0_ALIGN16 AccumPixel {
+    float4 sum;           // xyz: sum of accepted samples
+    float4 compensation;  // xyz: Kahan compensation of sum
+    float4 moments;       // x: mean luminance, y: M2 of luminance,
+                          // z: accepted samples, w: dropped (non-finite) samples
+} AccumPixel;
+
+// What the kernel reads of a scene: views of the packed buffers.
+typedef struct SceneView {
+    T0_GLOBAL const TriangleRecord* triangles;
+    T0_GLOBAL const ShapeRecord* shapes;
+    T0_GLOBAL const MaterialRecord* materials;
+    t0_u32 shape_count;
+    t0_u32 features;
+} SceneView;
+
+// Per-frame settings of the render.
+typedef struct T0_ALIGN16 FrameRecord {
+    uint4 seed_frame;  // x, y: seed low and high words, z: frame index
+    uint4 limits;      // x: max depth
+} FrameRecord;
+
+T0_NAMESPACE_END
+
+#ifndef __OPENCL_VERSION__
+T0_NAMESPACE_BEGIN
+T0_STATIC_ASSERT_SIZE(TriangleRecord, 80);
+T0_STATIC_ASSERT_SIZE(ShapeRecord, 48);
+T0_STATIC_ASSERT_SIZE(MaterialRecord, 48);
+T0_STATIC_ASSERT_SIZE(CameraRecord, 96);
+T0_STATIC_ASSERT_SIZE(AccumPixel, 48);
+T0_STATIC_ASSERT_SIZE(FrameRecord, 32);
+T0_NAMESPACE_END
+#endif
+
+// A feature test that folds to a constant in OpenCL (the program is built
+// with -DT0_FEATURES=mask) and reads the packed scene's mask on the CPU.
+#ifdef __OPENCL_VERSION__
+#ifndef T0_FEATURES
+#define T0_FEATURES 0xffffffffu
+#endif
+#define T0_HAS_FEATURE(scene, bit) ((T0_FEATURES & (bit)) != 0u)
+#else
+#define T0_HAS_FEATURE(scene, bit) (((scene)->features & (bit)) != 0u)
+#endif
+
+#endif

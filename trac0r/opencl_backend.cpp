@@ -1,0 +1,308 @@
+#include "trac0r/opencl_backend.h"
+
+#define CL_TARGET_OPENCL_VERSION 120
+#include <CL/cl.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <mutex>
+
+namespace trac0r {
+
+extern const char* const embedded_opencl_source;
+
+const char* opencl_kernel_source() { return embedded_opencl_source; }
+
+namespace {
+
+void check(cl_int status, const char* what) {
+    if (status != CL_SUCCESS) {
+        throw OpenClError(std::string("OpenCL: ") + what + " failed (error " +
+                          std::to_string(status) + ")");
+    }
+}
+
+std::string device_string(cl_device_id device, cl_device_info what) {
+    std::size_t size = 0;
+    clGetDeviceInfo(device, what, 0, nullptr, &size);
+    std::string s(size, '\0');
+    clGetDeviceInfo(device, what, size, &s[0], nullptr);
+    return std::string(s.c_str());  // drop the terminating zero
+}
+
+std::string platform_string(cl_platform_id platform, cl_platform_info what) {
+    std::size_t size = 0;
+    clGetPlatformInfo(platform, what, 0, nullptr, &size);
+    std::string s(size, '\0');
+    clGetPlatformInfo(platform, what, size, &s[0], nullptr);
+    return std::string(s.c_str());
+}
+
+struct DeviceHandle {
+    cl_platform_id platform;
+    cl_device_id device;
+};
+
+std::vector<DeviceHandle> enumerate_devices() {
+    cl_uint platform_count = 0;
+    if (clGetPlatformIDs(0, nullptr, &platform_count) != CL_SUCCESS || platform_count == 0) {
+        return {};  // no ICD, or no platform registered
+    }
+    std::vector<cl_platform_id> platforms(platform_count);
+    check(clGetPlatformIDs(platform_count, platforms.data(), nullptr), "clGetPlatformIDs");
+    std::vector<DeviceHandle> out;
+    for (cl_platform_id p : platforms) {
+        cl_uint count = 0;
+        if (clGetDeviceIDs(p, CL_DEVICE_TYPE_ALL, 0, nullptr, &count) != CL_SUCCESS) {
+            continue;  // CL_DEVICE_NOT_FOUND: a platform with no device
+        }
+        std::vector<cl_device_id> devices(count);
+        check(clGetDeviceIDs(p, CL_DEVICE_TYPE_ALL, count, devices.data(), nullptr),
+              "clGetDeviceIDs");
+        for (cl_device_id d : devices) {
+            out.push_back({p, d});
+        }
+    }
+    return out;
+}
+
+std::string type_name(cl_device_id device) {
+    cl_device_type type = 0;
+    clGetDeviceInfo(device, CL_DEVICE_TYPE, sizeof type, &type, nullptr);
+    if (type & CL_DEVICE_TYPE_GPU) {
+        return "GPU";
+    }
+    if (type & CL_DEVICE_TYPE_CPU) {
+        return "CPU";
+    }
+    if (type & CL_DEVICE_TYPE_ACCELERATOR) {
+        return "accelerator";
+    }
+    return "other";
+}
+
+// One context and queue per device for the whole process, and the programs
+// built on it by build options (which hold the feature mask): PoCL takes
+// seconds to build one, so every backend and test shares them.
+struct SharedDevice {
+    cl_device_id device = nullptr;
+    cl_context context = nullptr;
+    cl_command_queue queue = nullptr;
+    std::string description;
+    std::map<std::string, cl_program> programs;
+};
+
+std::mutex shared_mutex;
+
+SharedDevice& shared_device(int index) {
+    static std::map<int, SharedDevice> devices;
+    auto found = devices.find(index);
+    if (found != devices.end()) {
+        return found->second;
+    }
+    const std::vector<DeviceHandle> all = enumerate_devices();
+    if (all.empty()) {
+        throw OpenClError("no OpenCL platform or device found (install an OpenCL driver, "
+                          "e.g. Debian's pocl-opencl-icd)");
+    }
+    if (index < 0 || static_cast<std::size_t>(index) >= all.size()) {
+        throw OpenClError("--device " + std::to_string(index) + ": no such OpenCL device; " +
+                          std::to_string(all.size()) + " found (see --list-devices)");
+    }
+    SharedDevice d;
+    d.device = all[static_cast<std::size_t>(index)].device;
+    cl_int status = CL_SUCCESS;
+    d.context = clCreateContext(nullptr, 1, &d.device, nullptr, nullptr, &status);
+    check(status, "clCreateContext");
+    d.queue = clCreateCommandQueue(d.context, d.device, 0, &status);
+    check(status, "clCreateCommandQueue");
+    d.description = device_string(d.device, CL_DEVICE_NAME) + " (" +
+                    platform_string(all[static_cast<std::size_t>(index)].platform,
+                                    CL_PLATFORM_NAME) +
+                    ")";
+    return devices.emplace(index, d).first->second;
+}
+
+std::string build_log(cl_program program, cl_device_id device) {
+    std::size_t size = 0;
+    clGetProgramBuildInfo(program, device, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
+    std::string log(size, '\0');
+    clGetProgramBuildInfo(program, device, CL_PROGRAM_BUILD_LOG, size, &log[0], nullptr);
+    return std::string(log.c_str());
+}
+
+cl_program get_program(SharedDevice& d, const std::string& options, double* build_seconds) {
+    *build_seconds = 0.0;
+    auto found = d.programs.find(options);
+    if (found != d.programs.end()) {
+        return found->second;
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const char* source = opencl_kernel_source();
+    cl_int status = CL_SUCCESS;
+    cl_program program = clCreateProgramWithSource(d.context, 1, &source, nullptr, &status);
+    check(status, "clCreateProgramWithSource");
+    status = clBuildProgram(program, 1, &d.device, options.c_str(), nullptr, nullptr);
+    if (status != CL_SUCCESS) {
+        const std::string log = build_log(program, d.device);
+        clReleaseProgram(program);
+        throw OpenClError("OpenCL program build failed on " + d.description + " with options '" +
+                          options + "' (error " + std::to_string(status) + "); build log:\n" +
+                          log);
+    }
+    *build_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    d.programs[options] = program;
+    return program;
+}
+
+template <typename T>
+cl_mem upload(cl_context context, const std::vector<T>& data) {
+    // OpenCL buffers may not be empty: keep one zeroed element at least.
+    std::vector<T> padded = data;
+    if (padded.empty()) {
+        padded.resize(1);
+    }
+    cl_int status = CL_SUCCESS;
+    cl_mem m = clCreateBuffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                              sizeof(T) * padded.size(), padded.data(), &status);
+    check(status, "clCreateBuffer");
+    return m;
+}
+
+void release(cl_mem& m) {
+    if (m) {
+        clReleaseMemObject(m);
+        m = nullptr;
+    }
+}
+
+}  // namespace
+
+std::vector<OpenClDeviceInfo> list_opencl_devices() {
+    std::vector<OpenClDeviceInfo> out;
+    int index = 0;
+    for (const DeviceHandle& h : enumerate_devices()) {
+        out.push_back({index++, platform_string(h.platform, CL_PLATFORM_NAME),
+                       device_string(h.device, CL_DEVICE_NAME), type_name(h.device)});
+    }
+    return out;
+}
+
+struct OpenClBackend::State {
+    SharedDevice* device = nullptr;
+    cl_kernel kernel = nullptr;
+    cl_mem triangles = nullptr;
+    cl_mem shapes = nullptr;
+    cl_mem materials = nullptr;
+    cl_mem accum = nullptr;
+    std::size_t pixels = 0;
+    cl_uint shape_count = 0;
+    double build_seconds = 0.0;
+    std::string options;
+};
+
+OpenClBackend::OpenClBackend(int device_index) : state_(new State) {
+    std::lock_guard<std::mutex> lock(shared_mutex);
+    state_->device = &shared_device(device_index);
+}
+
+OpenClBackend::~OpenClBackend() {
+    release(state_->triangles);
+    release(state_->shapes);
+    release(state_->materials);
+    release(state_->accum);
+    if (state_->kernel) {
+        clReleaseKernel(state_->kernel);
+    }
+}
+
+std::string OpenClBackend::device() const { return state_->device->description; }
+
+double OpenClBackend::last_build_seconds() const { return state_->build_seconds; }
+
+std::string OpenClBackend::build_options() const { return state_->options; }
+
+void OpenClBackend::set_scene(const PackedScene& scene) {
+    char mask[32];
+    std::snprintf(mask, sizeof mask, "0x%xu", scene.features);
+    std::string options = std::string("-cl-std=CL1.2 -DT0_FEATURES=") + mask;
+    if (const char* extra = std::getenv("TRAC0R_OPENCL_OPTIONS")) {
+        options += std::string(" ") + extra;
+    }
+    cl_program program = nullptr;
+    {
+        std::lock_guard<std::mutex> lock(shared_mutex);
+        program = get_program(*state_->device, options, &state_->build_seconds);
+    }
+    if (state_->kernel) {
+        clReleaseKernel(state_->kernel);
+        state_->kernel = nullptr;
+    }
+    cl_int status = CL_SUCCESS;
+    state_->kernel = clCreateKernel(program, "render_frame", &status);
+    check(status, "clCreateKernel(render_frame)");
+    state_->options = options;
+    // Uploaded once per scene change; a frame sends only its small arguments.
+    cl_context context = state_->device->context;
+    release(state_->triangles);
+    release(state_->shapes);
+    release(state_->materials);
+    state_->triangles = upload(context, scene.triangles);
+    state_->shapes = upload(context, scene.shapes);
+    state_->materials = upload(context, scene.materials);
+    state_->shape_count = static_cast<cl_uint>(scene.shapes.size());
+}
+
+void OpenClBackend::reset(int width, int height) {
+    const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    cl_int status = CL_SUCCESS;
+    if (pixels != state_->pixels || !state_->accum) {
+        release(state_->accum);
+        state_->accum = clCreateBuffer(state_->device->context, CL_MEM_READ_WRITE,
+                                       sizeof(kernel::AccumPixel) * pixels, nullptr, &status);
+        check(status, "clCreateBuffer(accumulator)");
+        state_->pixels = pixels;
+    }
+    const cl_float zero = 0.0f;
+    check(clEnqueueFillBuffer(state_->device->queue, state_->accum, &zero, sizeof zero, 0,
+                              sizeof(kernel::AccumPixel) * pixels, 0, nullptr, nullptr),
+          "clEnqueueFillBuffer(accumulator)");
+}
+
+void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t seed,
+                                 std::uint32_t frame, int max_depth) {
+    cl_kernel k = state_->kernel;
+    const cl_ulong seed_arg = seed;
+    const cl_uint frame_arg = frame;
+    const cl_int depth_arg = max_depth;
+    check(clSetKernelArg(k, 0, sizeof(cl_mem), &state_->triangles), "clSetKernelArg(0)");
+    check(clSetKernelArg(k, 1, sizeof(cl_mem), &state_->shapes), "clSetKernelArg(1)");
+    check(clSetKernelArg(k, 2, sizeof(cl_mem), &state_->materials), "clSetKernelArg(2)");
+    check(clSetKernelArg(k, 3, sizeof(cl_uint), &state_->shape_count), "clSetKernelArg(3)");
+    check(clSetKernelArg(k, 4, sizeof camera, &camera), "clSetKernelArg(4)");
+    check(clSetKernelArg(k, 5, sizeof(cl_mem), &state_->accum), "clSetKernelArg(5)");
+    check(clSetKernelArg(k, 6, sizeof seed_arg, &seed_arg), "clSetKernelArg(6)");
+    check(clSetKernelArg(k, 7, sizeof frame_arg, &frame_arg), "clSetKernelArg(7)");
+    check(clSetKernelArg(k, 8, sizeof depth_arg, &depth_arg), "clSetKernelArg(8)");
+    const std::size_t group = 64;
+    const std::size_t global = (state_->pixels + group - 1) / group * group;
+    check(clEnqueueNDRangeKernel(state_->device->queue, k, 1, nullptr, &global, nullptr, 0,
+                                 nullptr, nullptr),
+          "clEnqueueNDRangeKernel(render_frame)");
+    // A frame is done when render_frame returns, so timings are honest and
+    // the queue never runs far ahead of the viewer.
+    check(clFinish(state_->device->queue), "clFinish");
+}
+
+void OpenClBackend::read_accumulator(std::vector<kernel::AccumPixel>& out) {
+    out.resize(state_->pixels);
+    check(clEnqueueReadBuffer(state_->device->queue, state_->accum, CL_TRUE, 0,
+                              sizeof(kernel::AccumPixel) * state_->pixels, out.data(), 0, nullptr,
+                              nullptr),
+          "clEnqueueReadBuffer(accumulator)");
+}
+
+}  // namespace trac0r

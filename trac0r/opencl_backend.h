@@ -1,0 +1,65 @@
+// The OpenCL backend: the same kernel headers, compiled as OpenCL C for the
+// scene's feature mask, on PoCL (CPU) or any GPU driver.
+#ifndef TRAC0R_OPENCL_BACKEND_H
+#define TRAC0R_OPENCL_BACKEND_H
+
+#include "trac0r/backend.h"
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace trac0r {
+
+// No platform or device, a bad device index, a failed build (the message
+// then holds the compiler's build log), or a failed OpenCL call.
+class OpenClError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+struct OpenClDeviceInfo {
+    int index;  // what --device takes
+    std::string platform;
+    std::string name;
+    std::string type;  // "CPU", "GPU", ...
+};
+
+// Every device of every platform, numbered in order. Empty when there is
+// no OpenCL platform (no ICD installed).
+std::vector<OpenClDeviceInfo> list_opencl_devices();
+
+// The OpenCL C source embedded at build time (kernel headers + render.cl).
+const char* opencl_kernel_source();
+
+class OpenClBackend : public Backend {
+  public:
+    // Opens device `device_index` (see list_opencl_devices). Programs are
+    // built once per (device, feature mask) and shared by every backend of
+    // the process. Extra build options come from $TRAC0R_OPENCL_OPTIONS.
+    explicit OpenClBackend(int device_index = 0);
+    ~OpenClBackend() override;
+
+    std::string name() const override { return "opencl"; }
+    std::string device() const override;
+    void set_scene(const PackedScene& scene) override;
+    void reset(int width, int height) override;
+    void render_frame(const kernel::CameraRecord& camera, std::uint64_t seed, std::uint32_t frame,
+                      int max_depth) override;
+    void read_accumulator(std::vector<kernel::AccumPixel>& out) override;
+
+    // Seconds the last set_scene spent building its program (0 if cached).
+    double last_build_seconds() const;
+    // The options the current program was built with.
+    std::string build_options() const;
+
+    struct State;
+
+  private:
+    std::unique_ptr<State> state_;
+};
+
+}  // namespace trac0r
+
+#endif

@@ -1,0 +1,129 @@
+#include "trac0r/packed_scene.h"
+
+#include <cmath>
+
+namespace trac0r {
+
+namespace {
+
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+bool usable(const Triangle& t) {
+    return finite(t.v0) && finite(t.v1) && finite(t.v2) && t.area > 0.0f &&
+           std::isfinite(t.area);
+}
+
+kernel::TriangleRecord pack_triangle(const Triangle& t, unsigned material, unsigned shape) {
+    kernel::TriangleRecord r;
+    const glm::vec3 e1 = t.v1 - t.v0;
+    const glm::vec3 e2 = t.v2 - t.v0;
+    r.v0 = glm::vec4(t.v0, 1.0f);
+    r.edge1 = glm::vec4(e1, 0.0f);
+    r.edge2 = glm::vec4(e2, 0.0f);
+    r.normal = glm::vec4(t.normal, 2.0f * t.area);
+    r.ids = glm::uvec4(material, shape, 0u, 0u);
+    return r;
+}
+
+kernel::MaterialRecord pack_material(const Material& m) {
+    kernel::MaterialRecord r;
+    r.color = glm::vec4(m.color, 0.0f);
+    r.params = glm::vec4(m.emittance, m.roughness, m.ior, 0.0f);
+    r.type = glm::uvec4(static_cast<unsigned>(m.type), 0u, 0u, 0u);
+    return r;
+}
+
+std::uint32_t material_feature(MaterialType type) {
+    switch (type) {
+    case MaterialType::emissive:
+        return T0_FEATURE_EMISSIVE;
+    case MaterialType::diffuse:
+        return T0_FEATURE_DIFFUSE;
+    case MaterialType::glass:
+        return T0_FEATURE_GLASS;
+    case MaterialType::glossy:
+        return T0_FEATURE_GLOSSY;
+    }
+    return 0;
+}
+
+const char* const feature_bit_names[T0_FEATURE_COUNT] = {
+    "emissive", "diffuse", "glass", "glossy", "emittance", "flat", "bvh", "nee"};
+
+// What this build's kernel can do at all; BVH and NEE are not built yet.
+const std::uint32_t implemented_features = T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE |
+                                           T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
+                                           T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT;
+
+}  // namespace
+
+kernel::SceneView PackedScene::view() const {
+    kernel::SceneView v;
+    v.triangles = triangles.data();
+    v.shapes = shapes.data();
+    v.materials = materials.data();
+    v.shape_count = static_cast<std::uint32_t>(shapes.size());
+    v.features = features;
+    return v;
+}
+
+PackedScene pack_scene(const Scene& scene) {
+    PackedScene packed;
+    packed.features = T0_FEATURE_FLAT;
+    std::vector<bool> material_used(scene.materials.size(), false);
+    for (std::size_t s = 0; s < scene.shapes.size(); ++s) {
+        const Shape& shape = scene.shapes[s];
+        kernel::ShapeRecord record;
+        record.range.x = static_cast<unsigned>(packed.triangles.size());
+        AABB bounds;
+        for (const Triangle& t : shape.triangles) {
+            if (!usable(t)) {
+                ++packed.dropped_degenerate_triangles;
+                continue;
+            }
+            packed.triangles.push_back(pack_triangle(t, static_cast<unsigned>(shape.material),
+                                                     static_cast<unsigned>(s)));
+            bounds.extend(t.bounds());
+        }
+        record.range.y = static_cast<unsigned>(packed.triangles.size()) - record.range.x;
+        if (record.range.y == 0) {
+            continue;  // nothing left to hit
+        }
+        record.range.z = static_cast<unsigned>(shape.material);
+        record.range.w = static_cast<unsigned>(s);
+        record.aabb_min = glm::vec4(bounds.min, 0.0f);
+        record.aabb_max = glm::vec4(bounds.max, 0.0f);
+        packed.shapes.push_back(record);
+        material_used[static_cast<std::size_t>(shape.material)] = true;
+    }
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& material = scene.materials[m];
+        packed.materials.push_back(pack_material(material));
+        if (!material_used[m]) {
+            continue;
+        }
+        packed.features |= material_feature(material.type);
+        if (material.emittance > 0.0f) {
+            packed.features |= T0_FEATURE_EMITTANCE;
+        }
+    }
+    return packed;
+}
+
+std::string feature_names(std::uint32_t features) {
+    std::string out;
+    for (int bit = 0; bit < T0_FEATURE_COUNT; ++bit) {
+        if (features & (1u << bit)) {
+            out += (out.empty() ? "" : " ") + std::string(feature_bit_names[bit]);
+        }
+    }
+    return out.empty() ? "none" : out;
+}
+
+std::string left_out_feature_names(std::uint32_t features) {
+    return feature_names(implemented_features & ~features);
+}
+
+}  // namespace trac0r

@@ -1,0 +1,64 @@
+#include "trac0r/renderer.h"
+
+#include "trac0r/kernel/accumulate.h"
+
+namespace trac0r {
+
+Renderer::Renderer(const Scene& scene, std::unique_ptr<Backend> backend, std::uint64_t seed)
+    : scene_(scene),
+      packed_(pack_scene(scene)),
+      backend_(std::move(backend)),
+      seed_(seed),
+      camera_record_(make_camera_record(scene.camera, scene.render.width, scene.render.height)) {
+    backend_->set_scene(packed_);
+    restart();
+}
+
+void Renderer::set_camera(const Camera& camera) {
+    camera_record_ = make_camera_record(camera, width(), height());
+    scene_.camera = camera;
+    restart();
+}
+
+void Renderer::restart() {
+    backend_->reset(width(), height());
+    frame_ = 0;
+    readback_valid_ = false;
+}
+
+void Renderer::render_frame() {
+    backend_->render_frame(camera_record_, seed_, frame_, scene_.render.max_depth);
+    ++frame_;
+    readback_valid_ = false;
+}
+
+const std::vector<kernel::AccumPixel>& Renderer::accumulator() {
+    if (!readback_valid_) {
+        backend_->read_accumulator(readback_);
+        readback_valid_ = true;
+    }
+    return readback_;
+}
+
+Image Renderer::image() {
+    const std::vector<kernel::AccumPixel>& accum = accumulator();
+    Image img;
+    img.width = width();
+    img.height = height();
+    img.pixels.resize(accum.size());
+    for (std::size_t i = 0; i < accum.size(); ++i) {
+        img.pixels[i] = kernel::accumulated_mean(accum[i]);
+    }
+    return img;
+}
+
+RenderStats Renderer::stats() {
+    RenderStats s;
+    s.frames = frame_;
+    for (const kernel::AccumPixel& p : accumulator()) {
+        s.samples_dropped += p.moments.w;
+    }
+    return s;
+}
+
+}  // namespace trac0r

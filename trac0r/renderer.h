@@ -1,0 +1,54 @@
+// Renders a scene progressively on a backend: the one entry point the
+// viewer, the tests and the benchmarks use.
+#ifndef TRAC0R_RENDERER_H
+#define TRAC0R_RENDERER_H
+
+#include "trac0r/backend.h"
+#include "trac0r/image_io.h"
+#include "trac0r/packed_scene.h"
+#include "trac0r/scene.h"
+
+#include <cstdint>
+#include <memory>
+
+namespace trac0r {
+
+struct RenderStats {
+    std::uint32_t frames = 0;
+    double samples_dropped = 0;  // non-finite samples, never accumulated
+};
+
+class Renderer {
+  public:
+    Renderer(const Scene& scene, std::unique_ptr<Backend> backend, std::uint64_t seed = 1);
+
+    const Scene& scene() const { return scene_; }
+    const PackedScene& packed() const { return packed_; }
+    Backend& backend() { return *backend_; }
+    int width() const { return scene_.render.width; }
+    int height() const { return scene_.render.height; }
+    std::uint32_t frames() const { return frame_; }
+
+    void set_camera(const Camera& camera);  // restarts accumulation
+    void restart();
+    void render_frame();
+
+    // The running mean, and what the accumulator knows about it.
+    Image image();
+    RenderStats stats();
+    const std::vector<kernel::AccumPixel>& accumulator();
+
+  private:
+    Scene scene_;
+    PackedScene packed_;
+    std::unique_ptr<Backend> backend_;
+    std::uint64_t seed_;
+    std::uint32_t frame_ = 0;
+    kernel::CameraRecord camera_record_;
+    std::vector<kernel::AccumPixel> readback_;
+    bool readback_valid_ = false;
+};
+
+}  // namespace trac0r
+
+#endif

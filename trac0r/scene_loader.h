@@ -1,0 +1,33 @@
+// Reading scenes from JSON (format: README.md, "Scene format").
+#ifndef TRAC0R_SCENE_LOADER_H
+#define TRAC0R_SCENE_LOADER_H
+
+#include "trac0r/scene.h"
+
+#include <stdexcept>
+#include <string>
+
+namespace trac0r {
+
+// One clear message: "FILE: /json/path: what was expected (got ...)".
+class SceneError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// Loads a scene file; relative mesh paths are relative to its directory.
+Scene load_scene_file(const std::string& path);
+
+// Parses scene JSON text; `origin` names it in messages and `base_dir`
+// resolves relative mesh paths.
+Scene parse_scene(const std::string& json_text, const std::string& origin,
+                  const std::string& base_dir);
+
+// The built-in default: the thesis' Cornell box (scenes/cornell.json,
+// embedded at build time).
+Scene builtin_scene();
+const char* builtin_scene_json();
+
+}  // namespace trac0r
+
+#endif

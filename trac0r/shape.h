@@ -1,0 +1,45 @@
+// Shapes: triangle lists made by the factories of the scene format, each
+// with one AABB and one material (the thesis' structure).
+#ifndef TRAC0R_SHAPE_H
+#define TRAC0R_SHAPE_H
+
+#include "trac0r/geometry.h"
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+namespace trac0r {
+
+struct Shape {
+    std::vector<Triangle> triangles;
+    AABB aabb;
+    int material = 0;  // index into Scene::materials
+};
+
+// model = T * Rx * Ry * Rz * S (scale first, then z, y, x rotations in
+// radians, then translation), as in the thesis.
+glm::mat4 model_matrix(const glm::vec3& position, const glm::vec3& orientation,
+                       const glm::vec3& scale);
+
+// Applies the model matrix to every vertex and recomputes the AABB.
+Shape make_shape(std::vector<Triangle> local_triangles, const glm::mat4& model, int material);
+
+// The unit plane in local xz (normal +y), size (x, z).
+Shape make_plane(const glm::vec3& position, const glm::vec3& orientation, const glm::vec2& size,
+                 int material);
+// The unit cube centred at the origin, scaled by size.
+Shape make_box(const glm::vec3& position, const glm::vec3& orientation, const glm::vec3& size,
+               int material);
+// The unit icosahedron subdivided n times (20 * 4^n triangles), radius r.
+Shape make_icosphere(const glm::vec3& position, const glm::vec3& orientation, float radius,
+                     int subdivisions, int material);
+// An OBJ mesh (all its shapes, faces triangulated). Throws
+// std::runtime_error naming the file when it cannot be read.
+Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
+                    const glm::vec3& orientation, const glm::vec3& scale, int material);
+
+}  // namespace trac0r
+
+#endif

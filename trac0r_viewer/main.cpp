@@ -1,0 +1,157 @@
+// trac0r_viewer: the command-line entry point.
+#include "headless.h"
+#include "options.h"
+
+#include "trac0r/cpu_backend.h"
+#include "trac0r/opencl_backend.h"
+#include "trac0r/renderer.h"
+#include "trac0r/scene_loader.h"
+
+#include <cstdio>
+#include <exception>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace {
+
+using trac0r_viewer::Options;
+using trac0r_viewer::UsageError;
+
+// Checks combinations of flags that each parse fine alone.
+void check_options(const Options& o) {
+    if (o.accel == "bvh") {
+        throw UsageError("--accel bvh: this build has only the flat structure "
+                         "(use --accel flat or auto)");
+    }
+    if (o.integrator == "nee") {
+        throw UsageError("--integrator nee: this build has only the naive integrator");
+    }
+    if (o.target_error > 0.0) {
+        throw UsageError("--target-error: not available in this build (use --spp or --seconds)");
+    }
+#ifndef TRAC0R_HAVE_OPENCL
+    if (o.backend == "opencl" || o.device >= 0 || o.list_devices) {
+        throw UsageError("--backend opencl / --device / --list-devices: this build has no "
+                         "OpenCL backend (configure with -DTRAC0R_OPENCL=ON)");
+    }
+#endif
+    if (o.device >= 0 && o.backend != "opencl") {
+        throw UsageError("--device " + std::to_string(o.device) +
+                         ": picks an OpenCL device; add --backend opencl");
+    }
+    if (!o.headless) {
+        throw UsageError("the interactive window is not part of this build; add --headless "
+                         "(with --output FILE, or --benchmark N)");
+    }
+    if (o.benchmark_frames == 0 && o.output.empty()) {
+        throw UsageError("--headless: nothing to do; give --output FILE (.png or .pfm) or "
+                         "--benchmark N");
+    }
+    if (!o.output.empty()) {
+        const std::string& f = o.output;
+        const bool known = f.size() > 4 && (f.compare(f.size() - 4, 4, ".png") == 0 ||
+                                            f.compare(f.size() - 4, 4, ".pfm") == 0);
+        if (!known) {
+            throw UsageError("--output " + f + ": expected a .png or .pfm file name");
+        }
+    }
+}
+
+trac0r::Scene load_scene(const Options& o) {
+    trac0r::Scene scene =
+        o.scene_path.empty() ? trac0r::builtin_scene() : trac0r::load_scene_file(o.scene_path);
+    if (o.width > 0) {
+        scene.render.width = o.width;
+    }
+    if (o.height > 0) {
+        scene.render.height = o.height;
+    }
+    if (o.max_depth > 0) {
+        scene.render.max_depth = o.max_depth;
+    }
+    return scene;
+}
+
+void print_verbose(trac0r::Renderer& r, const Options& o) {
+    const trac0r::PackedScene& p = r.packed();
+    std::fprintf(stderr,
+                 "scene: %s, %zu shapes, %zu triangles (%zu degenerate left out), %dx%d, "
+                 "max depth %d, seed %llu\n",
+                 o.scene_path.empty() ? "built-in Cornell box" : o.scene_path.c_str(),
+                 p.shapes.size(), p.triangles.size(), p.dropped_degenerate_triangles, r.width(),
+                 r.height(), r.scene().render.max_depth, static_cast<unsigned long long>(o.seed));
+    std::fprintf(stderr, "backend: %s (%s)\n", r.backend().name().c_str(),
+                 r.backend().device().c_str());
+    std::fprintf(stderr, "features: %s (mask 0x%02x); left out: %s\n",
+                 trac0r::feature_names(p.features).c_str(), p.features,
+                 trac0r::left_out_feature_names(p.features).c_str());
+}
+
+int list_devices() {
+#ifdef TRAC0R_HAVE_OPENCL
+    const std::vector<trac0r::OpenClDeviceInfo> devices = trac0r::list_opencl_devices();
+    if (devices.empty()) {
+        std::fprintf(stderr, "trac0r_viewer: no OpenCL platform or device found (install an "
+                             "OpenCL driver, e.g. Debian's pocl-opencl-icd)\n");
+        return 1;
+    }
+    for (const trac0r::OpenClDeviceInfo& d : devices) {
+        std::printf("%d: %s [%s] on %s\n", d.index, d.name.c_str(), d.type.c_str(),
+                    d.platform.c_str());
+    }
+#endif
+    return 0;
+}
+
+// The requested backend. Without an OpenCL device, --backend opencl falls
+// back to the CPU and says so; an explicit --device insists (an error), and
+// a program that fails to build is always an error (its log is printed).
+std::unique_ptr<trac0r::Backend> make_backend(const Options& o) {
+#ifdef TRAC0R_HAVE_OPENCL
+    if (o.backend == "opencl") {
+        const int index = o.device >= 0 ? o.device : 0;
+        if (o.device < 0 && trac0r::list_opencl_devices().empty()) {
+            std::fprintf(stderr, "trac0r_viewer: no OpenCL device found; falling back to the "
+                                 "CPU backend (--device N insists on OpenCL)\n");
+        } else {
+            return std::make_unique<trac0r::OpenClBackend>(index);
+        }
+    }
+#endif
+    return std::make_unique<trac0r::CpuBackend>(o.threads);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        const Options options = trac0r_viewer::parse_options(argc, argv);
+        if (options.help) {
+            std::fputs(trac0r_viewer::usage_text(), stdout);
+            return 0;
+        }
+        if (options.list_devices) {
+            return list_devices();
+        }
+        check_options(options);
+        const trac0r::Scene scene = load_scene(options);
+        trac0r::Renderer renderer(scene, make_backend(options), options.seed);
+        if (options.verbose) {
+            print_verbose(renderer, options);
+        }
+        if (options.benchmark_frames > 0) {
+            return trac0r_viewer::run_benchmark(renderer, options);
+        }
+        return trac0r_viewer::run_batch(renderer, options);
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "trac0r_viewer: %s\n", e.what());
+        return 2;
+    } catch (const trac0r::SceneError& e) {
+        std::fprintf(stderr, "trac0r_viewer: %s\n", e.what());
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "trac0r_viewer: error: %s\n", e.what());
+        return 1;
+    }
+}

@@ -1,0 +1,145 @@
+#include "options.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <map>
+
+namespace trac0r_viewer {
+
+const char* usage_text() {
+    return R"(Usage: trac0r_viewer [SCENE.json] [options]
+
+A real-time Monte Carlo path tracer. Without SCENE.json it renders the
+built-in scene: the thesis' Cornell box (scenes/cornell.json).
+
+Rendering:
+  --backend cpu|opencl   backend (default cpu)
+  --device N             OpenCL device index (see --list-devices)
+  --list-devices         print the OpenCL platforms and devices, then exit
+  --width W --height H   override the scene's resolution
+  --spp N                stop after N samples per pixel
+  --seconds S            stop after S seconds of rendering
+  --seed N               random seed (default 1); same seed, same image
+  --max-depth D          maximum path length in vertices (default: the scene's)
+  --threads N            CPU threads (default: all)
+  --accel flat|bvh|auto  acceleration structure (default auto)
+  --integrator naive|nee the thesis' algorithm or next-event estimation
+  --target-error E       stop when the estimated relative MSE reaches E
+  --exposure X           multiply radiance by X before tone mapping (PNG)
+  --verbose              backend, device, feature mask and what was left out
+
+Output:
+  --output FILE          save the result: .png (tone-mapped sRGB) or .pfm (linear)
+  --headless             no window; with --output a batch render with a
+                         progress bar on stderr (default --spp 64)
+  --benchmark N          render N frames, print one JSON line of timings, exit
+  -h, --help             this text
+
+Examples:
+  trac0r_viewer --headless --spp 64 --output cornell.png
+  trac0r_viewer scenes/cornell_diffuse.json --headless --seconds 30 --output d.pfm
+  trac0r_viewer --headless --benchmark 10
+)";
+}
+
+namespace {
+
+long parse_integer(const std::string& flag, const std::string& text, long min, long max) {
+    errno = 0;
+    char* end = nullptr;
+    const long value = std::strtol(text.c_str(), &end, 10);
+    if (text.empty() || *end != '\0' || errno != 0 || value < min || value > max) {
+        throw UsageError(flag + ": expected an integer in [" + std::to_string(min) + ", " +
+                         std::to_string(max) + "], got '" + text + "'");
+    }
+    return value;
+}
+
+double parse_positive(const std::string& flag, const std::string& text) {
+    errno = 0;
+    char* end = nullptr;
+    const double value = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || errno != 0 || !std::isfinite(value) || !(value > 0.0)) {
+        throw UsageError(flag + ": expected a positive number, got '" + text + "'");
+    }
+    return value;
+}
+
+std::uint64_t parse_seed(const std::string& flag, const std::string& text) {
+    errno = 0;
+    char* end = nullptr;
+    const unsigned long long value = std::strtoull(text.c_str(), &end, 10);
+    if (text.empty() || text[0] == '-' || *end != '\0' || errno != 0) {
+        throw UsageError(flag + ": expected a non-negative 64-bit integer, got '" + text + "'");
+    }
+    return static_cast<std::uint64_t>(value);
+}
+
+std::string parse_choice(const std::string& flag, const std::string& text,
+                         const std::string& choices) {
+    const std::string padded = "|" + choices + "|";
+    if (text.empty() || padded.find("|" + text + "|") == std::string::npos) {
+        throw UsageError(flag + ": expected one of " + choices + ", got '" + text + "'");
+    }
+    return text;
+}
+
+}  // namespace
+
+Options parse_options(int argc, const char* const* argv) {
+    Options o;
+    using Setter = std::function<void(const std::string&, const std::string&)>;
+    const std::map<std::string, Setter> with_value = {
+        {"--backend", [&](auto f, auto v) { o.backend = parse_choice(f, v, "cpu|opencl"); }},
+        {"--device", [&](auto f, auto v) { o.device = (int)parse_integer(f, v, 0, 1023); }},
+        {"--width", [&](auto f, auto v) { o.width = (int)parse_integer(f, v, 1, 16384); }},
+        {"--height", [&](auto f, auto v) { o.height = (int)parse_integer(f, v, 1, 16384); }},
+        {"--spp", [&](auto f, auto v) { o.spp = parse_integer(f, v, 1, 1L << 31); }},
+        {"--seconds", [&](auto f, auto v) { o.seconds = parse_positive(f, v); }},
+        {"--output", [&](auto, auto v) { o.output = v; }},
+        {"--benchmark",
+         [&](auto f, auto v) { o.benchmark_frames = parse_integer(f, v, 1, 1000000); }},
+        {"--seed", [&](auto f, auto v) { o.seed = parse_seed(f, v); }},
+        {"--max-depth", [&](auto f, auto v) { o.max_depth = (int)parse_integer(f, v, 1, 100000); }},
+        {"--threads", [&](auto f, auto v) { o.threads = (int)parse_integer(f, v, 1, 1024); }},
+        {"--accel", [&](auto f, auto v) { o.accel = parse_choice(f, v, "flat|bvh|auto"); }},
+        {"--integrator",
+         [&](auto f, auto v) { o.integrator = parse_choice(f, v, "naive|nee"); }},
+        {"--target-error", [&](auto f, auto v) { o.target_error = parse_positive(f, v); }},
+        {"--exposure", [&](auto f, auto v) { o.exposure = (float)parse_positive(f, v); }},
+    };
+    const std::map<std::string, bool*> switches = {{"--headless", &o.headless},
+                                                    {"--verbose", &o.verbose},
+                                                    {"--list-devices", &o.list_devices},
+                                                    {"--help", &o.help},
+                                                    {"-h", &o.help}};
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        const auto sw = switches.find(arg);
+        if (sw != switches.end()) {
+            *sw->second = true;
+            continue;
+        }
+        const auto setter = with_value.find(arg);
+        if (setter != with_value.end()) {
+            if (i + 1 >= argc) {
+                throw UsageError(arg + ": expected a value after it");
+            }
+            setter->second(arg, argv[++i]);
+            continue;
+        }
+        if (arg.size() > 1 && arg[0] == '-') {
+            throw UsageError(arg + ": unknown option (see --help)");
+        }
+        if (!o.scene_path.empty()) {
+            throw UsageError("'" + arg + "': only one scene file may be given (already have '" +
+                             o.scene_path + "')");
+        }
+        o.scene_path = arg;
+    }
+    return o;
+}
+
+}  // namespace trac0r_viewer

@@ -1,0 +1,45 @@
+// The command line of trac0r_viewer (DESIGN.md, "Command line").
+#ifndef TRAC0R_VIEWER_OPTIONS_H
+#define TRAC0R_VIEWER_OPTIONS_H
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+
+namespace trac0r_viewer {
+
+struct Options {
+    std::string scene_path;  // empty: the built-in thesis scene
+    std::string backend = "cpu";
+    int device = -1;
+    int width = 0;  // 0: the scene's
+    int height = 0;
+    long spp = 0;          // 0: not given
+    double seconds = 0.0;  // 0: not given
+    std::string output;
+    bool headless = false;
+    long benchmark_frames = 0;
+    std::uint64_t seed = 1;
+    int max_depth = 0;  // 0: the scene's
+    int threads = 0;    // 0: OpenMP's default
+    std::string accel = "auto";
+    std::string integrator = "naive";
+    double target_error = 0.0;
+    float exposure = 1.0f;
+    bool verbose = false;
+    bool list_devices = false;
+    bool help = false;
+};
+
+// A bad command line: the message names the flag and what was expected.
+class UsageError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+Options parse_options(int argc, const char* const* argv);
+const char* usage_text();
+
+}  // namespace trac0r_viewer
+
+#endif
