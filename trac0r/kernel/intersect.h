@@ -26,8 +26,10 @@ typedef struct Hit {
     int triangle;  // -1: nothing was hit
 } Hit;
 
+T0_INLINE int is_parallel_component(float d) { return !(fabs(d) > 1e-30f); }
+
 T0_INLINE float safe_inverse(float d) {
-    return 1.0f / (fabs(d) > 1e-30f ? d : copysign(1e-30f, d));
+    return 1.0f / (is_parallel_component(d) ? copysign(1e-30f, d) : d);
 }
 
 T0_INLINE Ray make_ray(float3 origin, float3 direction) {
@@ -39,16 +41,37 @@ T0_INLINE Ray make_ray(float3 origin, float3 direction) {
     return r;
 }
 
-// Slab test. inv_direction is finite, so a ray parallel to a slab gets
-// +-huge instead of +-inf and 0 * inv never makes a NaN; a ray lying in a
-// slab's boundary plane counts as inside (bounds are conservative).
+// One slab of the slab test: narrows [*t_enter, *t_exit] to where the ray
+// is between lo and hi. A ray parallel to the slab (a zero direction
+// component, whose inv is the nudged +-1e30) is inside it for every t when
+// its origin is in [lo, hi], boundary planes included (bounds are
+// conservative), and nowhere otherwise. The general formula cannot say
+// this: on the plane hi it gives (hi - origin) * inv = 0, an exit at t = 0.
+T0_INLINE void clip_slab(float lo, float hi, float origin, float direction, float inv,
+                         float* t_enter, float* t_exit) {
+    if (is_parallel_component(direction)) {
+        if (origin < lo || origin > hi) {
+            *t_exit = -1.0f;
+        }
+        return;
+    }
+    const float t_lo = (lo - origin) * inv;
+    const float t_hi = (hi - origin) * inv;
+    *t_enter = fmax(*t_enter, fmin(t_lo, t_hi));
+    *t_exit = fmin(*t_exit, fmax(t_lo, t_hi));
+}
+
+// Slab test over the ray's [0, t_max]. inv_direction is finite, so no
+// inf * 0 NaN arises.
 T0_INLINE int intersect_aabb(float3 box_min, float3 box_max, Ray ray, float t_max) {
-    const float3 t0 = (box_min - ray.origin) * ray.inv_direction;
-    const float3 t1 = (box_max - ray.origin) * ray.inv_direction;
-    const float3 t_small = vmin3(t0, t1);
-    const float3 t_large = vmax3(t0, t1);
-    const float t_enter = fmax(fmax(t_small.x, t_small.y), fmax(t_small.z, 0.0f));
-    const float t_exit = fmin(fmin(t_large.x, t_large.y), fmin(t_large.z, t_max));
+    float t_enter = 0.0f;
+    float t_exit = t_max;
+    clip_slab(box_min.x, box_max.x, ray.origin.x, ray.direction.x, ray.inv_direction.x,
+              &t_enter, &t_exit);
+    clip_slab(box_min.y, box_max.y, ray.origin.y, ray.direction.y, ray.inv_direction.y,
+              &t_enter, &t_exit);
+    clip_slab(box_min.z, box_max.z, ray.origin.z, ray.direction.z, ray.inv_direction.z,
+              &t_enter, &t_exit);
     return t_enter <= t_exit;
 }
 
