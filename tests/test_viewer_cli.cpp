@@ -67,13 +67,15 @@ TEST_CASE("a headless render of cornell.json is deterministic and finite", "[cli
     REQUIRE(total > 0.0);  // the lamp lights the box
 }
 
-TEST_CASE("a PNG is written for the built-in scene", "[cli]") {
-    const Run r = run_viewer("--headless --width 40 --height 30 --spp 2 --output cli.png");
+TEST_CASE("a PNG and a PFM are written for the built-in scene", "[cli]") {
+    const Run r = run_viewer(
+        "--headless --width 40 --height 30 --spp 2 --output cli.png --output cli.pfm");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     const std::string png = read_bytes("cli.png");
     REQUIRE(png.size() > 8);
     REQUIRE(png.compare(1, 3, "PNG") == 0);
+    REQUIRE(trac0r::read_pfm("cli.pfm").width == 40);
 }
 
 TEST_CASE("--help lists the options and exits 0", "[cli]") {

@@ -106,6 +106,10 @@ Image read_pfm(const std::string& path) {
     return image;
 }
 
+bool is_supported_image_path(const std::string& path) {
+    return ends_with(path, ".png") || ends_with(path, ".pfm");
+}
+
 void write_image(const std::string& path, const Image& image, float exposure) {
     if (ends_with(path, ".png")) {
         write_png(path, image, exposure);

@@ -24,6 +24,9 @@ struct Image {
 // Linear radiance to an 8-bit sRGB value: exposure, clamp, sRGB curve.
 std::uint8_t tonemap_channel(float linear, float exposure);
 
+// True for the extensions write_image knows (.png, .pfm, any case).
+bool is_supported_image_path(const std::string& path);
+
 // .png (tone-mapped sRGB) or .pfm (linear float), chosen by the extension.
 // Throws std::runtime_error naming the file on failure or another extension.
 void write_image(const std::string& path, const Image& image, float exposure = 1.0f);

@@ -19,14 +19,14 @@
 // | render.height          | integer | in [1, 16384]                           | 600             |
 // | render.max_depth       | integer | in [1, 100000]                          | 5               |
 // | materials              | object  | required, non-empty: name -> material   |                 |
-// | material.type          | string  | required: emissive|diffuse|glass|glossy |                 |
+// | material.type          | string  | required: emissive/diffuse/glass/glossy |                 |
 // | material.color         | [3]     | required; in [0, 1] (emissive: >= 0)    |                 |
 // | material.emittance     | number  | emissive: required, > 0                 |                 |
 // |                        |         | diffuse: optional, >= 0                 | 0               |
 // | material.roughness     | number  | glossy only, in [0, 1]                  | 0               |
 // | material.ior           | number  | glass only, > 0                         | 1.5             |
 // | shapes                 | array   | required, non-empty                     |                 |
-// | shape.type             | string  | required: plane|box|icosphere|mesh      |                 |
+// | shape.type             | string  | required: plane/box/icosphere/mesh      |                 |
 // | shape.material         | string  | required, a name in materials           |                 |
 // | shape.position         | [3]     | finite                                  | [0, 0, 0]       |
 // | shape.orientation      | [3]     | finite, radians                         | [0, 0, 0]       |
@@ -129,8 +129,8 @@ std::string describe(const json& value) {
     return text.size() <= max_length ? text : text.substr(0, max_length - 3) + "...";
 }
 
-[[noreturn]] void fail_expected(const Location& at, const std::string& expected,
-                                const json& found, const std::string& note = "") {
+[[noreturn]] void fail_expected(const Location& at, const std::string& expected, const json& found,
+                                const std::string& note = "") {
     fail(at, "expected " + expected + ", got " + describe(found) + note);
 }
 
@@ -518,9 +518,8 @@ Shape read_shape(const json& value, const Location& at, const ShapeContext& cont
     const glm::vec3 orientation =
         o.optional_vec3("orientation", NumberRule::finite, glm::vec3(0.0f));
     if (type == "plane") {
-        const glm::vec2 size =
-            read_vec2(o.required("size", expectation(NumberRule::positive, 2)), o.at("size"),
-                      NumberRule::positive);
+        const glm::vec2 size = read_vec2(o.required("size", expectation(NumberRule::positive, 2)),
+                                         o.at("size"), NumberRule::positive);
         return make_plane(position, orientation, size, material);
     }
     if (type == "box") {
@@ -535,8 +534,7 @@ Shape read_shape(const json& value, const Location& at, const ShapeContext& cont
     return read_mesh(o, context, position, orientation, material);
 }
 
-std::vector<Shape> read_shapes(const json& value, const Location& at,
-                               const ShapeContext& context) {
+std::vector<Shape> read_shapes(const json& value, const Location& at, const ShapeContext& context) {
     if (!value.is_array() || value.empty()) {
         fail_expected(at, "a non-empty array of shapes", value);
     }
@@ -567,8 +565,7 @@ Scene read_scene(const json& document, const Location& at, const std::string& ba
         context.material_index[scene.materials[i].name] = static_cast<int>(i);
         context.material_names.push_back(scene.materials[i].name);
     }
-    scene.shapes =
-        read_shapes(o.required("shapes", "an array of shapes"), o.at("shapes"), context);
+    scene.shapes = read_shapes(o.required("shapes", "an array of shapes"), o.at("shapes"), context);
     return scene;
 }
 
@@ -605,8 +602,8 @@ class DuplicateKeyCheck {
   private:
     struct Frame {
         bool is_array;
-        std::size_t index;        // arrays: the element being parsed
-        std::string key;          // objects: the key being parsed
+        std::size_t index;           // arrays: the element being parsed
+        std::string key;             // objects: the key being parsed
         std::set<std::string> keys;  // objects: the keys seen so far
     };
 

@@ -79,6 +79,17 @@ std::string json_escape(const std::string& s) {
     return out;
 }
 
+void save_outputs(trac0r::Renderer& renderer, const Options& options) {
+    if (options.outputs.empty()) {
+        return;
+    }
+    const trac0r::Image image = renderer.image();
+    for (const std::string& path : options.outputs) {
+        trac0r::write_image(path, image, options.exposure);
+        std::fprintf(stderr, "wrote %s\n", path.c_str());
+    }
+}
+
 }  // namespace
 
 int run_batch(trac0r::Renderer& renderer, const Options& options) {
@@ -107,10 +118,7 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
                          "samples dropped\n",
                  spp, renderer.width(), renderer.height(), elapsed, paths_per_second * 1e-6,
                  stats.samples_dropped);
-    if (!options.output.empty()) {
-        trac0r::write_image(options.output, renderer.image(), options.exposure);
-        std::fprintf(stderr, "wrote %s\n", options.output.c_str());
-    }
+    save_outputs(renderer, options);
     return 0;
 }
 
@@ -141,10 +149,7 @@ int run_benchmark(trac0r::Renderer& renderer, const Options& options) {
          << json_escape(renderer.backend().name()) << "\", \"device\": \""
          << json_escape(renderer.backend().device()) << "\"}";
     std::cout << json.str() << std::endl;
-    if (!options.output.empty()) {
-        trac0r::write_image(options.output, renderer.image(), options.exposure);
-        std::fprintf(stderr, "wrote %s\n", options.output.c_str());
-    }
+    save_outputs(renderer, options);
     return 0;
 }
 

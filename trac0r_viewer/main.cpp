@@ -44,15 +44,13 @@ void check_options(const Options& o) {
         throw UsageError("the interactive window is not part of this build; add --headless "
                          "(with --output FILE, or --benchmark N)");
     }
-    if (o.benchmark_frames == 0 && o.output.empty()) {
+    if (o.benchmark_frames == 0 && o.outputs.empty()) {
         throw UsageError("--headless: nothing to do; give --output FILE (.png or .pfm) or "
                          "--benchmark N");
     }
-    if (!o.output.empty()) {
-        const std::string& f = o.output;
-        const bool known = f.size() > 4 && (f.compare(f.size() - 4, 4, ".png") == 0 ||
-                                            f.compare(f.size() - 4, 4, ".pfm") == 0);
-        if (!known) {
+    // Checked before rendering, not after.
+    for (const std::string& f : o.outputs) {
+        if (!trac0r::is_supported_image_path(f)) {
             throw UsageError("--output " + f + ": expected a .png or .pfm file name");
         }
     }

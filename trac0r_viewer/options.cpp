@@ -31,7 +31,8 @@ Rendering:
   --verbose              backend, device, feature mask and what was left out
 
 Output:
-  --output FILE          save the result: .png (tone-mapped sRGB) or .pfm (linear)
+  --output FILE          save the result: .png (tone-mapped sRGB) or .pfm (linear);
+                         may be repeated (e.g. both a .png and a .pfm)
   --headless             no window; with --output a batch render with a
                          progress bar on stderr (default --spp 64)
   --benchmark N          render N frames, print one JSON line of timings, exit
@@ -98,7 +99,7 @@ Options parse_options(int argc, const char* const* argv) {
         {"--height", [&](auto f, auto v) { o.height = (int)parse_integer(f, v, 1, 16384); }},
         {"--spp", [&](auto f, auto v) { o.spp = parse_integer(f, v, 1, 1L << 31); }},
         {"--seconds", [&](auto f, auto v) { o.seconds = parse_positive(f, v); }},
-        {"--output", [&](auto, auto v) { o.output = v; }},
+        {"--output", [&](auto, auto v) { o.outputs.push_back(v); }},
         {"--benchmark",
          [&](auto f, auto v) { o.benchmark_frames = parse_integer(f, v, 1, 1000000); }},
         {"--seed", [&](auto f, auto v) { o.seed = parse_seed(f, v); }},

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace trac0r_viewer {
 
@@ -16,7 +17,7 @@ struct Options {
     int height = 0;
     long spp = 0;          // 0: not given
     double seconds = 0.0;  // 0: not given
-    std::string output;
+    std::vector<std::string> outputs;  // --output, may be repeated
     bool headless = false;
     long benchmark_frames = 0;
     std::uint64_t seed = 1;
