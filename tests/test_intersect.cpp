@@ -1,11 +1,10 @@
 // Ray/triangle (Möller–Trumbore), ray/AABB (slabs) and the ray-origin
 // offset that keeps a new ray off the surface it leaves.
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "trac0r/kernel/intersect.h"
 #include "trac0r/kernel/rng.h"
-
-#include <cmath>
 
 using namespace trac0r::kernel;
 
@@ -75,9 +74,9 @@ TEST_CASE("intersect_triangle: interior hits give t, u, v", "[kernel][intersect]
         CHECK(h.v == Approx(0.3f).epsilon(1e-5));
     }
     SECTION("a general triangle: the hit point is v0 + u e1 + v e2 = origin + t d") {
-        const TriangleRecord tri = make_triangle(make_float3(1.5f, -2.0f, 0.25f),
-                                                 make_float3(-0.5f, 1.0f, 2.0f),
-                                                 make_float3(3.0f, 2.5f, -1.0f));
+        const TriangleRecord tri =
+            make_triangle(make_float3(1.5f, -2.0f, 0.25f), make_float3(-0.5f, 1.0f, 2.0f),
+                          make_float3(3.0f, 2.5f, -1.0f));
         const float3 origin = make_float3(-3.0f, 4.0f, 5.0f);
         const float3 target = xyz(tri.v0) + xyz(tri.edge1) * 0.3f + xyz(tri.edge2) * 0.45f;
         const TriangleHit h = shoot(tri, origin, target - origin);
@@ -90,13 +89,13 @@ TEST_CASE("intersect_triangle: interior hits give t, u, v", "[kernel][intersect]
 
 TEST_CASE("intersect_triangle: misses just outside each edge", "[kernel][intersect]") {
     const float eps = 1.0f / 1024.0f;
-    CHECK_FALSE(shoot_down_at(0.5f, -eps).hit());         // below edge v0-v1 (v < 0)
-    CHECK_FALSE(shoot_down_at(-eps, 0.5f).hit());         // left of edge v0-v2 (u < 0)
-    CHECK_FALSE(shoot_down_at(0.5f + eps, 0.5f).hit());   // beyond edge v1-v2 (u + v > 1)
-    CHECK_FALSE(shoot_down_at(1.0f + eps, 0.0f).hit());   // past vertex v1 (u > 1)
-    CHECK_FALSE(shoot_down_at(0.0f, 1.0f + eps).hit());   // past vertex v2
-    CHECK_FALSE(shoot_down_at(-eps, -eps).hit());         // past vertex v0
-    CHECK_FALSE(shoot_down_at(3.0f, 3.0f).hit());         // far away
+    CHECK_FALSE(shoot_down_at(0.5f, -eps).hit());        // below edge v0-v1 (v < 0)
+    CHECK_FALSE(shoot_down_at(-eps, 0.5f).hit());        // left of edge v0-v2 (u < 0)
+    CHECK_FALSE(shoot_down_at(0.5f + eps, 0.5f).hit());  // beyond edge v1-v2 (u + v > 1)
+    CHECK_FALSE(shoot_down_at(1.0f + eps, 0.0f).hit());  // past vertex v1 (u > 1)
+    CHECK_FALSE(shoot_down_at(0.0f, 1.0f + eps).hit());  // past vertex v2
+    CHECK_FALSE(shoot_down_at(-eps, -eps).hit());        // past vertex v0
+    CHECK_FALSE(shoot_down_at(3.0f, 3.0f).hit());        // far away
     // ...and just inside the same edges hits.
     CHECK(shoot_down_at(0.5f, eps).hit());
     CHECK(shoot_down_at(eps, 0.5f).hit());
@@ -108,8 +107,8 @@ TEST_CASE("intersect_triangle: edges and vertices count as inside", "[kernel][in
         float x, y;
     };
     const Case on_boundary[] = {
-        {0.5f, 0.0f},   {0.0f, 0.5f}, {0.5f, 0.5f}, {0.25f, 0.75f},  // the three edges
-        {0.0f, 0.0f},   {1.0f, 0.0f}, {0.0f, 1.0f},                  // the three vertices
+        {0.5f, 0.0f}, {0.0f, 0.5f}, {0.5f, 0.5f}, {0.25f, 0.75f},  // the three edges
+        {0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f},                  // the three vertices
     };
     for (const Case& c : on_boundary) {
         INFO("at (" << c.x << ", " << c.y << ")");
@@ -187,8 +186,9 @@ TEST_CASE("intersect_triangle is scale invariant", "[kernel][intersect]") {
         const float3 d = normalize(make_float3(1.0f, 0.0f, -1e-3f));
         for (float s : scales) {
             INFO("scale " << s);
-            TriangleRecord tri = make_triangle(xyz(unit.v0) * s, (xyz(unit.v0) + xyz(unit.edge1)) * s,
-                                               (xyz(unit.v0) + xyz(unit.edge2)) * s);
+            TriangleRecord tri =
+                make_triangle(xyz(unit.v0) * s, (xyz(unit.v0) + xyz(unit.edge1)) * s,
+                              (xyz(unit.v0) + xyz(unit.edge2)) * s);
             const float3 origin_s = (make_float3(0.5f, 0.25f, 0.0f) - d * 10.0f) * s;
             const TriangleHit h = shoot(tri, origin_s, d);
             REQUIRE(h.hit());
@@ -319,7 +319,8 @@ TEST_CASE("offset hit points leave the exact plane of their triangle", "[kernel]
             if (!(tri.normal.w > 0.0f)) {
                 continue;
             }
-            const float3 origin = vertex() + make_float3(uniform(-3, 3), uniform(-3, 3), uniform(-3, 3)) * size;
+            const float3 origin =
+                vertex() + make_float3(uniform(-3, 3), uniform(-3, 3), uniform(-3, 3)) * size;
             const float3 aim = xyz(tri.v0) + xyz(tri.edge1) * uniform(0.05f, 0.45f) +
                                xyz(tri.edge2) * uniform(0.05f, 0.45f);
             const Ray ray = make_ray(origin, normalize(aim - origin));

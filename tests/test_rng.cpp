@@ -1,13 +1,12 @@
 // The kernel's random numbers: xorshift64* and xorshift1024* exactly as
 // published (Vigna), the [0, 1) float, and per-pixel seeding.
 #include <catch2/catch.hpp>
-
-#include "trac0r/kernel/rng.h"
-
 #include <cmath>
 #include <cstdint>
 #include <set>
 #include <vector>
+
+#include "trac0r/kernel/rng.h"
 
 using namespace trac0r::kernel;
 

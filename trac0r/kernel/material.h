@@ -34,16 +34,26 @@ T0_INLINE float3 material_emission(T0_GLOBAL const MaterialRecord* m) {
 
 T0_INLINE float3 reflect_direction(float3 d, float3 n) { return d - n * (2.0f * dot(d, n)); }
 
+// cos^2 of the refraction angle (Snell's law); <= 0 is total internal
+// reflection. Written (1 - eta^2) + (eta cos_i)^2, not 1 - eta^2 (1 - cos_i^2):
+// equal in exact arithmetic, but only this form is exact for eta = 1, where
+// 1 - cos_i^2 rounds to 1 below cos_i = 2.4e-4 and an index-matched
+// interface would reflect totally near grazing.
+T0_INLINE float refracted_cos2(float cos_i, float eta) {
+    const float eta_cos_i = eta * cos_i;
+    return (1.0f - eta * eta) + eta_cos_i * eta_cos_i;
+}
+
 // Unpolarised Fresnel reflectance of a dielectric interface.
 // cos_i: cosine of the incident angle (>= 0); eta = eta_incident/eta_transmitted.
 // Returns 1 for total internal reflection and at exactly grazing incidence.
 T0_INLINE float fresnel_dielectric(float cos_i, float eta) {
     cos_i = fmin(fmax(cos_i, 0.0f), 1.0f);
-    const float sin2_t = eta * eta * (1.0f - cos_i * cos_i);
-    if (sin2_t >= 1.0f) {
+    const float cos2_t = refracted_cos2(cos_i, eta);
+    if (!(cos2_t > 0.0f)) {
         return 1.0f;
     }
-    const float cos_t = sqrt(1.0f - sin2_t);
+    const float cos_t = sqrt(cos2_t);
     const float perp_den = eta * cos_i + cos_t;
     const float parallel_den = cos_i + eta * cos_t;
     if (!(perp_den > 0.0f) || !(parallel_den > 0.0f)) {
@@ -110,8 +120,7 @@ T0_INLINE ScatterSample scatter_glass(T0_GLOBAL const MaterialRecord* m, float3 
         s.weight = float3_splat(1.0f);
         return s;
     }
-    const float sin2_t = eta * eta * (1.0f - cos_i * cos_i);
-    const float cos_t = sqrt(fmax(0.0f, 1.0f - sin2_t));
+    const float cos_t = sqrt(fmax(0.0f, refracted_cos2(cos_i, eta)));
     s.direction = normalize(incoming * eta + n * (eta * cos_i - cos_t));
     s.weight = xyz(m->color);
     return s;
