@@ -58,7 +58,9 @@ std::string scene_error(const std::string& text) {
     try {
         parse(text);
     } catch (const SceneError& e) {
-        return e.what();
+        const std::string message = e.what();
+        CHECK(message.find('\n') == std::string::npos);  // one line, for a terminal
+        return message;
     }
     FAIL("no SceneError for: " << text);
     return "";
@@ -216,10 +218,10 @@ TEST_CASE("the built-in scene is scenes/cornell.json", "[scene_loader]") {
 }
 
 TEST_CASE("optional keys take their documented defaults", "[scene_loader]") {
-    const Scene scene = parse(scene_json(
-        white_material + R"(, "mirror": {"type": "glossy", "color": [1, 1, 1]},
+    const Scene scene = parse(
+        scene_json(white_material + R"(, "mirror": {"type": "glossy", "color": [1, 1, 1]},
                               "clear": {"type": "glass", "color": [1, 1, 1]})",
-        plane_shape + R"(, {"type": "icosphere", "radius": 1, "material": "white"})"));
+                   plane_shape + R"(, {"type": "icosphere", "radius": 1, "material": "white"})"));
     const Camera default_camera;
     CHECK(same_vec3(scene.camera.position, default_camera.position));
     CHECK(same_vec3(scene.camera.direction, default_camera.direction));
@@ -305,15 +307,16 @@ TEST_CASE("scene errors: an unknown key", "[scene_loader]") {
                    R"("m": {"type": "diffuse", "color": [1, 1, 1], "roughness": 0.5})")),
                StartsWith("test.json: /materials/m/roughness: unknown key in a diffuse material") &&
                    Contains("allowed keys: type, color, emittance"));
-    CHECK_THAT(scene_error(with_material(
-                   R"("m": {"type": "glass", "color": [1, 1, 1], "emittance": 1})")),
-               StartsWith("test.json: /materials/m/emittance: unknown key in a glass material"));
     CHECK_THAT(
-        scene_error(with_shape(R"({"type": "plane", "size": [1, 1], "radius": 1, "material": "white"})")),
-        StartsWith("test.json: /shapes/0/radius: unknown key in a plane shape"));
+        scene_error(with_material(R"("m": {"type": "glass", "color": [1, 1, 1], "emittance": 1})")),
+        StartsWith("test.json: /materials/m/emittance: unknown key in a glass material"));
     CHECK_THAT(scene_error(with_shape(
-                   R"({"type": "icosphere", "radius": 1, "scale": [1, 1, 1], "material": "white"})")),
-               StartsWith("test.json: /shapes/0/scale: unknown key in an icosphere shape"));
+                   R"({"type": "plane", "size": [1, 1], "radius": 1, "material": "white"})")),
+               StartsWith("test.json: /shapes/0/radius: unknown key in a plane shape"));
+    CHECK_THAT(
+        scene_error(with_shape(
+            R"({"type": "icosphere", "radius": 1, "scale": [1, 1, 1], "material": "white"})")),
+        StartsWith("test.json: /shapes/0/scale: unknown key in an icosphere shape"));
     CHECK_THAT(scene_error(with_extra(R"("camera": {"fov": 40})")),
                StartsWith("test.json: /camera/fov: unknown key in the camera"));
     CHECK_THAT(scene_error(with_extra(R"("render": {"depth": 4})")),
@@ -323,12 +326,12 @@ TEST_CASE("scene errors: an unknown key", "[scene_loader]") {
 TEST_CASE("scene errors: a key given twice", "[scene_loader]") {
     CHECK_THAT(scene_error(scene_json(white_material + ", " + white_material)),
                StartsWith("test.json: /materials/white: duplicate key"));
-    CHECK_THAT(
-        scene_error(with_shape(R"({"type": "plane", "size": [1, 1], "size": [2, 2], "material": "white"})")),
-        StartsWith("test.json: /shapes/0/size: duplicate key"));
-    CHECK_THAT(scene_error(scene_json(white_material, plane_shape + ", " +
-                                                          R"({"type": "box", "size": [1, 1, 1],
-                                                              "material": "white", "type": "box"})")),
+    CHECK_THAT(scene_error(with_shape(
+                   R"({"type": "plane", "size": [1, 1], "size": [2, 2], "material": "white"})")),
+               StartsWith("test.json: /shapes/0/size: duplicate key"));
+    const std::string box_with_two_types =
+        R"({"type": "box", "size": [1, 1, 1], "material": "white", "type": "box"})";
+    CHECK_THAT(scene_error(scene_json(white_material, plane_shape + ", " + box_with_two_types)),
                StartsWith("test.json: /shapes/1/type: duplicate key"));
 }
 
@@ -351,23 +354,27 @@ TEST_CASE("scene errors: a mesh file that cannot be read", "[scene_loader]") {
 }
 
 TEST_CASE("scene errors: numbers out of range", "[scene_loader]") {
-    CHECK_THAT(scene_error(with_shape(R"({"type": "plane", "size": [1, -2], "material": "white"})")),
-               Equals("test.json: /shapes/0/size: expected an array of 2 finite positive "
-                      "numbers, got [1, -2]"));
+    CHECK_THAT(
+        scene_error(with_shape(R"({"type": "plane", "size": [1, -2], "material": "white"})")),
+        Equals("test.json: /shapes/0/size: expected an array of 2 finite positive "
+               "numbers, got [1, -2]"));
     CHECK_THAT(
         scene_error(with_shape(R"({"type": "plane", "size": [1e39, 1], "material": "white"})")),
         StartsWith("test.json: /shapes/0/size: ") && Contains("not finite"));
     CHECK_THAT(scene_error(with_material(
                    R"("m": {"type": "emissive", "color": [1, 1, 1], "emittance": 1e39})")),
                StartsWith("test.json: /materials/m/emittance: ") && Contains("not finite"));
-    CHECK_THAT(scene_error(with_shape(R"({"type": "icosphere", "radius": 0, "material": "white"})")),
-               Equals("test.json: /shapes/0/radius: expected a finite positive number, got 0"));
-    CHECK_THAT(scene_error(with_shape(
-                   R"({"type": "icosphere", "radius": 1, "subdivisions": 8, "material": "white"})")),
-               StartsWith("test.json: /shapes/0/subdivisions: expected an integer in [0, 7]"));
-    CHECK_THAT(scene_error(with_shape(
-                   R"({"type": "mesh", "file": "x.obj", "scale": [1, 0, 1], "material": "white"})")),
-               StartsWith("test.json: /shapes/0/scale: expected an array of 3 finite non-zero"));
+    CHECK_THAT(
+        scene_error(with_shape(R"({"type": "icosphere", "radius": 0, "material": "white"})")),
+        Equals("test.json: /shapes/0/radius: expected a finite positive number, got 0"));
+    CHECK_THAT(
+        scene_error(with_shape(
+            R"({"type": "icosphere", "radius": 1, "subdivisions": 8, "material": "white"})")),
+        StartsWith("test.json: /shapes/0/subdivisions: expected an integer in [0, 7]"));
+    CHECK_THAT(
+        scene_error(with_shape(
+            R"({"type": "mesh", "file": "x.obj", "scale": [1, 0, 1], "material": "white"})")),
+        StartsWith("test.json: /shapes/0/scale: expected an array of 3 finite non-zero"));
     CHECK_THAT(scene_error(with_material(R"("m": {"type": "diffuse", "color": [1.2, 0, 0]})")),
                StartsWith("test.json: /materials/m/color: expected an array of 3 numbers in "
                           "[0, 1], got [1.2, 0, 0]"));
@@ -379,8 +386,8 @@ TEST_CASE("scene errors: numbers out of range", "[scene_loader]") {
     CHECK_THAT(scene_error(with_extra(R"("render": {"max_depth": 0})")),
                StartsWith("test.json: /render/max_depth: expected an integer in [1, 100000]"));
     // An emitter's color is radiance, not reflectance: above 1 is fine.
-    CHECK_NOTHROW(parse(with_material(
-        R"("m": {"type": "emissive", "color": [2, 2, 2], "emittance": 1})")));
+    CHECK_NOTHROW(
+        parse(with_material(R"("m": {"type": "emissive", "color": [2, 2, 2], "emittance": 1})")));
 }
 
 TEST_CASE("scene errors: a camera that cannot form an image", "[scene_loader]") {
@@ -417,8 +424,7 @@ TEST_CASE("scene files: errors name the file; meshes are relative to it", "[scen
         const std::string path = dir.write(
             "mesh.json",
             with_shape(R"({"type": "mesh", "file": "missing.obj", "material": "white"})"));
-        REQUIRE_THROWS_WITH(load_scene_file(path),
-                            StartsWith(path + ": /shapes/0/file: ") &&
-                                Contains(dir.path() + "/missing.obj"));
+        REQUIRE_THROWS_WITH(load_scene_file(path), StartsWith(path + ": /shapes/0/file: ") &&
+                                                       Contains(dir.path() + "/missing.obj"));
     }
 }

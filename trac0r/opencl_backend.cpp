@@ -197,6 +197,7 @@ struct OpenClBackend::State {
     cl_mem triangles = nullptr;
     cl_mem shapes = nullptr;
     cl_mem materials = nullptr;
+    cl_mem nodes = nullptr;
     cl_mem accum = nullptr;
     std::size_t pixels = 0;
     cl_uint shape_count = 0;
@@ -213,6 +214,7 @@ OpenClBackend::~OpenClBackend() {
     release(state_->triangles);
     release(state_->shapes);
     release(state_->materials);
+    release(state_->nodes);
     release(state_->accum);
     if (state_->kernel) {
         clReleaseKernel(state_->kernel);
@@ -250,9 +252,11 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
     release(state_->triangles);
     release(state_->shapes);
     release(state_->materials);
+    release(state_->nodes);
     state_->triangles = upload(context, scene.triangles);
     state_->shapes = upload(context, scene.shapes);
     state_->materials = upload(context, scene.materials);
+    state_->nodes = upload(context, scene.nodes);
     state_->shape_count = static_cast<cl_uint>(scene.shapes.size());
 }
 
@@ -281,12 +285,13 @@ void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64
     check(clSetKernelArg(k, 0, sizeof(cl_mem), &state_->triangles), "clSetKernelArg(0)");
     check(clSetKernelArg(k, 1, sizeof(cl_mem), &state_->shapes), "clSetKernelArg(1)");
     check(clSetKernelArg(k, 2, sizeof(cl_mem), &state_->materials), "clSetKernelArg(2)");
-    check(clSetKernelArg(k, 3, sizeof(cl_uint), &state_->shape_count), "clSetKernelArg(3)");
-    check(clSetKernelArg(k, 4, sizeof camera, &camera), "clSetKernelArg(4)");
-    check(clSetKernelArg(k, 5, sizeof(cl_mem), &state_->accum), "clSetKernelArg(5)");
-    check(clSetKernelArg(k, 6, sizeof seed_arg, &seed_arg), "clSetKernelArg(6)");
-    check(clSetKernelArg(k, 7, sizeof frame_arg, &frame_arg), "clSetKernelArg(7)");
-    check(clSetKernelArg(k, 8, sizeof depth_arg, &depth_arg), "clSetKernelArg(8)");
+    check(clSetKernelArg(k, 3, sizeof(cl_mem), &state_->nodes), "clSetKernelArg(3)");
+    check(clSetKernelArg(k, 4, sizeof(cl_uint), &state_->shape_count), "clSetKernelArg(4)");
+    check(clSetKernelArg(k, 5, sizeof camera, &camera), "clSetKernelArg(5)");
+    check(clSetKernelArg(k, 6, sizeof(cl_mem), &state_->accum), "clSetKernelArg(6)");
+    check(clSetKernelArg(k, 7, sizeof seed_arg, &seed_arg), "clSetKernelArg(7)");
+    check(clSetKernelArg(k, 8, sizeof frame_arg, &frame_arg), "clSetKernelArg(8)");
+    check(clSetKernelArg(k, 9, sizeof depth_arg, &depth_arg), "clSetKernelArg(9)");
     const std::size_t group = 64;
     const std::size_t global = (state_->pixels + group - 1) / group * group;
     check(clEnqueueNDRangeKernel(state_->device->queue, k, 1, nullptr, &global, nullptr, 0,

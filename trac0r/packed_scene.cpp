@@ -1,6 +1,9 @@
 #include "trac0r/packed_scene.h"
 
+#include "trac0r/bvh.h"
+
 #include <cmath>
+#include <stdexcept>
 
 namespace trac0r {
 
@@ -10,7 +13,7 @@ bool finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-bool usable(const Triangle& t) {
+bool usable_triangle(const Triangle& t) {
     return finite(t.v0) && finite(t.v1) && finite(t.v2) && t.area > 0.0f &&
            std::isfinite(t.area);
 }
@@ -52,10 +55,11 @@ std::uint32_t material_feature(MaterialType type) {
 const char* const feature_bit_names[T0_FEATURE_COUNT] = {
     "emissive", "diffuse", "glass", "glossy", "emittance", "flat", "bvh", "nee"};
 
-// What this build's kernel can do at all; BVH and NEE are not built yet.
+// What this build's kernel can do at all; NEE is not built yet.
 const std::uint32_t implemented_features = T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE |
                                            T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
-                                           T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT;
+                                           T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT |
+                                           T0_FEATURE_BVH;
 
 }  // namespace
 
@@ -64,39 +68,83 @@ kernel::SceneView PackedScene::view() const {
     v.triangles = triangles.data();
     v.shapes = shapes.data();
     v.materials = materials.data();
+    v.nodes = nodes.data();
     v.shape_count = static_cast<std::uint32_t>(shapes.size());
     v.features = features;
     return v;
 }
 
-PackedScene pack_scene(const Scene& scene) {
-    PackedScene packed;
-    packed.features = T0_FEATURE_FLAT;
-    std::vector<bool> material_used(scene.materials.size(), false);
-    for (std::size_t s = 0; s < scene.shapes.size(); ++s) {
-        const Shape& shape = scene.shapes[s];
+namespace {
+
+struct UsableTriangle {
+    const Triangle* triangle;
+    unsigned material;
+    unsigned shape;
+};
+
+// The thesis' structure: each shape's usable triangles in a run, one AABB.
+void pack_flat(const std::vector<UsableTriangle>& usable, PackedScene& packed) {
+    for (std::size_t i = 0; i < usable.size();) {
         kernel::ShapeRecord record;
-        record.range.x = static_cast<unsigned>(packed.triangles.size());
+        record.range = glm::uvec4(static_cast<unsigned>(packed.triangles.size()), 0u,
+                                  usable[i].material, usable[i].shape);
         AABB bounds;
-        for (const Triangle& t : shape.triangles) {
-            if (!usable(t)) {
-                ++packed.dropped_degenerate_triangles;
-                continue;
-            }
-            packed.triangles.push_back(pack_triangle(t, static_cast<unsigned>(shape.material),
-                                                     static_cast<unsigned>(s)));
-            bounds.extend(t.bounds());
+        const unsigned shape = usable[i].shape;
+        for (; i < usable.size() && usable[i].shape == shape; ++i) {
+            packed.triangles.push_back(
+                pack_triangle(*usable[i].triangle, usable[i].material, shape));
+            bounds.extend(usable[i].triangle->bounds());
         }
         record.range.y = static_cast<unsigned>(packed.triangles.size()) - record.range.x;
-        if (record.range.y == 0) {
-            continue;  // nothing left to hit
-        }
-        record.range.z = static_cast<unsigned>(shape.material);
-        record.range.w = static_cast<unsigned>(s);
         record.aabb_min = glm::vec4(bounds.min, 0.0f);
         record.aabb_max = glm::vec4(bounds.max, 0.0f);
         packed.shapes.push_back(record);
-        material_used[static_cast<std::size_t>(shape.material)] = true;
+    }
+}
+
+void pack_bvh(const std::vector<UsableTriangle>& usable, PackedScene& packed) {
+    std::vector<AABB> bounds;
+    bounds.reserve(usable.size());
+    for (const UsableTriangle& u : usable) {
+        bounds.push_back(u.triangle->bounds());
+    }
+    Bvh bvh = build_bvh(bounds);
+    packed.nodes = std::move(bvh.nodes);
+    packed.bvh_depth = bvh.depth;
+    packed.triangles.reserve(usable.size());
+    for (std::uint32_t index : bvh.order) {
+        const UsableTriangle& u = usable[index];
+        packed.triangles.push_back(pack_triangle(*u.triangle, u.material, u.shape));
+    }
+}
+
+}  // namespace
+
+PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
+    PackedScene packed;
+    std::vector<UsableTriangle> usable;
+    std::vector<bool> material_used(scene.materials.size(), false);
+    for (std::size_t s = 0; s < scene.shapes.size(); ++s) {
+        const Shape& shape = scene.shapes[s];
+        for (const Triangle& t : shape.triangles) {
+            if (!usable_triangle(t)) {
+                ++packed.dropped_degenerate_triangles;
+                continue;
+            }
+            usable.push_back({&t, static_cast<unsigned>(shape.material), static_cast<unsigned>(s)});
+            material_used[static_cast<std::size_t>(shape.material)] = true;
+        }
+    }
+    const bool use_bvh =
+        !usable.empty() && (options.accel == Accel::bvh ||
+                            (options.accel == Accel::automatic &&
+                             usable.size() >= auto_bvh_min_triangles));
+    if (use_bvh) {
+        packed.features |= T0_FEATURE_BVH;
+        pack_bvh(usable, packed);
+    } else {
+        packed.features |= T0_FEATURE_FLAT;
+        pack_flat(usable, packed);
     }
     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& material = scene.materials[m];
@@ -110,6 +158,32 @@ PackedScene pack_scene(const Scene& scene) {
         }
     }
     return packed;
+}
+
+Accel parse_accel(const std::string& name) {
+    if (name == "flat") {
+        return Accel::flat;
+    }
+    if (name == "bvh") {
+        return Accel::bvh;
+    }
+    if (name == "auto") {
+        return Accel::automatic;
+    }
+    throw std::invalid_argument("unknown acceleration structure '" + name +
+                                "' (expected flat, bvh or auto)");
+}
+
+const char* to_string(Accel accel) {
+    switch (accel) {
+    case Accel::flat:
+        return "flat";
+    case Accel::bvh:
+        return "bvh";
+    case Accel::automatic:
+        return "auto";
+    }
+    return "auto";
 }
 
 std::string feature_names(std::uint32_t features) {

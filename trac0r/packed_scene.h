@@ -12,9 +12,25 @@
 
 namespace trac0r {
 
+enum class Accel {
+    flat,       // the thesis' list of shapes with one AABB each
+    bvh,        // a BVH over all triangles
+    automatic,  // the flat list for tiny scenes, else the BVH
+};
+
+// Below this many triangles `automatic` keeps the flat list (README,
+// "Performance": where the BVH starts to pay).
+const std::size_t auto_bvh_min_triangles = 64;
+
+struct PackOptions {
+    Accel accel = Accel::automatic;
+};
+
 struct PackedScene {
-    std::vector<kernel::TriangleRecord> triangles;
-    std::vector<kernel::ShapeRecord> shapes;
+    std::vector<kernel::TriangleRecord> triangles;  // in BVH leaf order with a BVH
+    std::vector<kernel::ShapeRecord> shapes;        // the flat structure (empty with a BVH)
+    std::vector<kernel::BvhNode> nodes;             // empty with the flat structure
+    int bvh_depth = 0;
     std::vector<kernel::MaterialRecord> materials;
     std::uint32_t features = 0;
     std::size_t dropped_degenerate_triangles = 0;  // zero-area or non-finite
@@ -22,10 +38,15 @@ struct PackedScene {
     kernel::SceneView view() const;
 };
 
-// Packs the scene: the flat structure (shapes with AABBs), triangles with
-// precomputed edges, materials, and the feature mask. Degenerate triangles
-// (zero area, non-finite vertices) can never be hit and are left out.
-PackedScene pack_scene(const Scene& scene);
+// Packs the scene: the acceleration structure (flat shapes with AABBs, or a
+// BVH), triangles with precomputed edges, materials, and the feature mask.
+// Degenerate triangles (zero area, non-finite vertices) can never be hit
+// and are left out.
+PackedScene pack_scene(const Scene& scene, const PackOptions& options = PackOptions());
+
+// "flat", "bvh", "auto" and back; parse_accel throws std::invalid_argument.
+Accel parse_accel(const std::string& name);
+const char* to_string(Accel accel);
 
 // "diffuse glass emittance flat" etc.: the names of the set bits.
 std::string feature_names(std::uint32_t features);

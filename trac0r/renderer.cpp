@@ -4,9 +4,10 @@
 
 namespace trac0r {
 
-Renderer::Renderer(const Scene& scene, std::unique_ptr<Backend> backend, std::uint64_t seed)
+Renderer::Renderer(const Scene& scene, std::unique_ptr<Backend> backend, std::uint64_t seed,
+                   const PackOptions& pack_options)
     : scene_(scene),
-      packed_(pack_scene(scene)),
+      packed_(pack_scene(scene, pack_options)),
       backend_(std::move(backend)),
       seed_(seed),
       camera_record_(make_camera_record(scene.camera, scene.render.width, scene.render.height)) {

@@ -20,7 +20,8 @@ struct RenderStats {
 
 class Renderer {
   public:
-    Renderer(const Scene& scene, std::unique_ptr<Backend> backend, std::uint64_t seed = 1);
+    Renderer(const Scene& scene, std::unique_ptr<Backend> backend, std::uint64_t seed = 1,
+             const PackOptions& pack_options = PackOptions());
 
     const Scene& scene() const { return scene_; }
     const PackedScene& packed() const { return packed_; }

@@ -359,8 +359,8 @@ Camera read_camera(const json& value, const Location& at) {
     if (o.has("vertical_fov")) {
         camera.vertical_fov = read_fov(o["vertical_fov"], o.at("vertical_fov"));
     }
-    // The remaining conditions (zero vectors, direction parallel to
-    // world_up, fov of 180 or more) are the camera's own to state.
+    // Zero vectors and a direction along world_up are the camera's own
+    // conditions to state; its message names the field.
     if (const char* problem = camera_problem(camera)) {
         fail(at, problem);
     }

@@ -38,6 +38,9 @@ class Progress {
     }
 
     void finish(long spp, double elapsed, double paths_per_second) {
+        if (!tty_ && spp == last_drawn_spp_) {
+            return;  // the log already has this line
+        }
         draw(spp, elapsed, paths_per_second, 1.0);
         if (tty_) {
             std::fputc('\n', stderr);
@@ -46,6 +49,7 @@ class Progress {
 
   private:
     void draw(long spp, double elapsed, double paths_per_second, double fraction) {
+        last_drawn_spp_ = spp;
         const int width = 30;
         const int filled = static_cast<int>(fraction * width);
         const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
@@ -61,6 +65,7 @@ class Progress {
     bool tty_;
     double last_draw_ = -1.0;
     double next_log_fraction_ = 0.0;
+    long last_drawn_spp_ = -1;
 };
 
 double percentile_sorted(const std::vector<double>& sorted, double q) {

@@ -20,10 +20,6 @@ using trac0r_viewer::UsageError;
 
 // Checks combinations of flags that each parse fine alone.
 void check_options(const Options& o) {
-    if (o.accel == "bvh") {
-        throw UsageError("--accel bvh: this build has only the flat structure "
-                         "(use --accel flat or auto)");
-    }
     if (o.integrator == "nee") {
         throw UsageError("--integrator nee: this build has only the naive integrator");
     }
@@ -77,13 +73,26 @@ void print_verbose(trac0r::Renderer& r, const Options& o) {
                  "scene: %s, %zu shapes, %zu triangles (%zu degenerate left out), %dx%d, "
                  "max depth %d, seed %llu\n",
                  o.scene_path.empty() ? "built-in Cornell box" : o.scene_path.c_str(),
-                 p.shapes.size(), p.triangles.size(), p.dropped_degenerate_triangles, r.width(),
+                 r.scene().shapes.size(), p.triangles.size(), p.dropped_degenerate_triangles, r.width(),
                  r.height(), r.scene().render.max_depth, static_cast<unsigned long long>(o.seed));
+    if (p.nodes.empty()) {
+        std::fprintf(stderr, "acceleration: flat list of %zu shapes (--accel %s)\n",
+                     p.shapes.size(), o.accel.c_str());
+    } else {
+        std::fprintf(stderr, "acceleration: BVH of %zu nodes, depth %d (--accel %s)\n",
+                     p.nodes.size(), p.bvh_depth, o.accel.c_str());
+    }
     std::fprintf(stderr, "backend: %s (%s)\n", r.backend().name().c_str(),
                  r.backend().device().c_str());
     std::fprintf(stderr, "features: %s (mask 0x%02x); left out: %s\n",
                  trac0r::feature_names(p.features).c_str(), p.features,
                  trac0r::left_out_feature_names(p.features).c_str());
+#ifdef TRAC0R_HAVE_OPENCL
+    if (auto* cl = dynamic_cast<trac0r::OpenClBackend*>(&r.backend())) {
+        std::fprintf(stderr, "OpenCL program: built in %.2f s (0: reused) with '%s'\n",
+                     cl->last_build_seconds(), cl->build_options().c_str());
+    }
+#endif
 }
 
 int list_devices() {
@@ -134,7 +143,9 @@ int main(int argc, char** argv) {
         }
         check_options(options);
         const trac0r::Scene scene = load_scene(options);
-        trac0r::Renderer renderer(scene, make_backend(options), options.seed);
+        trac0r::PackOptions pack;
+        pack.accel = trac0r::parse_accel(options.accel);
+        trac0r::Renderer renderer(scene, make_backend(options), options.seed, pack);
         if (options.verbose) {
             print_verbose(renderer, options);
         }

@@ -10,6 +10,9 @@
 // the same at every scene scale (Möller–Trumbore's det is -|e1 x e2| cos).
 #define T0_PARALLEL_COSINE 1e-7f
 #define T0_NO_HIT 3.402823e38f
+// gamma(n) = n eps / (1 - n eps), eps = 2^-24: the bound on the relative
+// rounding error of n float operations (pbrt-v4, section 6.8.1).
+#define T0_GAMMA3 (3.0f * 5.9604645e-8f / (1.0f - 3.0f * 5.9604645e-8f))
 
 T0_NAMESPACE_BEGIN
 
@@ -55,15 +58,23 @@ T0_INLINE void clip_slab(float lo, float hi, float origin, float direction, floa
         }
         return;
     }
+    // Plain comparisons, not fmin/fmax: nothing here is NaN (inv is finite),
+    // and on the CPU fminf is a library call that dominated the profile.
     const float t_lo = (lo - origin) * inv;
     const float t_hi = (hi - origin) * inv;
-    *t_enter = fmax(*t_enter, fmin(t_lo, t_hi));
-    *t_exit = fmin(*t_exit, fmax(t_lo, t_hi));
+    const float t_near = t_lo < t_hi ? t_lo : t_hi;
+    // Widened by 2 gamma(3) (pbrt-v4, Bounds3::IntersectP): rounding in the
+    // two products must not make a ray that grazes a box miss it, nor a
+    // triangle whose vertices round an ulp outside its box.
+    const float t_far = (t_lo < t_hi ? t_hi : t_lo) * (1.0f + 2.0f * T0_GAMMA3);
+    *t_enter = t_near > *t_enter ? t_near : *t_enter;
+    *t_exit = t_far < *t_exit ? t_far : *t_exit;
 }
 
-// Slab test over the ray's [0, t_max]. inv_direction is finite, so no
-// inf * 0 NaN arises.
-T0_INLINE int intersect_aabb(float3 box_min, float3 box_max, Ray ray, float t_max) {
+// Slab test over the ray's [0, t_max]: the distance at which the ray enters
+// the box (0 when it starts inside), or T0_NO_HIT. inv_direction is finite,
+// so no inf * 0 NaN arises.
+T0_INLINE float aabb_entry(float3 box_min, float3 box_max, Ray ray, float t_max) {
     float t_enter = 0.0f;
     float t_exit = t_max;
     clip_slab(box_min.x, box_max.x, ray.origin.x, ray.direction.x, ray.inv_direction.x,
@@ -72,7 +83,11 @@ T0_INLINE int intersect_aabb(float3 box_min, float3 box_max, Ray ray, float t_ma
               &t_enter, &t_exit);
     clip_slab(box_min.z, box_max.z, ray.origin.z, ray.direction.z, ray.inv_direction.z,
               &t_enter, &t_exit);
-    return t_enter <= t_exit;
+    return t_enter <= t_exit ? t_enter : T0_NO_HIT;
+}
+
+T0_INLINE int intersect_aabb(float3 box_min, float3 box_max, Ray ray, float t_max) {
+    return aabb_entry(box_min, box_max, ray, t_max) < T0_NO_HIT;
 }
 
 // Möller–Trumbore. Returns the distance along the ray, or T0_NO_HIT; the
@@ -107,10 +122,11 @@ T0_INLINE float intersect_triangle(T0_GLOBAL const TriangleRecord* tri, Ray ray,
     return t;
 }
 
-// The thesis' structure: every shape's AABB, then its triangles.
-T0_INLINE Hit intersect_flat(const SceneView* scene, Ray ray) {
+// The thesis' structure: every shape's AABB, then its triangles. Nearest
+// hit below t_max; with any_hit, the first one found (shadow rays).
+T0_INLINE Hit traverse_flat(const SceneView* scene, Ray ray, float t_max, int any_hit) {
     Hit hit;
-    hit.t = T0_NO_HIT;
+    hit.t = t_max;
     hit.u = 0.0f;
     hit.v = 0.0f;
     hit.triangle = -1;
@@ -121,22 +137,111 @@ T0_INLINE Hit intersect_flat(const SceneView* scene, Ray ray) {
         }
         const t0_u32 end = shape->range.x + shape->range.y;
         for (t0_u32 i = shape->range.x; i < end; ++i) {
-            float u;
-            float v;
+            float u = 0.0f;
+            float v = 0.0f;
             const float t = intersect_triangle(&scene->triangles[i], ray, &u, &v);
             if (t < hit.t) {
                 hit.t = t;
                 hit.u = u;
                 hit.v = v;
                 hit.triangle = (int)i;
+                if (any_hit) {
+                    return hit;
+                }
             }
         }
     }
     return hit;
 }
 
+// Longest root-to-leaf path the traversal stack holds; trac0r/bvh.cpp
+// builds no deeper tree (SAH to depth 32, then halving).
+#define T0_BVH_STACK_SIZE 64
+
+T0_INLINE t0_u32 bvh_first(T0_GLOBAL const BvhNode* n) { return (t0_u32)float_bits(n->aabb_min.w); }
+T0_INLINE t0_u32 bvh_count(T0_GLOBAL const BvhNode* n) { return (t0_u32)float_bits(n->aabb_max.w); }
+
+// Nearest hit below t_max through the BVH; with any_hit, stops at the first
+// hit (shadow rays). Nearer child first; the farther one waits on the stack
+// with its entry distance, and is skipped if a hit has come closer since.
+T0_INLINE Hit traverse_bvh(const SceneView* scene, Ray ray, float t_max, int any_hit) {
+    Hit hit;
+    hit.t = t_max;
+    hit.u = 0.0f;
+    hit.v = 0.0f;
+    hit.triangle = -1;
+    t0_u32 stack_node[T0_BVH_STACK_SIZE];
+    float stack_entry[T0_BVH_STACK_SIZE];
+    int top = 0;
+    T0_GLOBAL const BvhNode* root = &scene->nodes[0];
+    if (!(aabb_entry(xyz(root->aabb_min), xyz(root->aabb_max), ray, hit.t) < hit.t)) {
+        return hit;
+    }
+    t0_u32 node = 0;
+    for (;;) {
+        T0_GLOBAL const BvhNode* n = &scene->nodes[node];
+        const t0_u32 count = bvh_count(n);
+        const t0_u32 first = bvh_first(n);
+        if (count > 0u) {
+            for (t0_u32 i = first; i < first + count; ++i) {
+                float u = 0.0f;
+                float v = 0.0f;
+                const float t = intersect_triangle(&scene->triangles[i], ray, &u, &v);
+                if (t < hit.t) {
+                    hit.t = t;
+                    hit.u = u;
+                    hit.v = v;
+                    hit.triangle = (int)i;
+                    if (any_hit) {
+                        return hit;
+                    }
+                }
+            }
+        } else {
+            T0_GLOBAL const BvhNode* a = &scene->nodes[first];
+            T0_GLOBAL const BvhNode* b = &scene->nodes[first + 1u];
+            const float ta = aabb_entry(xyz(a->aabb_min), xyz(a->aabb_max), ray, hit.t);
+            const float tb = aabb_entry(xyz(b->aabb_min), xyz(b->aabb_max), ray, hit.t);
+            if (ta < T0_NO_HIT && tb < T0_NO_HIT) {
+                const int a_first = ta <= tb;
+                stack_node[top] = a_first ? first + 1u : first;
+                stack_entry[top] = a_first ? tb : ta;
+                ++top;
+                node = a_first ? first : first + 1u;
+                continue;
+            }
+            if (ta < T0_NO_HIT || tb < T0_NO_HIT) {
+                node = ta < T0_NO_HIT ? first : first + 1u;
+                continue;
+            }
+        }
+        // Pop the next subtree that can still hold a nearer hit.
+        for (;;) {
+            if (top == 0) {
+                return hit;
+            }
+            --top;
+            if (stack_entry[top] < hit.t) {
+                node = stack_node[top];
+                break;
+            }
+        }
+    }
+}
+
 T0_INLINE Hit intersect_scene(const SceneView* scene, Ray ray) {
-    return intersect_flat(scene, ray);
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_BVH)) {
+        return traverse_bvh(scene, ray, T0_NO_HIT, 0);
+    }
+    return traverse_flat(scene, ray, T0_NO_HIT, 0);
+}
+
+// Whether anything lies on the ray before t_max.
+T0_INLINE int occluded(const SceneView* scene, Ray ray, float t_max) {
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_BVH)) {
+        return traverse_bvh(scene, ray, t_max, 1).triangle >= 0;
+    }
+    return traverse_flat(scene, ray, t_max, 1).triangle >= 0;
 }
 
 // The hit point from the barycentrics (more accurate than origin + t dir)

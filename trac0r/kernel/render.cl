@@ -5,7 +5,8 @@
 
 __kernel void render_frame(__global const TriangleRecord* triangles,
                            __global const ShapeRecord* shapes,
-                           __global const MaterialRecord* materials, uint shape_count,
+                           __global const MaterialRecord* materials,
+                           __global const BvhNode* nodes, uint shape_count,
                            CameraRecord camera, __global AccumPixel* accum, ulong seed, uint frame,
                            int max_depth) {
     const uint pixel = (uint)get_global_id(0);
@@ -16,6 +17,7 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
     scene.triangles = triangles;
     scene.shapes = shapes;
     scene.materials = materials;
+    scene.nodes = nodes;
     scene.shape_count = shape_count;
     scene.features = T0_FEATURES;
     render_pixel(&scene, camera, accum, pixel, seed, frame, max_depth);

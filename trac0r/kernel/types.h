@@ -22,8 +22,8 @@
 #define T0_FEATURE_GLOSSY (1u << 3)
 #define T0_FEATURE_EMITTANCE (1u << 4)  // any surface that emits light
 #define T0_FEATURE_FLAT (1u << 5)       // the thesis' flat list of shapes
-#define T0_FEATURE_BVH (1u << 6)        // reserved for the BVH
-#define T0_FEATURE_NEE (1u << 7)        // reserved for next-event estimation
+#define T0_FEATURE_BVH (1u << 6)        // a BVH over all triangles
+#define T0_FEATURE_NEE (1u << 7)        // next-event estimation with MIS
 #define T0_FEATURE_COUNT 8
 
 T0_NAMESPACE_BEGIN
@@ -44,6 +44,14 @@ typedef struct T0_ALIGN16 ShapeRecord {
     float4 aabb_max;  // xyz
     uint4 range;      // x: first triangle, y: triangle count, z: material
 } ShapeRecord;
+
+// A node of the BVH (trac0r/bvh.h). The w components hold integer bits:
+// aabb_min.w the first child (interior; the second is first + 1) or the
+// first triangle (leaf), aabb_max.w the triangle count (0: interior).
+typedef struct T0_ALIGN16 BvhNode {
+    float4 aabb_min;
+    float4 aabb_max;
+} BvhNode;
 
 typedef struct T0_ALIGN16 MaterialRecord {
     float4 color;   // xyz: colour (albedo, or emitted colour), w: unused
@@ -77,6 +85,7 @@ typedef struct SceneView {
     T0_GLOBAL const TriangleRecord* triangles;
     T0_GLOBAL const ShapeRecord* shapes;
     T0_GLOBAL const MaterialRecord* materials;
+    T0_GLOBAL const BvhNode* nodes;
     t0_u32 shape_count;
     t0_u32 features;
 } SceneView;
@@ -94,6 +103,7 @@ T0_NAMESPACE_BEGIN
 T0_STATIC_ASSERT_SIZE(TriangleRecord, 80);
 T0_STATIC_ASSERT_SIZE(ShapeRecord, 48);
 T0_STATIC_ASSERT_SIZE(MaterialRecord, 48);
+T0_STATIC_ASSERT_SIZE(BvhNode, 32);
 T0_STATIC_ASSERT_SIZE(CameraRecord, 96);
 T0_STATIC_ASSERT_SIZE(AccumPixel, 48);
 T0_STATIC_ASSERT_SIZE(FrameRecord, 32);
