@@ -18,9 +18,10 @@ enum class Accel {
     automatic,  // the flat list for tiny scenes, else the BVH
 };
 
-// Below this many triangles `automatic` keeps the flat list (README,
-// "Performance": where the BVH starts to pay).
-const std::size_t auto_bvh_min_triangles = 64;
+// Below this many triangles `automatic` keeps the flat list: measured by
+// benchmarks/accel_crossover.cpp (README, "Performance"), the BVH is no
+// faster up to about 120 triangles and pulls ahead from about 200.
+const std::size_t auto_bvh_min_triangles = 128;
 
 struct PackOptions {
     Accel accel = Accel::automatic;
