@@ -52,14 +52,11 @@ int check_subtree(const PackedScene& p, std::uint32_t node, std::vector<int>& se
         for (std::uint32_t i = first; i < first + count; ++i) {
             ++seen.at(i);
             const kernel::TriangleRecord& t = p.triangles[i];
-            const glm::vec3 v0(t.v0), v1 = v0 + glm::vec3(t.edge1), v2 = v0 + glm::vec3(t.edge2);
-            // v0 + (v1 - v0) rounds to within an ulp of v1: allow a few
-            // ulps of the box's magnitude (the slab test widens by as much).
-            const glm::vec3 slack = 4e-7f * (glm::abs(glm::vec3(n.aabb_min)) +
-                                             glm::abs(glm::vec3(n.aabb_max)));
-            for (const glm::vec3& v : {v0, v1, v2}) {
-                REQUIRE(glm::all(glm::lessThanEqual(glm::vec3(n.aabb_min) - slack, v)));
-                REQUIRE(glm::all(glm::greaterThanEqual(glm::vec3(n.aabb_max) + slack, v)));
+            // The record holds the vertices themselves, and the boxes are
+            // built from the same floats: containment is exact.
+            for (const glm::vec3& v : {glm::vec3(t.v0), glm::vec3(t.v1), glm::vec3(t.v2)}) {
+                REQUIRE(glm::all(glm::lessThanEqual(glm::vec3(n.aabb_min), v)));
+                REQUIRE(glm::all(glm::greaterThanEqual(glm::vec3(n.aabb_max), v)));
             }
         }
         return 1;

@@ -1,4 +1,4 @@
-// Ray/triangle (Möller–Trumbore), ray/AABB (slabs) and the ray-origin
+// Ray/triangle (watertight, Woop et al.), ray/AABB (slabs) and the ray-origin
 // offset that keeps a new ray off the surface it leaves.
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -11,13 +11,11 @@ using namespace trac0r::kernel;
 namespace {
 
 TriangleRecord make_triangle(float3 v0, float3 v1, float3 v2) {
-    const float3 e1 = v1 - v0;
-    const float3 e2 = v2 - v0;
-    const float3 n = cross(e1, e2);
+    const float3 n = cross(v1 - v0, v2 - v0);
     TriangleRecord tri = {};
     tri.v0 = make_float4(v0.x, v0.y, v0.z, 0.0f);
-    tri.edge1 = make_float4(e1.x, e1.y, e1.z, 0.0f);
-    tri.edge2 = make_float4(e2.x, e2.y, e2.z, 0.0f);
+    tri.v1 = make_float4(v1.x, v1.y, v1.z, 0.0f);
+    tri.v2 = make_float4(v2.x, v2.y, v2.z, 0.0f);
     const float3 unit = normalize(n);
     tri.normal = make_float4(unit.x, unit.y, unit.z, length(n));
     return tri;
@@ -37,7 +35,7 @@ TriangleHit shoot(const TriangleRecord& tri, float3 origin, float3 direction) {
 }
 
 // The unit right triangle in the z = 0 plane: u runs along x, v along y.
-// All the rays below use small binary fractions, so Möller–Trumbore's
+// All the rays below use small binary fractions, so the triangle test's
 // arithmetic is exact and edge and vertex hits land exactly on 0 or 1.
 TriangleRecord unit_triangle() {
     return make_triangle(make_float3(0, 0, 0), make_float3(1, 0, 0), make_float3(0, 1, 0));
@@ -78,7 +76,8 @@ TEST_CASE("intersect_triangle: interior hits give t, u, v", "[kernel][intersect]
             make_triangle(make_float3(1.5f, -2.0f, 0.25f), make_float3(-0.5f, 1.0f, 2.0f),
                           make_float3(3.0f, 2.5f, -1.0f));
         const float3 origin = make_float3(-3.0f, 4.0f, 5.0f);
-        const float3 target = xyz(tri.v0) + xyz(tri.edge1) * 0.3f + xyz(tri.edge2) * 0.45f;
+        const float3 target = xyz(tri.v0) + (xyz(tri.v1) - xyz(tri.v0)) * 0.3f +
+                              (xyz(tri.v2) - xyz(tri.v0)) * 0.45f;
         const TriangleHit h = shoot(tri, origin, target - origin);
         REQUIRE(h.hit());
         CHECK(h.u == Approx(0.3f).epsilon(1e-5));
@@ -186,9 +185,7 @@ TEST_CASE("intersect_triangle is scale invariant", "[kernel][intersect]") {
         const float3 d = normalize(make_float3(1.0f, 0.0f, -1e-3f));
         for (float s : scales) {
             INFO("scale " << s);
-            TriangleRecord tri =
-                make_triangle(xyz(unit.v0) * s, (xyz(unit.v0) + xyz(unit.edge1)) * s,
-                              (xyz(unit.v0) + xyz(unit.edge2)) * s);
+            TriangleRecord tri = make_triangle(xyz(unit.v0) * s, xyz(unit.v1) * s, xyz(unit.v2) * s);
             const float3 origin_s = (make_float3(0.5f, 0.25f, 0.0f) - d * 10.0f) * s;
             const TriangleHit h = shoot(tri, origin_s, d);
             REQUIRE(h.hit());
@@ -321,8 +318,9 @@ TEST_CASE("offset hit points leave the exact plane of their triangle", "[kernel]
             }
             const float3 origin =
                 vertex() + make_float3(uniform(-3, 3), uniform(-3, 3), uniform(-3, 3)) * size;
-            const float3 aim = xyz(tri.v0) + xyz(tri.edge1) * uniform(0.05f, 0.45f) +
-                               xyz(tri.edge2) * uniform(0.05f, 0.45f);
+            const float3 v0 = xyz(tri.v0);
+            const float3 aim = v0 + (xyz(tri.v1) - v0) * uniform(0.05f, 0.45f) +
+                               (xyz(tri.v2) - v0) * uniform(0.05f, 0.45f);
             const Ray ray = make_ray(origin, normalize(aim - origin));
             Hit hit;
             hit.triangle = 0;
@@ -336,10 +334,14 @@ TEST_CASE("offset hit points leave the exact plane of their triangle", "[kernel]
             const float m = hit_magnitude(&tri, position);
             const float3 out = offset_ray_origin(position, normal, m);
             const float3 in = offset_ray_origin(position, -normal, m);
-            // Signed distance to the plane through v0 spanned by the float
-            // edges, in double: (q - v0) . (e1 x e2).
-            const double e1[3] = {tri.edge1.x, tri.edge1.y, tri.edge1.z};
-            const double e2[3] = {tri.edge2.x, tri.edge2.y, tri.edge2.z};
+            // Signed distance to the plane through the float vertices, in
+            // double: (q - v0) . (e1 x e2).
+            const double e1[3] = {static_cast<double>(tri.v1.x) - tri.v0.x,
+                                  static_cast<double>(tri.v1.y) - tri.v0.y,
+                                  static_cast<double>(tri.v1.z) - tri.v0.z};
+            const double e2[3] = {static_cast<double>(tri.v2.x) - tri.v0.x,
+                                  static_cast<double>(tri.v2.y) - tri.v0.y,
+                                  static_cast<double>(tri.v2.z) - tri.v0.z};
             const double nx = e1[1] * e2[2] - e1[2] * e2[1];
             const double ny = e1[2] * e2[0] - e1[0] * e2[2];
             const double nz = e1[0] * e2[1] - e1[1] * e2[0];

@@ -19,12 +19,13 @@ bool usable_triangle(const Triangle& t) {
 }
 
 kernel::TriangleRecord pack_triangle(const Triangle& t, unsigned material, unsigned shape) {
+    // The vertices themselves, not v0 and edges: v0 + (v1 - v0) need not
+    // round back to v1, and the watertight test needs every triangle that
+    // shares a vertex to see the same floats.
     kernel::TriangleRecord r;
-    const glm::vec3 e1 = t.v1 - t.v0;
-    const glm::vec3 e2 = t.v2 - t.v0;
     r.v0 = glm::vec4(t.v0, 1.0f);
-    r.edge1 = glm::vec4(e1, 0.0f);
-    r.edge2 = glm::vec4(e2, 0.0f);
+    r.v1 = glm::vec4(t.v1, 1.0f);
+    r.v2 = glm::vec4(t.v2, 1.0f);
     r.normal = glm::vec4(t.normal, 2.0f * t.area);
     r.ids = glm::uvec4(material, shape, 0u, 0u);
     return r;

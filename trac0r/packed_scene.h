@@ -40,7 +40,7 @@ struct PackedScene {
 };
 
 // Packs the scene: the acceleration structure (flat shapes with AABBs, or a
-// BVH), triangles with precomputed edges, materials, and the feature mask.
+// BVH), triangles (vertices, normal), materials, and the feature mask.
 // Degenerate triangles (zero area, non-finite vertices) can never be hit
 // and are left out.
 PackedScene pack_scene(const Scene& scene, const PackOptions& options = PackOptions());

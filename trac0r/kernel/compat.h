@@ -36,6 +36,11 @@ T0_INLINE float3 vabs3(float3 a) { return fabs(a); }
 T0_INLINE int float_bits(float f) { return as_int(f); }
 T0_INLINE float bits_float(int i) { return as_float(i); }
 T0_INLINE int is_finite_f(float f) { return isfinite(f); }
+// Component k (0, 1, 2) of a vector in a buffer, read as a scalar: vector
+// types have no run-time component index in OpenCL C.
+T0_INLINE float buffer_component(__global const float4* v, int k) {
+    return ((__global const float*)v)[k];
+}
 
 #else  // C++
 
@@ -44,6 +49,7 @@ T0_INLINE int is_finite_f(float f) { return isfinite(f); }
 #include <cstring>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #define T0_GLOBAL
 #define T0_INLINE inline
@@ -103,6 +109,8 @@ inline float bits_float(int i) {
     return f;
 }
 inline int is_finite_f(float f) { return std::isfinite(f) ? 1 : 0; }
+// glm's own view of a vector as an array of its components.
+inline float buffer_component(const float4* v, int k) { return glm::value_ptr(*v)[k]; }
 
 T0_NAMESPACE_END
 

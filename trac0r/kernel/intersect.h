@@ -7,7 +7,7 @@
 
 // A ray is parallel to a triangle when |cos(angle to its plane's normal)|
 // is below this: relative to the triangle's own size, so the test behaves
-// the same at every scene scale (Möller–Trumbore's det is -|e1 x e2| cos).
+// the same at every scene scale.
 #define T0_PARALLEL_COSINE 1e-7f
 #define T0_NO_HIT 3.402823e38f
 // gamma(n) = n eps / (1 - n eps), eps = 2^-24: the bound on the relative
@@ -20,6 +20,16 @@ typedef struct Ray {
     float3 origin;
     float3 direction;      // unit length
     float3 inv_direction;  // finite: zero components are nudged to +-1e-30
+    // For the watertight triangle test, computed once per ray (Woop, Benthin
+    // and Wald, JCGT 2013): the axes renamed so that kz is the direction's
+    // largest component, the shear that maps the direction to +z, and the
+    // origin in that axis order.
+    int kx;
+    int ky;
+    int kz;
+    float3 shear;            // d[kx] / d[kz], d[ky] / d[kz], 1 / d[kz]
+    float3 permuted_origin;  // origin[kx], origin[ky], origin[kz]
+    float parallel_det;      // T0_PARALLEL_COSINE |1 / d[kz]|: see intersect_triangle
 } Ray;
 
 typedef struct Hit {
@@ -35,12 +45,25 @@ T0_INLINE float safe_inverse(float d) {
     return 1.0f / (is_parallel_component(d) ? copysign(1e-30f, d) : d);
 }
 
+// Component k (0, 1, 2) of a vector that is not in a buffer.
+T0_INLINE float component3(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
+
 T0_INLINE Ray make_ray(float3 origin, float3 direction) {
     Ray r;
     r.origin = origin;
     r.direction = direction;
     r.inv_direction = make_float3(safe_inverse(direction.x), safe_inverse(direction.y),
                                   safe_inverse(direction.z));
+    const float3 a = vabs3(direction);
+    r.kz = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
+    r.kx = r.kz == 2 ? 0 : r.kz + 1;
+    r.ky = r.kx == 2 ? 0 : r.kx + 1;
+    const float dz = component3(direction, r.kz);
+    r.shear = make_float3(component3(direction, r.kx) / dz, component3(direction, r.ky) / dz,
+                          1.0f / dz);
+    r.permuted_origin = make_float3(component3(origin, r.kx), component3(origin, r.ky),
+                                    component3(origin, r.kz));
+    r.parallel_det = T0_PARALLEL_COSINE * fabs(r.shear.z);
     return r;
 }
 
@@ -64,8 +87,8 @@ T0_INLINE void clip_slab(float lo, float hi, float origin, float direction, floa
     const float t_hi = (hi - origin) * inv;
     const float t_near = t_lo < t_hi ? t_lo : t_hi;
     // Widened by 2 gamma(3) (pbrt-v4, Bounds3::IntersectP): rounding in the
-    // two products must not make a ray that grazes a box miss it, nor a
-    // triangle whose vertices round an ulp outside its box.
+    // two products must not make a ray that grazes a box (or a triangle on
+    // its boundary) miss it.
     const float t_far = (t_lo < t_hi ? t_hi : t_lo) * (1.0f + 2.0f * T0_GAMMA3);
     *t_enter = t_near > *t_enter ? t_near : *t_enter;
     *t_exit = t_far < *t_exit ? t_far : *t_exit;
@@ -90,35 +113,56 @@ T0_INLINE int intersect_aabb(float3 box_min, float3 box_max, Ray ray, float t_ma
     return aabb_entry(box_min, box_max, ray, t_max) < T0_NO_HIT;
 }
 
-// Möller–Trumbore. Returns the distance along the ray, or T0_NO_HIT; the
-// barycentrics of the hit go to *u, *v. Edges count as inside.
+// A triangle vertex in the ray's frame: translated to the origin, axes
+// renamed, and sheared so the ray is the +z axis through x = y = 0. x and y
+// are exact functions of the vertex and the ray, so every triangle that
+// shares the vertex gets the same two floats; z is not yet scaled by 1/d[kz].
+T0_INLINE float3 vertex_in_ray_frame(T0_GLOBAL const float4* vertex, Ray ray) {
+    const float ax = buffer_component(vertex, ray.kx) - ray.permuted_origin.x;
+    const float ay = buffer_component(vertex, ray.ky) - ray.permuted_origin.y;
+    const float az = buffer_component(vertex, ray.kz) - ray.permuted_origin.z;
+    return make_float3(ax - ray.shear.x * az, ay - ray.shear.y * az, az);
+}
+
+// The watertight ray/triangle test of Woop, Benthin and Wald (JCGT 2013).
+// Returns the distance along the ray, or T0_NO_HIT; the barycentrics of
+// the hit (weights of v1 and v2) go to *u, *v. Edges and vertices count as
+// inside, and a ray through an edge or vertex shared by several triangles
+// hits at least one of them: each edge function is a 2D cross product of
+// the two vertices' x, y, which neighbours compute from the same floats in
+// swapped order, so their values are exact negatives; and rounding is
+// monotonic, so a computed edge function never has the wrong sign, at worst
+// zero (which counts as inside on both sides). Needs exact IEEE products and
+// sums: no fused multiply-add contraction (compat.h turns it off for OpenCL).
 T0_INLINE float intersect_triangle(T0_GLOBAL const TriangleRecord* tri, Ray ray, float* u,
                                    float* v) {
-    const float3 e1 = xyz(tri->edge1);
-    const float3 e2 = xyz(tri->edge2);
-    const float3 p = cross(ray.direction, e2);
-    const float det = dot(e1, p);
-    // Not '<=': a NaN det (never expected) must also miss.
-    if (!(fabs(det) > T0_PARALLEL_COSINE * tri->normal.w)) {
+    const float3 a = vertex_in_ray_frame(&tri->v0, ray);
+    const float3 b = vertex_in_ray_frame(&tri->v1, ray);
+    const float3 c = vertex_in_ray_frame(&tri->v2, ray);
+    // Twice the signed areas of the sub-triangles that the ray's point
+    // (0, 0) forms with each edge: proportional to the barycentrics.
+    const float weight0 = c.x * b.y - c.y * b.x;
+    const float weight1 = a.x * c.y - a.y * c.x;
+    const float weight2 = b.x * a.y - b.y * a.x;
+    if ((weight0 < 0.0f || weight1 < 0.0f || weight2 < 0.0f) &&
+        (weight0 > 0.0f || weight1 > 0.0f || weight2 > 0.0f)) {
+        return T0_NO_HIT;
+    }
+    // det = (e1 x e2) . d / d[kz]: with |d| = 1 it is |e1 x e2| cos / |d[kz]|,
+    // so this rejects rays within T0_PARALLEL_COSINE of the plane, relative to
+    // the triangle's own size. Not '<=': a NaN det (never expected) misses too,
+    // and a zero-area record (pack_scene drops those) is never hit.
+    const float det = weight0 + weight1 + weight2;
+    if (!(fabs(det) > tri->normal.w * ray.parallel_det) || !(tri->normal.w > 0.0f)) {
         return T0_NO_HIT;
     }
     const float inv_det = 1.0f / det;
-    const float3 s = ray.origin - xyz(tri->v0);
-    const float bu = dot(s, p) * inv_det;
-    if (bu < 0.0f || bu > 1.0f) {
-        return T0_NO_HIT;
-    }
-    const float3 q = cross(s, e1);
-    const float bv = dot(ray.direction, q) * inv_det;
-    if (bv < 0.0f || bu + bv > 1.0f) {
-        return T0_NO_HIT;
-    }
-    const float t = dot(e2, q) * inv_det;
+    const float t = (weight0 * a.z + weight1 * b.z + weight2 * c.z) * ray.shear.z * inv_det;
     if (!(t > 0.0f)) {
         return T0_NO_HIT;
     }
-    *u = bu;
-    *v = bv;
+    *u = weight1 * inv_det;
+    *v = weight2 * inv_det;
     return t;
 }
 
@@ -247,7 +291,8 @@ T0_INLINE int occluded(const SceneView* scene, Ray ray, float t_max) {
 // The hit point from the barycentrics (more accurate than origin + t dir)
 // and the magnitude of the numbers it was computed from.
 T0_INLINE float3 hit_position(T0_GLOBAL const TriangleRecord* tri, Hit hit) {
-    return xyz(tri->v0) + xyz(tri->edge1) * hit.u + xyz(tri->edge2) * hit.v;
+    const float3 v0 = xyz(tri->v0);
+    return v0 + (xyz(tri->v1) - v0) * hit.u + (xyz(tri->v2) - v0) * hit.v;
 }
 
 T0_INLINE float max_abs3(float3 a) {
@@ -256,8 +301,9 @@ T0_INLINE float max_abs3(float3 a) {
 }
 
 T0_INLINE float hit_magnitude(T0_GLOBAL const TriangleRecord* tri, float3 position) {
-    return fmax(max_abs3(position), max_abs3(xyz(tri->v0)) + max_abs3(xyz(tri->edge1)) +
-                                        max_abs3(xyz(tri->edge2)));
+    const float3 v0 = xyz(tri->v0);
+    return fmax(max_abs3(position), max_abs3(v0) + max_abs3(xyz(tri->v1) - v0) +
+                                        max_abs3(xyz(tri->v2) - v0));
 }
 
 // Moves p off its surface along unit n (pointing to the side the new ray

@@ -28,12 +28,14 @@
 
 T0_NAMESPACE_BEGIN
 
-// One triangle, ready for Möller–Trumbore: a vertex, the two edges from it,
-// the unit geometric normal (w: twice the area, |e1 x e2|) and indices.
+// One triangle for the watertight test (kernel/intersect.h): its three
+// vertices exactly as the scene has them, so triangles sharing an edge or a
+// vertex share its floats bit for bit; the unit geometric normal (w: twice
+// the area, |e1 x e2| with e1 = v1 - v0, e2 = v2 - v0) and indices.
 typedef struct T0_ALIGN16 TriangleRecord {
     float4 v0;      // xyz: first vertex
-    float4 edge1;   // xyz: v1 - v0
-    float4 edge2;   // xyz: v2 - v0
+    float4 v1;      // xyz: second vertex
+    float4 v2;      // xyz: third vertex
     float4 normal;  // xyz: normalize(e1 x e2), w: |e1 x e2|
     uint4 ids;      // x: material index, y: shape index
 } TriangleRecord;
