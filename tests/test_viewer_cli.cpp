@@ -78,6 +78,42 @@ TEST_CASE("a PNG and a PFM are written for the built-in scene", "[cli]") {
     REQUIRE(trac0r::read_pfm("cli.pfm").width == 40);
 }
 
+// The number after `key` in the first line of `text` that has it.
+double number_after(const std::string& text, const std::string& key) {
+    const std::size_t at = text.find(key);
+    REQUIRE(at != std::string::npos);
+    return std::stod(text.substr(at + key.size()));
+}
+
+TEST_CASE("--target-error stops at the requested estimated noise", "[cli]") {
+    const std::string diffuse = std::string(TRAC0R_SOURCE_DIR) + "/scenes/cornell_diffuse.json";
+    const std::string args = diffuse + " --headless --width 32 --height 24 --output cli_t.pfm";
+    const Run loose = run_viewer(args + " --target-error 0.2");
+    INFO(loose.output);
+    REQUIRE(loose.exit_code == 0);
+    REQUIRE(loose.output.find("target error reached") != std::string::npos);
+    REQUIRE(number_after(loose.output, "estimated relative MSE ") <= 0.2);
+    // Relative MSE falls as 1 / spp: a 4 times smaller target takes about
+    // 4 times the samples (the stop is checked every 10% of samples).
+    const Run tight = run_viewer(args + " --target-error 0.05");
+    INFO(tight.output);
+    REQUIRE(tight.exit_code == 0);
+    REQUIRE(number_after(tight.output, "estimated relative MSE ") <= 0.05);
+    const double spp_loose = number_after(loose.output, "after ");
+    const double spp_tight = number_after(tight.output, "after ");
+    CHECK(spp_tight / spp_loose > 3.0);
+    CHECK(spp_tight / spp_loose < 5.5);
+    REQUIRE(trac0r::read_pfm("cli_t.pfm").width == 32);
+
+    // A time limit that comes first says so, and still saves the image.
+    const Run capped = run_viewer(args + " --target-error 1e-6 --spp 16");
+    INFO(capped.output);
+    REQUIRE(capped.exit_code == 0);
+    REQUIRE(capped.output.find("target error NOT reached") != std::string::npos);
+    REQUIRE(capped.output.find("after") == std::string::npos);
+    REQUIRE(capped.output.find("wrote cli_t.pfm") != std::string::npos);
+}
+
 TEST_CASE("--help lists the options and exits 0", "[cli]") {
     const Run r = run_viewer("--help");
     REQUIRE(r.exit_code == 0);
@@ -97,6 +133,7 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
         {"--headless --output x.jpg", "expected a .png or .pfm"},
         {"--headless", "give --output FILE"},
         {"--headless --seconds -1 --output x.png", "--seconds: expected a positive number"},
+        {"--headless --target-error 0 --output x.png", "--target-error: expected a positive"},
         {"--headless --accel kd --output x.png", "--accel: expected one of flat|bvh|auto"},
         {"--headless --width", "--width: expected a value"},
         {"no_such_scene.json --headless --output x.png", "no_such_scene.json"},

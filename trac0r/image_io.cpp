@@ -1,5 +1,6 @@
 #include "trac0r/image_io.h"
 
+#include <stb_image.h>
 #include <stb_image_write.h>
 
 #include <algorithm>
@@ -43,17 +44,44 @@ std::uint8_t tonemap_channel(float linear, float exposure) {
     return static_cast<std::uint8_t>(std::lround(srgb * 255.0f));
 }
 
-void write_png(const std::string& path, const Image& image, float exposure) {
-    std::vector<std::uint8_t> bytes(image.pixels.size() * 3);
+Rgb8Image tonemap_image(const Image& image, float exposure) {
+    Rgb8Image out;
+    out.width = image.width;
+    out.height = image.height;
+    out.bytes.resize(image.pixels.size() * 3);
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
         for (int c = 0; c < 3; ++c) {
-            bytes[3 * i + c] = tonemap_channel(image.pixels[i][c], exposure);
+            out.bytes[3 * i + c] = tonemap_channel(image.pixels[i][c], exposure);
         }
     }
-    if (!stbi_write_png(path.c_str(), image.width, image.height, 3, bytes.data(),
+    return out;
+}
+
+void write_png(const std::string& path, const Image& image, float exposure) {
+    write_png(path, tonemap_image(image, exposure));
+}
+
+void write_png(const std::string& path, const Rgb8Image& image) {
+    if (!stbi_write_png(path.c_str(), image.width, image.height, 3, image.bytes.data(),
                         image.width * 3)) {
         throw std::runtime_error(path + ": cannot write PNG");
     }
+}
+
+Rgb8Image read_png(const std::string& path) {
+    int width = 0;
+    int height = 0;
+    int channels_in_file = 0;
+    stbi_uc* pixels = stbi_load(path.c_str(), &width, &height, &channels_in_file, 3);
+    if (!pixels) {
+        throw std::runtime_error(path + ": cannot read PNG (" + stbi_failure_reason() + ")");
+    }
+    Rgb8Image out;
+    out.width = width;
+    out.height = height;
+    out.bytes.assign(pixels, pixels + static_cast<std::size_t>(width) * height * 3);
+    stbi_image_free(pixels);
+    return out;
 }
 
 void write_pfm(const std::string& path, const Image& image) {

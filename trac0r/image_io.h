@@ -21,8 +21,18 @@ struct Image {
     }
 };
 
+// 8-bit sRGB pixels, RGB interleaved, row 0 at the top: what a screen or
+// a PNG shows.
+struct Rgb8Image {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> bytes;  // 3 per pixel
+};
+
 // Linear radiance to an 8-bit sRGB value: exposure, clamp, sRGB curve.
 std::uint8_t tonemap_channel(float linear, float exposure);
+// tonemap_channel applied to every channel of every pixel.
+Rgb8Image tonemap_image(const Image& image, float exposure);
 
 // True for the extensions write_image knows (.png, .pfm, any case).
 bool is_supported_image_path(const std::string& path);
@@ -31,6 +41,9 @@ bool is_supported_image_path(const std::string& path);
 // Throws std::runtime_error naming the file on failure or another extension.
 void write_image(const std::string& path, const Image& image, float exposure = 1.0f);
 void write_png(const std::string& path, const Image& image, float exposure = 1.0f);
+void write_png(const std::string& path, const Rgb8Image& image);
+// Any 8-bit PNG, converted to RGB. Throws std::runtime_error naming the file.
+Rgb8Image read_png(const std::string& path);
 // PFM ("PF", little-endian scale -1), rows bottom first as the format says.
 void write_pfm(const std::string& path, const Image& image);
 Image read_pfm(const std::string& path);

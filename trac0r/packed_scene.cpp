@@ -1,6 +1,7 @@
 #include "trac0r/packed_scene.h"
 
 #include "trac0r/bvh.h"
+#include "trac0r/kernel/accumulate.h"
 
 #include <cmath>
 #include <stdexcept>
@@ -27,7 +28,7 @@ kernel::TriangleRecord pack_triangle(const Triangle& t, unsigned material, unsig
     r.v1 = glm::vec4(t.v1, 1.0f);
     r.v2 = glm::vec4(t.v2, 1.0f);
     r.normal = glm::vec4(t.normal, 2.0f * t.area);
-    r.ids = glm::uvec4(material, shape, 0u, 0u);
+    r.ids = glm::uvec4(material, shape, T0_NO_LIGHT, 0u);
     return r;
 }
 
@@ -56,11 +57,11 @@ std::uint32_t material_feature(MaterialType type) {
 const char* const feature_bit_names[T0_FEATURE_COUNT] = {
     "emissive", "diffuse", "glass", "glossy", "emittance", "flat", "bvh", "nee"};
 
-// What this build's kernel can do at all; NEE is not built yet.
+// What this build's kernel can do at all.
 const std::uint32_t implemented_features = T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE |
                                            T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
                                            T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT |
-                                           T0_FEATURE_BVH;
+                                           T0_FEATURE_BVH | T0_FEATURE_NEE;
 
 }  // namespace
 
@@ -70,7 +71,9 @@ kernel::SceneView PackedScene::view() const {
     v.shapes = shapes.data();
     v.materials = materials.data();
     v.nodes = nodes.data();
+    v.lights = lights.data();
     v.shape_count = static_cast<std::uint32_t>(shapes.size());
+    v.light_count = static_cast<std::uint32_t>(lights.size());
     v.features = features;
     return v;
 }
@@ -119,6 +122,42 @@ void pack_bvh(const std::vector<UsableTriangle>& usable, PackedScene& packed) {
     }
 }
 
+// The light list: every triangle that emits, picked in proportion to its
+// power, emittance x luminance(colour) x area (the radiance is the same over
+// the triangle, and pi and the two sides are common factors). The CDF is
+// summed in double and stored in float; each probability is the difference
+// of the stored floats, so it is exactly what the inverse-CDF pick gives.
+void pack_lights(PackedScene& packed) {
+    std::vector<double> power;
+    std::vector<std::uint32_t> emitting;
+    double total = 0.0;
+    for (std::size_t i = 0; i < packed.triangles.size(); ++i) {
+        const kernel::TriangleRecord& t = packed.triangles[i];
+        const kernel::MaterialRecord& m = packed.materials[t.ids.x];
+        const double p = static_cast<double>(m.params.x) *
+                         kernel::luminance(glm::vec3(m.color)) * 0.5 * t.normal.w;
+        if (p > 0.0 && std::isfinite(p)) {
+            emitting.push_back(static_cast<std::uint32_t>(i));
+            power.push_back(p);
+            total += p;
+        }
+    }
+    double running = 0.0;
+    float previous_cdf = 0.0f;
+    for (std::size_t k = 0; k < emitting.size(); ++k) {
+        running += power[k];
+        const float cdf = k + 1 == emitting.size() ? 1.0f : static_cast<float>(running / total);
+        const float probability = cdf - previous_cdf;
+        kernel::TriangleRecord& t = packed.triangles[emitting[k]];
+        kernel::LightRecord light;
+        light.cdf = glm::vec4(cdf, probability, probability / (0.5f * t.normal.w), 0.0f);
+        light.triangle = glm::uvec4(emitting[k], 0u, 0u, 0u);
+        t.ids.z = static_cast<std::uint32_t>(k);
+        packed.lights.push_back(light);
+        previous_cdf = cdf;
+    }
+}
+
 }  // namespace
 
 PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
@@ -158,6 +197,10 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
             packed.features |= T0_FEATURE_EMITTANCE;
         }
     }
+    pack_lights(packed);
+    if (options.integrator == Integrator::nee && !packed.lights.empty()) {
+        packed.features |= T0_FEATURE_NEE;
+    }
     return packed;
 }
 
@@ -185,6 +228,20 @@ const char* to_string(Accel accel) {
         return "auto";
     }
     return "auto";
+}
+
+Integrator parse_integrator(const std::string& name) {
+    if (name == "naive") {
+        return Integrator::naive;
+    }
+    if (name == "nee") {
+        return Integrator::nee;
+    }
+    throw std::invalid_argument("unknown integrator '" + name + "' (expected naive or nee)");
+}
+
+const char* to_string(Integrator integrator) {
+    return integrator == Integrator::nee ? "nee" : "naive";
 }
 
 std::string feature_names(std::uint32_t features) {

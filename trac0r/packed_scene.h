@@ -23,8 +23,15 @@ enum class Accel {
 // faster up to about 120 triangles and pulls ahead from about 200.
 const std::size_t auto_bvh_min_triangles = 128;
 
+enum class Integrator {
+    naive,  // the thesis' algorithm: emission is found by scattering alone
+    nee,    // next-event estimation (a light sample at each diffuse or rough
+            // glossy hit) combined with scattering by MIS
+};
+
 struct PackOptions {
     Accel accel = Accel::automatic;
+    Integrator integrator = Integrator::naive;
 };
 
 struct PackedScene {
@@ -33,6 +40,9 @@ struct PackedScene {
     std::vector<kernel::BvhNode> nodes;             // empty with the flat structure
     int bvh_depth = 0;
     std::vector<kernel::MaterialRecord> materials;
+    // Every emitting triangle with its power CDF (built for both
+    // integrators; only NEE reads it).
+    std::vector<kernel::LightRecord> lights;
     std::uint32_t features = 0;
     std::size_t dropped_degenerate_triangles = 0;  // zero-area or non-finite
 
@@ -40,7 +50,8 @@ struct PackedScene {
 };
 
 // Packs the scene: the acceleration structure (flat shapes with AABBs, or a
-// BVH), triangles (vertices, normal), materials, and the feature mask.
+// BVH), triangles (vertices, normal), materials, the light list, and the
+// feature mask (with T0_FEATURE_NEE for Integrator::nee when anything emits).
 // Degenerate triangles (zero area, non-finite vertices) can never be hit
 // and are left out.
 PackedScene pack_scene(const Scene& scene, const PackOptions& options = PackOptions());
@@ -48,6 +59,10 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options = PackOpti
 // "flat", "bvh", "auto" and back; parse_accel throws std::invalid_argument.
 Accel parse_accel(const std::string& name);
 const char* to_string(Accel accel);
+
+// "naive", "nee" and back; parse_integrator throws std::invalid_argument.
+Integrator parse_integrator(const std::string& name);
+const char* to_string(Integrator integrator);
 
 // "diffuse glass emittance flat" etc.: the names of the set bits.
 std::string feature_names(std::uint32_t features);

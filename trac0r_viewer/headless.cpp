@@ -1,11 +1,15 @@
 #include "headless.h"
 
+#include "trac0r/noise.h"
+
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <vector>
 
@@ -19,54 +23,93 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// One progress line; on a terminal redrawn in place, in a log every 10%.
+// One progress line; on a terminal redrawn in place (at most 10 times a
+// second), in a log every 10%. The fraction done is the larger of the spp,
+// seconds and target-error fractions; for the error, E / estimate, since the
+// relative MSE falls as 1 / spp.
 class Progress {
   public:
-    explicit Progress(long total_spp, double total_seconds)
-        : total_spp_(total_spp), total_seconds_(total_seconds), tty_(isatty(2) != 0) {}
+    Progress(long total_spp, double total_seconds, double target_error)
+        : total_spp_(total_spp),
+          total_seconds_(total_seconds),
+          target_error_(target_error),
+          tty_(isatty(2) != 0) {}
 
-    void update(long spp, double elapsed, double paths_per_second) {
-        const double fraction = total_spp_ > 0 ? static_cast<double>(spp) / total_spp_
-                                               : elapsed / total_seconds_;
-        const double now = elapsed;
-        if (tty_ ? now - last_draw_ < 0.1 : fraction < next_log_fraction_) {
-            return;
-        }
-        last_draw_ = now;
-        next_log_fraction_ = fraction + 0.1;
-        draw(spp, elapsed, paths_per_second, std::min(1.0, fraction));
+    // Whether update() would draw now: the caller computes the noise
+    // estimate (a readback and a pass over the image) only then.
+    bool due(long spp, double elapsed, double estimate) const {
+        return tty_ ? elapsed - last_draw_ >= 0.1
+                    : fraction(spp, elapsed, estimate) >= next_log_fraction_;
     }
 
-    void finish(long spp, double elapsed, double paths_per_second) {
+    void update(long spp, double elapsed, double paths_per_second, double estimate) {
+        last_draw_ = elapsed;
+        const double f = fraction(spp, elapsed, estimate);
+        next_log_fraction_ = std::floor(f * 10.0 + 1.0) / 10.0;
+        draw(spp, elapsed, paths_per_second, estimate, std::min(1.0, f));
+    }
+
+    void finish(long spp, double elapsed, double paths_per_second, double estimate) {
         if (!tty_ && spp == last_drawn_spp_) {
             return;  // the log already has this line
         }
-        draw(spp, elapsed, paths_per_second, 1.0);
+        draw(spp, elapsed, paths_per_second, estimate, 1.0);
         if (tty_) {
             std::fputc('\n', stderr);
         }
     }
 
   private:
-    void draw(long spp, double elapsed, double paths_per_second, double fraction) {
+    double fraction(long spp, double elapsed, double estimate) const {
+        double f = 0.0;
+        if (total_spp_ > 0) {
+            f = std::max(f, static_cast<double>(spp) / total_spp_);
+        }
+        if (total_seconds_ > 0.0) {
+            f = std::max(f, elapsed / total_seconds_);
+        }
+        if (target_error_ > 0.0 && std::isfinite(estimate) && estimate > 0.0) {
+            f = std::max(f, target_error_ / estimate);
+        }
+        return f;
+    }
+
+    void draw(long spp, double elapsed, double paths_per_second, double estimate,
+              double fraction) {
         last_drawn_spp_ = spp;
         const int width = 30;
         const int filled = static_cast<int>(fraction * width);
         const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-        std::fprintf(stderr, "%s[%s%s] %3.0f%%  %ld spp  %.1f s  ETA %.1f s  %.2f Mpaths/s%s",
+        char noise[48] = "";
+        if (std::isfinite(estimate)) {
+            std::snprintf(noise, sizeof noise, "  rel. MSE ~ %.3g", estimate);
+        }
+        std::fprintf(stderr, "%s[%s%s] %3.0f%%  %ld spp  %.1f s  ETA %.1f s  %.2f Mpaths/s%s%s",
                      tty_ ? "\r" : "", std::string(filled, '#').c_str(),
                      std::string(width - filled, '.').c_str(), 100.0 * fraction, spp, elapsed,
-                     eta, paths_per_second * 1e-6, tty_ ? "   " : "\n");
+                     eta, paths_per_second * 1e-6, noise, tty_ ? "   " : "\n");
         std::fflush(stderr);
     }
 
     long total_spp_;
     double total_seconds_;
+    double target_error_;
     bool tty_;
     double last_draw_ = -1.0;
     double next_log_fraction_ = 0.0;
     long last_drawn_spp_ = -1;
 };
+
+// When --target-error next looks at the estimate: after 10% more samples
+// (so a render stops at most 10% of its samples past the target, and the
+// checks cost a fraction of a percent), but not before 8 spp, below which the
+// per-pixel variances are too rough to stop on.
+long next_error_check(long spp) { return std::max(8L, spp + std::max(1L, spp / 10)); }
+
+const char* spp_done_reason(const Options& options) {
+    return options.spp > 0 && options.seconds > 0.0 ? "--spp or --seconds"
+                                                    : (options.spp > 0 ? "--spp" : "--seconds");
+}
 
 double percentile_sorted(const std::vector<double>& sorted, double q) {
     const std::size_t i = static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1));
@@ -85,55 +128,98 @@ std::string json_escape(const std::string& s) {
 }
 
 void save_outputs(trac0r::Renderer& renderer, const Options& options) {
-    if (options.outputs.empty()) {
-        return;
+    if (!options.outputs.empty()) {
+        save_outputs(renderer.image(), options);
     }
-    const trac0r::Image image = renderer.image();
+}
+
+}  // namespace
+
+void save_outputs(const trac0r::Image& image, const Options& options) {
     for (const std::string& path : options.outputs) {
         trac0r::write_image(path, image, options.exposure);
         std::fprintf(stderr, "wrote %s\n", path.c_str());
     }
 }
 
-}  // namespace
-
 int run_batch(trac0r::Renderer& renderer, const Options& options) {
-    const long target_spp = options.spp > 0 ? options.spp : (options.seconds > 0.0 ? 0 : 64);
+    const bool by_error = options.target_error > 0.0;
+    const long target_spp =
+        options.spp > 0 ? options.spp : (options.seconds > 0.0 || by_error ? 0 : 64);
     const double pixels = static_cast<double>(renderer.width()) * renderer.height();
-    Progress progress(target_spp, options.seconds);
+    const auto estimate = [&renderer] {
+        return trac0r::estimate_relative_mse(renderer.accumulator(), renderer.width(),
+                                             renderer.height());
+    };
+    Progress progress(target_spp, options.seconds, options.target_error);
     const Clock::time_point start = Clock::now();
     long spp = 0;
+    long error_check = next_error_check(0);
+    double last_estimate = std::numeric_limits<double>::infinity();
+    bool error_reached = false;
     for (;;) {
         const double elapsed = seconds_since(start);
         const bool spp_done = target_spp > 0 && spp >= target_spp;
         const bool time_done = options.seconds > 0.0 && elapsed >= options.seconds;
-        if (spp_done || time_done) {
+        if (spp_done || time_done || error_reached) {
             break;
         }
         renderer.render_frame();
         ++spp;
         const double now = seconds_since(start);
-        progress.update(spp, now, spp * pixels / now);
+        if (by_error && spp >= error_check) {
+            last_estimate = estimate();
+            error_reached = last_estimate <= options.target_error;
+            error_check = next_error_check(spp);
+        }
+        if (progress.due(spp, now, last_estimate)) {
+            if (!by_error && spp >= 2) {
+                last_estimate = estimate();
+            }
+            progress.update(spp, now, spp * pixels / now, last_estimate);
+        }
     }
     const double elapsed = seconds_since(start);
     const double paths_per_second = elapsed > 0.0 ? spp * pixels / elapsed : 0.0;
-    progress.finish(spp, elapsed, paths_per_second);
+    if (spp >= 2) {
+        last_estimate = estimate();
+    }
+    progress.finish(spp, elapsed, paths_per_second, last_estimate);
     const trac0r::RenderStats stats = renderer.stats();
     std::fprintf(stderr, "rendered %ld spp of %dx%d in %.2f s (%.2f Mpaths/s); %.0f non-finite "
                          "samples dropped\n",
                  spp, renderer.width(), renderer.height(), elapsed, paths_per_second * 1e-6,
                  stats.samples_dropped);
+    if (by_error) {
+        if (error_reached) {
+            std::fprintf(stderr, "target error reached: estimated relative MSE %.4g <= %.4g "
+                                 "after %ld spp, %.2f s\n",
+                         last_estimate, options.target_error, spp, elapsed);
+        } else {
+            std::fprintf(stderr, "target error NOT reached: estimated relative MSE %.4g > %.4g "
+                                 "when the %s limit stopped the render (%ld spp, %.2f s)\n",
+                         last_estimate, options.target_error, spp_done_reason(options), spp,
+                         elapsed);
+        }
+    }
     save_outputs(renderer, options);
     return 0;
 }
 
-int run_benchmark(trac0r::Renderer& renderer, const Options& options) {
+int run_benchmark(trac0r::Renderer& renderer, const Options& options,
+                  const std::function<bool()>& after_frame) {
     std::vector<double> frame_seconds;
     frame_seconds.reserve(static_cast<std::size_t>(options.benchmark_frames));
     for (long i = 0; i < options.benchmark_frames; ++i) {
         const Clock::time_point start = Clock::now();
         renderer.render_frame();
+        const bool go_on = !after_frame || after_frame();
         frame_seconds.push_back(seconds_since(start));
+        if (!go_on) {
+            std::fprintf(stderr, "trac0r_viewer: benchmark interrupted after %zu of %ld frames\n",
+                         frame_seconds.size(), options.benchmark_frames);
+            return 1;
+        }
     }
     double total = 0.0;
     for (double s : frame_seconds) {

@@ -6,14 +6,22 @@
 
 #include "trac0r/renderer.h"
 
+#include <functional>
+
 namespace trac0r_viewer {
 
 // Renders until --spp or --seconds, with a progress bar on stderr, and
 // saves --output. Returns the exit code.
 int run_batch(trac0r::Renderer& renderer, const Options& options);
 
-// Renders --benchmark N frames and prints one JSON line on stdout.
-int run_benchmark(trac0r::Renderer& renderer, const Options& options);
+// Renders --benchmark N frames and prints one JSON line on stdout. Each
+// frame's time includes `after_frame` (the window shows the frame there);
+// when it returns false the benchmark stops, prints no figures, returns 1.
+int run_benchmark(trac0r::Renderer& renderer, const Options& options,
+                  const std::function<bool()>& after_frame = nullptr);
+
+// Writes every --output file of the image.
+void save_outputs(const trac0r::Image& image, const Options& options);
 
 }  // namespace trac0r_viewer
 

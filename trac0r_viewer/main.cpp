@@ -1,6 +1,7 @@
 // trac0r_viewer: the command-line entry point.
 #include "headless.h"
 #include "options.h"
+#include "window_session.h"
 
 #include "trac0r/cpu_backend.h"
 #include "trac0r/opencl_backend.h"
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <exception>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -20,12 +22,6 @@ using trac0r_viewer::UsageError;
 
 // Checks combinations of flags that each parse fine alone.
 void check_options(const Options& o) {
-    if (o.integrator == "nee") {
-        throw UsageError("--integrator nee: this build has only the naive integrator");
-    }
-    if (o.target_error > 0.0) {
-        throw UsageError("--target-error: not available in this build (use --spp or --seconds)");
-    }
 #ifndef TRAC0R_HAVE_OPENCL
     if (o.backend == "opencl" || o.device >= 0 || o.list_devices) {
         throw UsageError("--backend opencl / --device / --list-devices: this build has no "
@@ -36,13 +32,13 @@ void check_options(const Options& o) {
         throw UsageError("--device " + std::to_string(o.device) +
                          ": picks an OpenCL device; add --backend opencl");
     }
-    if (!o.headless) {
-        throw UsageError("the interactive window is not part of this build; add --headless "
-                         "(with --output FILE, or --benchmark N)");
-    }
-    if (o.benchmark_frames == 0 && o.outputs.empty()) {
+    if (o.headless && o.benchmark_frames == 0 && o.outputs.empty()) {
         throw UsageError("--headless: nothing to do; give --output FILE (.png or .pfm) or "
                          "--benchmark N");
+    }
+    if (!o.replay_path.empty() && (o.headless || o.benchmark_frames > 0)) {
+        throw UsageError("--replay: scripts the interactive window; it does not go with "
+                         "--headless or --benchmark");
     }
     // Checked before rendering, not after.
     for (const std::string& f : o.outputs) {
@@ -111,22 +107,36 @@ int list_devices() {
     return 0;
 }
 
+// The backend called `name` ("cpu" or "opencl"), or an exception saying
+// why it cannot be had. The window's B key uses it as it is: no fallback.
+std::unique_ptr<trac0r::Backend> backend_named(const std::string& name, const Options& o) {
+    if (name == "opencl") {
+#ifdef TRAC0R_HAVE_OPENCL
+        if (o.device < 0 && trac0r::list_opencl_devices().empty()) {
+            throw std::runtime_error("no OpenCL device found (install an OpenCL driver, e.g. "
+                                     "Debian's pocl-opencl-icd)");
+        }
+        return std::make_unique<trac0r::OpenClBackend>(o.device >= 0 ? o.device : 0);
+#else
+        throw std::runtime_error("this build has no OpenCL backend (configure with "
+                                 "-DTRAC0R_OPENCL=ON)");
+#endif
+    }
+    return std::make_unique<trac0r::CpuBackend>(o.threads);
+}
+
 // The requested backend. Without an OpenCL device, --backend opencl falls
 // back to the CPU and says so; an explicit --device insists (an error), and
 // a program that fails to build is always an error (its log is printed).
 std::unique_ptr<trac0r::Backend> make_backend(const Options& o) {
 #ifdef TRAC0R_HAVE_OPENCL
-    if (o.backend == "opencl") {
-        const int index = o.device >= 0 ? o.device : 0;
-        if (o.device < 0 && trac0r::list_opencl_devices().empty()) {
-            std::fprintf(stderr, "trac0r_viewer: no OpenCL device found; falling back to the "
-                                 "CPU backend (--device N insists on OpenCL)\n");
-        } else {
-            return std::make_unique<trac0r::OpenClBackend>(index);
-        }
+    if (o.backend == "opencl" && o.device < 0 && trac0r::list_opencl_devices().empty()) {
+        std::fprintf(stderr, "trac0r_viewer: no OpenCL device found; falling back to the "
+                             "CPU backend (--device N insists on OpenCL)\n");
+        return backend_named("cpu", o);
     }
 #endif
-    return std::make_unique<trac0r::CpuBackend>(o.threads);
+    return backend_named(o.backend, o);
 }
 
 }  // namespace
@@ -145,14 +155,29 @@ int main(int argc, char** argv) {
         const trac0r::Scene scene = load_scene(options);
         trac0r::PackOptions pack;
         pack.accel = trac0r::parse_accel(options.accel);
-        trac0r::Renderer renderer(scene, make_backend(options), options.seed, pack);
-        if (options.verbose) {
-            print_verbose(renderer, options);
+        pack.integrator = trac0r::parse_integrator(options.integrator);
+        const auto make_renderer = [&] {
+            auto renderer = std::make_unique<trac0r::Renderer>(scene, make_backend(options),
+                                                               options.seed, pack);
+            if (options.verbose) {
+                print_verbose(*renderer, options);
+            }
+            return renderer;
+        };
+        if (!options.headless) {
+            const std::string title =
+                "trac0r_viewer: " +
+                (options.scene_path.empty() ? std::string("built-in Cornell box")
+                                            : options.scene_path);
+            return trac0r_viewer::run_window(
+                options, title, scene.render, make_renderer,
+                [&](const std::string& name) { return backend_named(name, options); });
         }
+        const std::unique_ptr<trac0r::Renderer> renderer = make_renderer();
         if (options.benchmark_frames > 0) {
-            return trac0r_viewer::run_benchmark(renderer, options);
+            return trac0r_viewer::run_benchmark(*renderer, options);
         }
-        return trac0r_viewer::run_batch(renderer, options);
+        return trac0r_viewer::run_batch(*renderer, options);
     } catch (const UsageError& e) {
         std::fprintf(stderr, "trac0r_viewer: %s\n", e.what());
         return 2;

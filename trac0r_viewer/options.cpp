@@ -5,44 +5,74 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <string>
 
 namespace trac0r_viewer {
 
+const char* key_help_text() {
+    return R"(  W A S D            move forward, left, back, right
+  Q / E              move down / up (also Ctrl / Space)
+  Shift              move five times faster
+  right mouse drag   look around
+  mouse wheel        field of view (zoom)
+  F1                 debug overlay: AABBs, timings, camera, pixel under the mouse
+  P                  screenshot: the window as a timestamped PNG and the render
+                     as a PFM beside it, in the current directory
+  B                  switch backend, CPU <-> OpenCL
+  R                  restart accumulation
+  + / -              exposure up / down
+  H                  this help
+  Esc                quit
+)";
+}
+
 const char* usage_text() {
-    return R"(Usage: trac0r_viewer [SCENE.json] [options]
+    static const std::string text = std::string(R"(Usage: trac0r_viewer [SCENE.json] [options]
 
 A real-time Monte Carlo path tracer. Without SCENE.json it renders the
-built-in scene: the thesis' Cornell box (scenes/cornell.json).
+built-in scene: the thesis' Cornell box (scenes/cornell.json). Without
+--headless it opens a window that refines the image until you quit.
 
 Rendering:
   --backend cpu|opencl   backend (default cpu)
   --device N             OpenCL device index (see --list-devices)
   --list-devices         print the OpenCL platforms and devices, then exit
   --width W --height H   override the scene's resolution
-  --spp N                stop after N samples per pixel
-  --seconds S            stop after S seconds of rendering
+  --spp N                stop after N samples per pixel (window: pause there)
+  --seconds S            stop after S seconds of rendering (window: pause there)
   --seed N               random seed (default 1); same seed, same image
   --max-depth D          maximum path length in vertices (default: the scene's)
   --threads N            CPU threads (default: all)
   --accel flat|bvh|auto  acceleration structure (default auto)
   --integrator naive|nee the thesis' algorithm or next-event estimation
-  --target-error E       stop when the estimated relative MSE reaches E
-  --exposure X           multiply radiance by X before tone mapping (PNG)
+  --target-error E       stop when the estimated relative MSE (no reference
+                         needed: from each pixel's sample variance) reaches E,
+                         e.g. 0.01; with --spp or --seconds, whichever first
+  --exposure X           multiply radiance by X before tone mapping (PNG, window)
   --verbose              backend, device, feature mask and what was left out
 
 Output:
   --output FILE          save the result: .png (tone-mapped sRGB) or .pfm (linear);
-                         may be repeated (e.g. both a .png and a .pfm)
+                         may be repeated (e.g. both a .png and a .pfm); in the
+                         window, saved when it closes
   --headless             no window; with --output a batch render with a
-                         progress bar on stderr (default --spp 64)
-  --benchmark N          render N frames, print one JSON line of timings, exit
+                         progress bar on stderr (default --spp 64 when
+                         neither --seconds nor --target-error is given)
+  --benchmark N          render N frames, print one JSON line of timings, exit;
+                         in the window (no vsync, no overlay) or with --headless
+  --replay FILE          window: play the scripted input events in FILE
   -h, --help             this text
 
+Window keys and mouse:
+)") + key_help_text() + R"(
 Examples:
+  trac0r_viewer
+  trac0r_viewer scenes/cornell.json --width 400 --height 300 --backend opencl
   trac0r_viewer --headless --spp 64 --output cornell.png
   trac0r_viewer scenes/cornell_diffuse.json --headless --seconds 30 --output d.pfm
   trac0r_viewer --headless --benchmark 10
 )";
+    return text.c_str();
 }
 
 namespace {
@@ -110,6 +140,7 @@ Options parse_options(int argc, const char* const* argv) {
          [&](auto f, auto v) { o.integrator = parse_choice(f, v, "naive|nee"); }},
         {"--target-error", [&](auto f, auto v) { o.target_error = parse_positive(f, v); }},
         {"--exposure", [&](auto f, auto v) { o.exposure = (float)parse_positive(f, v); }},
+        {"--replay", [&](auto, auto v) { o.replay_path = v; }},
     };
     const std::map<std::string, bool*> switches = {{"--headless", &o.headless},
                                                     {"--verbose", &o.verbose},

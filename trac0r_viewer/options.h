@@ -27,6 +27,7 @@ struct Options {
     std::string integrator = "naive";
     double target_error = 0.0;
     float exposure = 1.0f;
+    std::string replay_path;  // --replay: scripted window input (replay.h)
     bool verbose = false;
     bool list_devices = false;
     bool help = false;
@@ -40,6 +41,8 @@ class UsageError : public std::runtime_error {
 
 Options parse_options(int argc, const char* const* argv);
 const char* usage_text();
+// The window's keys and mouse, one per line: in --help and behind H.
+const char* key_help_text();
 
 }  // namespace trac0r_viewer
 

@@ -126,6 +126,86 @@ T0_INLINE ScatterSample scatter_glass(T0_GLOBAL const MaterialRecord* m, float3 
     return s;
 }
 
+// Next-event estimation asks the other way round: given a direction (to a
+// point on a light), how much does the material scatter into it, and how
+// likely would its own sampling have been to pick it.
+typedef struct MaterialEval {
+    float3 f_cos;  // BSDF x cosine toward the direction; zero outside the lobe
+    float pdf;     // density (solid angle) of scatter_material picking it
+} MaterialEval;
+
+T0_INLINE MaterialEval eval_failed(void) {
+    MaterialEval e;
+    e.f_cos = float3_splat(0.0f);
+    e.pdf = 0.0f;
+    return e;
+}
+
+// Glossy cones narrower than this (sin^2 of the half-angle: about 0.6
+// degrees, roughness 0.0064) count as mirrors for next-event estimation:
+// a light sample would almost never land in them, and the cone test is at
+// the limit of float precision. Their paths rely on scattering alone,
+// which is unbiased for any roughness.
+#define T0_GLOSSY_LIGHT_SAMPLING_MIN_SIN2 1e-4f
+
+T0_INLINE float glossy_cone_sin2(T0_GLOBAL const MaterialRecord* m) {
+    return cone_sin2(m->params.y * 0.5f * T0_PI);
+}
+
+// Lambertian: f cos = colour cos / pi; the density is the cosine's, cos / pi.
+T0_INLINE MaterialEval eval_diffuse(T0_GLOBAL const MaterialRecord* m, float3 facing_normal,
+                                    float3 direction) {
+    const float cos_theta = dot(direction, facing_normal);
+    if (!(cos_theta > 0.0f)) {
+        return eval_failed();
+    }
+    MaterialEval e;
+    e.pdf = cos_theta * T0_INV_PI;
+    e.f_cos = xyz(m->color) * e.pdf;
+    return e;
+}
+
+// The thesis' glossy lobe is its own density (scatter_glossy's weight is
+// the colour), so f cos = colour x density, inside the cone and above the
+// surface.
+T0_INLINE MaterialEval eval_glossy(T0_GLOBAL const MaterialRecord* m, float3 incoming,
+                                   float3 facing_normal, float3 direction) {
+    if (!(dot(direction, facing_normal) > 0.0f)) {
+        return eval_failed();
+    }
+    const float3 mirror = reflect_direction(incoming, facing_normal);
+    MaterialEval e;
+    e.pdf = cosine_cone_pdf(mirror, glossy_cone_sin2(m), direction);
+    e.f_cos = xyz(m->color) * e.pdf;
+    return e;
+}
+
+// Whether next-event estimation samples lights at a hit on this material:
+// diffuse and rough glossy surfaces; not emitters (paths end there), glass
+// or mirror-like glossy (delta lobes that a light sample never lands in).
+T0_INLINE int material_samples_lights(const SceneView* scene, T0_GLOBAL const MaterialRecord* m) {
+    const t0_u32 type = m->type.x;
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_DIFFUSE) && type == T0_MATERIAL_DIFFUSE) {
+        return 1;
+    }
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_GLOSSY) && type == T0_MATERIAL_GLOSSY) {
+        return glossy_cone_sin2(m) >= T0_GLOSSY_LIGHT_SAMPLING_MIN_SIN2;
+    }
+    return 0;
+}
+
+T0_INLINE MaterialEval eval_material(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
+                                     float3 incoming, float3 facing_normal, float3 direction) {
+    const t0_u32 type = m->type.x;
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_DIFFUSE) && type == T0_MATERIAL_DIFFUSE) {
+        return eval_diffuse(m, facing_normal, direction);
+    }
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_GLOSSY) && type == T0_MATERIAL_GLOSSY) {
+        return eval_glossy(m, incoming, facing_normal, direction);
+    }
+    return eval_failed();  // delta lobes and emitters
+}
+
 T0_INLINE ScatterSample scatter_material(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
                                          float3 incoming, float3 geometric_normal,
                                          float3 facing_normal, Rng* rng) {

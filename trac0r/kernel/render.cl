@@ -8,7 +8,8 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
                            __global const MaterialRecord* materials,
                            __global const BvhNode* nodes, uint shape_count,
                            CameraRecord camera, __global AccumPixel* accum, ulong seed, uint frame,
-                           int max_depth) {
+                           int max_depth, __global const LightRecord* lights,
+                           uint light_count) {
     const uint pixel = (uint)get_global_id(0);
     if (pixel >= camera.size.x * camera.size.y) {
         return;
@@ -19,6 +20,8 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
     scene.materials = materials;
     scene.nodes = nodes;
     scene.shape_count = shape_count;
+    scene.lights = lights;
+    scene.light_count = light_count;
     scene.features = T0_FEATURES;
     render_pixel(&scene, camera, accum, pixel, seed, frame, max_depth);
 }

@@ -49,9 +49,15 @@ T0_INLINE DirectionSample sample_uniform_sphere(float u1, float u2) {
 // Cosine-weighted directions inside the cone of half-angle cone_angle
 // (0..pi/2) around unit axis: pdf = cos(theta) / (pi sin^2(cone_angle)).
 // cone_angle = pi/2 is the cosine-weighted hemisphere.
-T0_INLINE DirectionSample sample_cosine_cone(float3 axis, float cone_angle, float u1, float u2) {
+// sin^2 of a cone's half-angle, clamped to 0..pi/2: the one number the
+// cosine-weighted cone's sampling and density depend on.
+T0_INLINE float cone_sin2(float cone_angle) {
     const float sin_max = sin(fmin(fmax(cone_angle, 0.0f), 0.5f * T0_PI));
-    const float sin2_max = sin_max * sin_max;
+    return sin_max * sin_max;
+}
+
+T0_INLINE DirectionSample sample_cosine_cone(float3 axis, float cone_angle, float u1, float u2) {
+    const float sin2_max = cone_sin2(cone_angle);
     const float sin2_theta = u1 * sin2_max;
     const float cos_theta = sqrt(fmax(0.0f, 1.0f - sin2_theta));
     const float sin_theta = sqrt(sin2_theta);
@@ -65,8 +71,43 @@ T0_INLINE DirectionSample sample_cosine_cone(float3 axis, float cone_angle, floa
     return s;
 }
 
+// The density sample_cosine_cone gives unit direction d (zero outside the
+// cone, and for a cone of zero width, whose directions are a delta).
+T0_INLINE float cosine_cone_pdf(float3 axis, float sin2_max, float3 d) {
+    const float cos_theta = dot(d, axis);
+    const float cos_max = sqrt(fmax(0.0f, 1.0f - sin2_max));
+    if (!(sin2_max > 0.0f) || !(cos_theta >= cos_max)) {
+        return 0.0f;
+    }
+    return cos_theta / (T0_PI * sin2_max);
+}
+
 T0_INLINE DirectionSample sample_cosine_hemisphere(float3 normal, float u1, float u2) {
     return sample_cosine_cone(normal, 0.5f * T0_PI, u1, u2);
+}
+
+// A uniform point on a triangle, as the barycentric weights of its second
+// and third vertices (the square-root map; pbrt-v4, section A.5.5).
+T0_INLINE void sample_triangle_barycentrics(float u1, float u2, float* b1, float* b2) {
+    const float root = sqrt(u1);
+    *b1 = u2 * root;
+    *b2 = 1.0f - root;
+}
+
+// The power heuristic (Veach 1997, beta = 2): the multiple importance
+// sampling weight of a sample drawn with density pdf_a when another
+// strategy would have drawn it with density pdf_b. Computed from their
+// ratio, so a very narrow lobe's huge density cannot overflow when squared.
+T0_INLINE float power_heuristic(float pdf_a, float pdf_b) {
+    if (!(pdf_a > 0.0f)) {
+        return 0.0f;
+    }
+    if (pdf_a >= pdf_b) {
+        const float r = pdf_b / pdf_a;
+        return 1.0f / (1.0f + r * r);
+    }
+    const float r = pdf_a / pdf_b;
+    return r * r / (1.0f + r * r);
 }
 
 T0_NAMESPACE_END

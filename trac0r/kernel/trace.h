@@ -32,10 +32,92 @@ T0_INLINE float continuation_probability(int depth, int max_depth, float3 throug
     return fmin(by_depth, by_throughput);
 }
 
-// One path from the camera; returns its radiance estimate.
+// The light list's inverse CDF: the first light whose cdf.x exceeds u.
+T0_INLINE t0_u32 pick_light(const SceneView* scene, float u) {
+    t0_u32 lo = 0u;
+    t0_u32 hi = scene->light_count - 1u;
+    while (lo < hi) {
+        const t0_u32 mid = lo + (hi - lo) / 2u;
+        if (u < scene->lights[mid].cdf.x) {
+            hi = mid;
+        } else {
+            lo = mid + 1u;
+        }
+    }
+    return lo;
+}
+
+// The density per solid angle, seen from distance away along unit
+// direction, with which next-event estimation picks a point on the emitting
+// triangle tri; zero for a triangle that is not in the light list. Emitters
+// are two-sided, so the cosine at the light is taken on either side.
+T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const TriangleRecord* tri,
+                                      float3 direction, float distance) {
+    if (tri->ids.z == T0_NO_LIGHT) {
+        return 0.0f;
+    }
+    const float cos_light = fabs(dot(direction, xyz(tri->normal)));
+    return scene->lights[tri->ids.z].cdf.z * distance * distance / cos_light;
+}
+
+// Next-event estimation at a surface point: picks an emitting triangle in
+// proportion to its power and a uniform point on it, and returns the
+// radiance it sends back along -incoming through the material, if nothing
+// is in between, weighted by MIS against the material's own sampling (whose
+// hits on emitters carry the complementary weight). facing_normal is the
+// side the light must be on; magnitude is hit_magnitude of position.
+T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
+                              float3 incoming, float3 facing_normal, float3 position,
+                              float magnitude, Rng* rng) {
+    const float u_pick = rng_float(rng);
+    const float u1 = rng_float(rng);
+    const float u2 = rng_float(rng);
+    T0_GLOBAL const LightRecord* light = &scene->lights[pick_light(scene, u_pick)];
+    T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->triangle.x];
+    float b1 = 0.0f;
+    float b2 = 0.0f;
+    sample_triangle_barycentrics(u1, u2, &b1, &b2);
+    const float3 v0 = xyz(tri->v0);
+    const float3 point = v0 + (xyz(tri->v1) - v0) * b1 + (xyz(tri->v2) - v0) * b2;
+    const float3 to_light = point - position;
+    const float distance2 = dot(to_light, to_light);
+    if (!(distance2 > 0.0f)) {
+        return float3_splat(0.0f);
+    }
+    const float distance = sqrt(distance2);
+    const float3 direction = to_light / distance;
+    const float3 light_normal = xyz(tri->normal);
+    const float cos_light = fabs(dot(direction, light_normal));
+    const MaterialEval e = eval_material(scene, m, incoming, facing_normal, direction);
+    if (!(cos_light > 0.0f) || !(e.pdf > 0.0f)) {
+        return float3_splat(0.0f);  // edge-on, or outside the material's lobe
+    }
+    // The shadow ray runs between the two points, each moved off its surface
+    // towards the other, so neither surface can block it.
+    const float3 light_side = dot(direction, light_normal) < 0.0f ? light_normal : -light_normal;
+    const float3 target = offset_ray_origin(point, light_side, hit_magnitude(tri, point));
+    const float3 origin = offset_ray_origin(position, facing_normal, magnitude);
+    const float3 shadow = target - origin;
+    const float shadow_length = length(shadow);
+    if (!(shadow_length > 0.0f) || occluded(scene, make_ray(origin, shadow / shadow_length),
+                                            shadow_length)) {
+        return float3_splat(0.0f);
+    }
+    const float light_pdf = light->cdf.z * distance2 / cos_light;
+    const float3 emitted = material_emission(&scene->materials[tri->ids.x]);
+    return e.f_cos * emitted * (power_heuristic(light_pdf, e.pdf) / light_pdf);
+}
+
+// One path from the camera; returns its radiance estimate. With next-event
+// estimation (T0_FEATURE_NEE), each diffuse or rough glossy hit also samples
+// a light; emission that the next scattered ray finds is then weighted by
+// MIS. Camera rays and rays after a mirror or glass bounce count emission
+// in full: nothing else could have found it.
 T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng* rng) {
     float3 radiance = float3_splat(0.0f);
     float3 throughput = float3_splat(1.0f);
+    int lights_sampled = 0;    // whether the vertex this ray leaves sampled a light
+    float scatter_pdf = 0.0f;  // the density with which that vertex picked this ray
     for (int depth = 0; depth < max_depth; ++depth) {
         // Intersect: the nearest triangle, or the black background.
         const Hit hit = intersect_scene(scene, ray);
@@ -51,7 +133,13 @@ T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng*
 
         // Emit.
         if (T0_HAS_FEATURE(scene, T0_FEATURE_EMITTANCE)) {
-            radiance += throughput * material_emission(m);
+            float3 emitted = throughput * material_emission(m);
+            if (T0_HAS_FEATURE(scene, T0_FEATURE_NEE) && lights_sampled &&
+                tri->ids.z != T0_NO_LIGHT) {
+                emitted *= power_heuristic(
+                    scatter_pdf, light_pdf_solid_angle(scene, tri, ray.direction, hit.t));
+            }
+            radiance += emitted;
         }
         if (m->type.x == T0_MATERIAL_EMISSIVE) {
             break;
@@ -63,6 +151,19 @@ T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng*
             break;
         }
         throughput /= q;
+        const float3 position = hit_position(tri, hit);
+        const float magnitude = hit_magnitude(tri, position);
+
+        // Sample a light (next-event estimation), after the roulette: the
+        // light it finds is what the next vertex would emit, and a path
+        // only reaches that vertex if it survives.
+        lights_sampled = 0;
+        if (T0_HAS_FEATURE(scene, T0_FEATURE_NEE) && scene->light_count > 0u &&
+            material_samples_lights(scene, m)) {
+            radiance += throughput * sample_light(scene, m, ray.direction, facing_normal, position,
+                                                  magnitude, rng);
+            lights_sampled = 1;
+        }
 
         // Sample the material.
         const ScatterSample s =
@@ -71,11 +172,11 @@ T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng*
             break;
         }
         throughput *= s.weight;
+        scatter_pdf = s.pdf;
 
         // Continue from just off the surface, on the side the new ray leaves.
-        const float3 position = hit_position(tri, hit);
         const float3 side = dot(s.direction, geometric_normal) > 0.0f ? geometric_normal : -geometric_normal;
-        ray = make_ray(offset_ray_origin(position, side, hit_magnitude(tri, position)), s.direction);
+        ray = make_ray(offset_ray_origin(position, side, magnitude), s.direction);
     }
     return radiance;
 }

@@ -37,8 +37,21 @@ typedef struct T0_ALIGN16 TriangleRecord {
     float4 v1;      // xyz: second vertex
     float4 v2;      // xyz: third vertex
     float4 normal;  // xyz: normalize(e1 x e2), w: |e1 x e2|
-    uint4 ids;      // x: material index, y: shape index
+    uint4 ids;      // x: material index, y: shape index, z: light index (T0_NO_LIGHT: none)
 } TriangleRecord;
+
+// TriangleRecord.ids.z of a triangle that emits no light.
+#define T0_NO_LIGHT 0xffffffffu
+
+// One emitting triangle of the light list that next-event estimation picks
+// from, in proportion to its power (emittance x luminance x area). The pick
+// is an inverse-CDF search over cdf.x, so y is exactly the difference of
+// consecutive cdf.x and picks and densities agree bit for bit.
+typedef struct T0_ALIGN16 LightRecord {
+    float4 cdf;     // x: probability of this light or an earlier one (the last is 1),
+                    // y: probability of this light, z: y / area, the density per area
+    uint4 triangle; // x: triangle index
+} LightRecord;
 
 // One shape of the flat structure: its AABB and its run of triangles.
 typedef struct T0_ALIGN16 ShapeRecord {
@@ -88,7 +101,9 @@ typedef struct SceneView {
     T0_GLOBAL const ShapeRecord* shapes;
     T0_GLOBAL const MaterialRecord* materials;
     T0_GLOBAL const BvhNode* nodes;
+    T0_GLOBAL const LightRecord* lights;
     t0_u32 shape_count;
+    t0_u32 light_count;
     t0_u32 features;
 } SceneView;
 
@@ -106,6 +121,7 @@ T0_STATIC_ASSERT_SIZE(TriangleRecord, 80);
 T0_STATIC_ASSERT_SIZE(ShapeRecord, 48);
 T0_STATIC_ASSERT_SIZE(MaterialRecord, 48);
 T0_STATIC_ASSERT_SIZE(BvhNode, 32);
+T0_STATIC_ASSERT_SIZE(LightRecord, 32);
 T0_STATIC_ASSERT_SIZE(CameraRecord, 96);
 T0_STATIC_ASSERT_SIZE(AccumPixel, 48);
 T0_STATIC_ASSERT_SIZE(FrameRecord, 32);

@@ -1,0 +1,405 @@
+// Error against run time: renders a scene with one or more configurations,
+// takes checkpoints at doubling samples per pixel, and at each reports the
+// wall time, RMSE, relative MSE and PSNR against a reference image, beside
+// the renderer's own estimate of the relative MSE (no reference needed).
+//
+//   build/benchmarks/bench_convergence [SCENE.json] [options]
+//
+// See --help. Writes a table on stdout and a CSV; plot the CSV with
+// benchmarks/plot_convergence.py. Every configuration is measured in the
+// same run, one after the other, so their times compare.
+#include "trac0r/cpu_backend.h"
+#include "trac0r/noise.h"
+#include "trac0r/renderer.h"
+#include "trac0r/scene_loader.h"
+#ifdef TRAC0R_HAVE_OPENCL
+#include "trac0r/opencl_backend.h"
+#endif
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+using namespace trac0r;
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+const char* usage = R"(Usage: bench_convergence [SCENE.json] [options]
+
+Renders SCENE.json (default: the built-in Cornell box) with each --config,
+with checkpoints at 1, 2, 4, ... samples per pixel, and prints at each the
+render time, RMSE, relative MSE and PSNR against a reference, and the
+renderer's own relative MSE estimate.
+
+  --config SPEC       a configuration, repeatable (default: backend=cpu):
+                      comma-separated key=value of backend=cpu|opencl,
+                      accel=flat|bvh|auto, max_depth=N, integrator=naive|nee
+                      e.g. --config backend=opencl --config backend=cpu,max_depth=2
+  --max-spp N         last checkpoint (default 1024)
+  --seconds S         no new checkpoint once a configuration has rendered S s
+  --width W --height H  resolution (default 200 x 150)
+  --reference FILE    reference image (.pfm, the same resolution); default:
+                      rendered on the CPU with another seed at --reference-spp
+                      and cached in --cache
+  --reference-spp N   samples per pixel of a rendered reference (default 16 x --max-spp)
+  --cache DIR         where rendered references are kept (default convergence_cache)
+  --csv FILE          write the checkpoints as CSV (default convergence.csv)
+  -h, --help          this text
+)";
+
+struct Config {
+    std::string backend = "cpu";
+    std::string accel = "auto";
+    std::string integrator = "naive";
+    int max_depth = 0;  // 0: the scene's
+    std::string label;
+};
+
+struct Options {
+    std::string scene_path;
+    std::vector<Config> configs;
+    long max_spp = 1024;
+    double seconds = 0.0;
+    int width = 200;
+    int height = 150;
+    std::string reference_path;
+    long reference_spp = 0;
+    std::string cache_dir = "convergence_cache";
+    std::string csv_path = "convergence.csv";
+};
+
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+long parse_long(const std::string& flag, const std::string& text, long lo, long hi) {
+    std::size_t used = 0;
+    long v = 0;
+    try {
+        v = std::stol(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != text.size() || text.empty() || v < lo || v > hi) {
+        throw UsageError(flag + ": expected an integer in [" + std::to_string(lo) + ", " +
+                         std::to_string(hi) + "], got '" + text + "'");
+    }
+    return v;
+}
+
+Config parse_config(const std::string& spec) {
+    Config c;
+    std::stringstream parts(spec);
+    std::string part;
+    while (std::getline(parts, part, ',')) {
+        const std::size_t eq = part.find('=');
+        const std::string key = part.substr(0, eq);
+        const std::string value = eq == std::string::npos ? "" : part.substr(eq + 1);
+        const std::string where = "--config " + spec + ": " + key;
+        if (key == "backend" && (value == "cpu" || value == "opencl")) {
+            c.backend = value;
+        } else if (key == "accel" && (value == "flat" || value == "bvh" || value == "auto")) {
+            c.accel = value;
+        } else if (key == "max_depth") {
+            c.max_depth = static_cast<int>(parse_long(where, value, 1, 100000));
+        } else if (key == "integrator" && (value == "naive" || value == "nee")) {
+            c.integrator = value;
+        } else if (key == "backend" || key == "accel" || key == "integrator") {
+            throw UsageError(where + ": unknown value '" + value + "'");
+        } else {
+            throw UsageError("--config " + spec + ": unknown key '" + key +
+                             "' (expected backend, accel, max_depth, integrator)");
+        }
+    }
+    c.label = c.backend + (c.accel == "auto" ? "" : " " + c.accel) +
+              (c.max_depth > 0 ? " depth " + std::to_string(c.max_depth) : "") +
+              (c.integrator == "naive" ? "" : " " + c.integrator);
+#ifndef TRAC0R_HAVE_OPENCL
+    if (c.backend == "opencl") {
+        throw UsageError("--config " + spec + ": this build has no OpenCL backend");
+    }
+#endif
+    return c;
+}
+
+Options parse_options(int argc, char** argv) {
+    Options o;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        const auto value = [&]() -> std::string {
+            if (i + 1 >= argc) {
+                throw UsageError(a + ": expected a value");
+            }
+            return argv[++i];
+        };
+        if (a == "-h" || a == "--help") {
+            std::fputs(usage, stdout);
+            std::exit(0);
+        } else if (a == "--config") {
+            o.configs.push_back(parse_config(value()));
+        } else if (a == "--max-spp") {
+            o.max_spp = parse_long(a, value(), 1, 1L << 24);
+        } else if (a == "--reference-spp") {
+            o.reference_spp = parse_long(a, value(), 1, 1L << 24);
+        } else if (a == "--width") {
+            o.width = static_cast<int>(parse_long(a, value(), 1, 16384));
+        } else if (a == "--height") {
+            o.height = static_cast<int>(parse_long(a, value(), 1, 16384));
+        } else if (a == "--seconds") {
+            const std::string v = value();
+            char* end = nullptr;
+            o.seconds = std::strtod(v.c_str(), &end);
+            if (v.empty() || *end != '\0' || !(o.seconds > 0.0)) {
+                throw UsageError(a + ": expected a positive number, got '" + v + "'");
+            }
+        } else if (a == "--reference") {
+            o.reference_path = value();
+        } else if (a == "--cache") {
+            o.cache_dir = value();
+        } else if (a == "--csv") {
+            o.csv_path = value();
+        } else if (!a.empty() && a[0] == '-') {
+            throw UsageError(a + ": unknown option (see --help)");
+        } else if (o.scene_path.empty()) {
+            o.scene_path = a;
+        } else {
+            throw UsageError(a + ": only one scene file");
+        }
+    }
+    if (o.configs.empty()) {
+        o.configs.push_back(parse_config("backend=cpu"));
+    }
+    if (o.reference_spp == 0) {
+        o.reference_spp = 16 * o.max_spp;
+    }
+    return o;
+}
+
+std::unique_ptr<Backend> make_backend(const std::string& name) {
+#ifdef TRAC0R_HAVE_OPENCL
+    if (name == "opencl") {
+        if (list_opencl_devices().empty()) {
+            throw std::runtime_error("backend=opencl: no OpenCL device found");
+        }
+        return std::make_unique<OpenClBackend>(0);
+    }
+#endif
+    return std::make_unique<CpuBackend>();
+}
+
+// FNV-1a of the scene's text: the cache key of its reference.
+std::string text_hash(const std::string& text) {
+    std::uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : text) {
+        h = (h ^ c) * 1099511628211ull;
+    }
+    char out[17];
+    std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
+    return out;
+}
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+bool file_exists(const std::string& path) {
+    struct stat st;
+    return stat(path.c_str(), &st) == 0;
+}
+
+void render_until(Renderer& r, long spp) {
+    while (static_cast<long>(r.frames()) < spp) {
+        r.render_frame();
+    }
+}
+
+// The reference image and its own estimated relative MSE (what its noise
+// adds to every error measured against it).
+struct Reference {
+    Image image;
+    double own_rel_mse;
+};
+
+Reference reference_image(const Options& o, const Scene& scene) {
+    if (!o.reference_path.empty()) {
+        Reference ref{read_pfm(o.reference_path), 0.0};
+        if (ref.image.width != o.width || ref.image.height != o.height) {
+            throw UsageError("--reference " + o.reference_path + ": the image is " +
+                             std::to_string(ref.image.width) + "x" +
+                             std::to_string(ref.image.height) + ", the run is " +
+                             std::to_string(o.width) + "x" + std::to_string(o.height));
+        }
+        std::fprintf(stderr, "reference: %s (its own noise unknown, taken as 0)\n",
+                     o.reference_path.c_str());
+        return ref;
+    }
+    const std::string text =
+        o.scene_path.empty() ? std::string(builtin_scene_json()) : read_text(o.scene_path);
+    const std::string stem =
+        o.scene_path.empty()
+            ? "builtin"
+            : o.scene_path.substr(o.scene_path.find_last_of('/') + 1,
+                                  o.scene_path.rfind('.') - o.scene_path.find_last_of('/') - 1);
+    const std::string base = o.cache_dir + "/" + stem + "-" + text_hash(text) + "-" +
+                             std::to_string(o.width) + "x" + std::to_string(o.height) + "-" +
+                             std::to_string(o.reference_spp) + "spp";
+    const std::string pfm = base + ".pfm";
+    const std::string noise_file = base + ".relmse";
+    if (file_exists(pfm) && file_exists(noise_file)) {
+        std::fprintf(stderr, "reference: cached %s\n", pfm.c_str());
+        return {read_pfm(pfm), std::stod(read_text(noise_file))};
+    }
+    std::fprintf(stderr, "reference: rendering %ld spp on the CPU (seed 0x5eed), cached as %s\n",
+                 o.reference_spp, pfm.c_str());
+    Renderer r(scene, std::make_unique<CpuBackend>(), 0x5eed);
+    const Clock::time_point start = Clock::now();
+    long next_report = std::max(1L, o.reference_spp / 10);
+    while (static_cast<long>(r.frames()) < o.reference_spp) {
+        r.render_frame();
+        if (static_cast<long>(r.frames()) >= next_report) {
+            const double s = std::chrono::duration<double>(Clock::now() - start).count();
+            std::fprintf(stderr, "  reference %u / %ld spp, %.0f s\n", r.frames(),
+                         o.reference_spp, s);
+            next_report += std::max(1L, o.reference_spp / 10);
+        }
+    }
+    Reference ref{r.image(), estimate_relative_mse(r.accumulator(), o.width, o.height)};
+    if (mkdir(o.cache_dir.c_str(), 0755) != 0 && !file_exists(o.cache_dir)) {
+        throw std::runtime_error(o.cache_dir + ": cannot create the cache directory");
+    }
+    write_pfm(pfm, ref.image);
+    std::ofstream(noise_file) << ref.own_rel_mse << "\n";
+    return ref;
+}
+
+struct Checkpoint {
+    long spp;
+    double seconds;
+    ImageError error;
+    double estimated_rel_mse;
+};
+
+// Least-squares slope of log(y) against log(x).
+double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
+    const double n = static_cast<double>(x.size());
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        const double lx = std::log(x[i]);
+        const double ly = std::log(y[i]);
+        sx += lx;
+        sy += ly;
+        sxx += lx * lx;
+        sxy += lx * ly;
+    }
+    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+int run(const Options& o) {
+    Scene scene = o.scene_path.empty() ? builtin_scene() : load_scene_file(o.scene_path);
+    scene.render.width = o.width;
+    scene.render.height = o.height;
+    const Reference ref = reference_image(o, scene);
+
+    std::ofstream csv(o.csv_path);
+    if (!csv) {
+        throw std::runtime_error(o.csv_path + ": cannot write");
+    }
+    csv << "config,spp,seconds,rmse,rel_mse,psnr,estimated_rel_mse,reference_rel_mse\n";
+    std::printf("scene %s, %dx%d, reference %s (its own rel. MSE %.2g)\n\n",
+                o.scene_path.empty() ? "built-in Cornell box" : o.scene_path.c_str(), o.width,
+                o.height, o.reference_path.empty() ? "rendered" : o.reference_path.c_str(),
+                ref.own_rel_mse);
+    std::printf("| config | spp | seconds | RMSE | rel. MSE | PSNR dB | estimated rel. MSE |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
+    std::vector<std::string> slopes;
+    for (const Config& c : o.configs) {
+        Scene s = scene;
+        if (c.max_depth > 0) {
+            s.render.max_depth = c.max_depth;
+        }
+        PackOptions pack;
+        pack.accel = parse_accel(c.accel);
+        pack.integrator = parse_integrator(c.integrator);
+        Renderer r(s, make_backend(c.backend), 1, pack);
+        double render_seconds = 0.0;
+        std::vector<Checkpoint> points;
+        for (long spp = 1; spp <= o.max_spp; spp *= 2) {
+            if (o.seconds > 0.0 && render_seconds >= o.seconds) {
+                break;
+            }
+            const Clock::time_point start = Clock::now();
+            render_until(r, spp);  // render_frame returns when the frame is done
+            render_seconds += std::chrono::duration<double>(Clock::now() - start).count();
+            Checkpoint p{spp, render_seconds, image_error(r.image(), ref.image),
+                         spp >= 2 ? estimate_relative_mse(r.accumulator(), o.width, o.height)
+                                  : std::nan("")};
+            points.push_back(p);
+            std::printf("| %s | %ld | %.3f | %.4g | %.4g | %.2f | %.4g |\n", c.label.c_str(),
+                        p.spp, p.seconds, p.error.rmse, p.error.relative_mse, p.error.psnr,
+                        p.estimated_rel_mse);
+            std::fflush(stdout);
+            csv << '"' << c.label << "\"," << p.spp << ',' << p.seconds << ',' << p.error.rmse
+                << ',' << p.error.relative_mse << ',' << p.error.psnr << ','
+                << p.estimated_rel_mse << ',' << ref.own_rel_mse << '\n';
+        }
+        // The slope where the reference's own noise is under a tenth of the
+        // error and the per-pixel estimates have settled (8 spp on).
+        std::vector<double> t, rel, rmse;
+        std::vector<long> used;
+        for (const Checkpoint& p : points) {
+            if (p.spp >= 8 && p.error.relative_mse > 10.0 * ref.own_rel_mse) {
+                used.push_back(p.spp);
+                t.push_back(p.seconds);
+                rel.push_back(p.error.relative_mse);
+                rmse.push_back(p.error.rmse);
+            }
+        }
+        char line[200];
+        if (t.size() >= 2) {
+            std::snprintf(line, sizeof line,
+                          "%s: rel. MSE ~ time^%.2f, RMSE ~ time^%.2f (%zu checkpoints, %ld..%ld "
+                          "spp)",
+                          c.label.c_str(), log_log_slope(t, rel), log_log_slope(t, rmse),
+                          t.size(), used.front(), used.back());
+        } else {
+            std::snprintf(line, sizeof line, "%s: too few checkpoints for a slope",
+                          c.label.c_str());
+        }
+        slopes.push_back(line);
+    }
+    std::printf("\nFitted slopes (Monte Carlo: rel. MSE ~ time^-1, RMSE ~ time^-0.5):\n");
+    for (const std::string& s : slopes) {
+        std::printf("  %s\n", s.c_str());
+    }
+    std::fprintf(stderr, "wrote %s\n", o.csv_path.c_str());
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    try {
+        return run(parse_options(argc, argv));
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "bench_convergence: %s\n", e.what());
+        return 2;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "bench_convergence: %s\n", e.what());
+        return 1;
+    }
+}

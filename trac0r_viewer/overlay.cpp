@@ -1,0 +1,122 @@
+#include "overlay.h"
+
+#include "trac0r/projection.h"
+
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <fstream>
+
+namespace trac0r_viewer {
+
+namespace {
+
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+
+std::string format(const char* fmt, ...) {
+    char buffer[512];
+    va_list args;
+    va_start(args, fmt);
+    std::vsnprintf(buffer, sizeof buffer, fmt, args);
+    va_end(args);
+    return buffer;
+}
+
+}  // namespace
+
+const char* overlay_font_path() { return TRAC0R_FONT; }
+
+Font::Font(const std::string& path, int point_size) {
+    if (!std::ifstream(path)) {
+        throw WindowError("font " + path + " not found: install Debian's fonts-dejavu-core, or "
+                          "configure with -DTRAC0R_FONT=/path/to/a/monospace.ttf");
+    }
+    if (TTF_Init() != 0) {
+        throw WindowError(std::string("cannot start SDL_ttf: ") + TTF_GetError());
+    }
+    font_ = TTF_OpenFont(path.c_str(), point_size);
+    if (!font_) {
+        const std::string error = TTF_GetError();
+        TTF_Quit();
+        throw WindowError("font " + path + ": cannot open it: " + error);
+    }
+}
+
+Font::~Font() {
+    TTF_CloseFont(font_);
+    TTF_Quit();
+}
+
+int Font::draw_panel(SDL_Renderer* renderer, const std::string& text, int x, int y) const {
+    const SDL_Color white{235, 235, 235, 255};
+    // Wrap length 0: break at the newlines only.
+    SDL_Surface* surface = TTF_RenderUTF8_Blended_Wrapped(font_, text.c_str(), white, 0);
+    if (!surface) {
+        return 0;  // nothing drawable (empty text); the image is still shown
+    }
+    SDL_Texture* texture = SDL_CreateTextureFromSurface(renderer, surface);
+    const int margin = 4;
+    int out_w = 0;
+    int out_h = 0;
+    SDL_GetRendererOutputSize(renderer, &out_w, &out_h);
+    SDL_Rect panel{0, 0, surface->w + 2 * margin, surface->h + 2 * margin};
+    panel.x = x >= 0 ? x : out_w + x - panel.w;
+    panel.y = y >= 0 ? y : out_h + y - panel.h;
+    SDL_SetRenderDrawBlendMode(renderer, SDL_BLENDMODE_BLEND);
+    SDL_SetRenderDrawColor(renderer, 0, 0, 0, 170);
+    SDL_RenderFillRect(renderer, &panel);
+    SDL_SetRenderDrawBlendMode(renderer, SDL_BLENDMODE_NONE);
+    if (texture) {
+        const SDL_Rect where{panel.x + margin, panel.y + margin, surface->w, surface->h};
+        SDL_RenderCopy(renderer, texture, nullptr, &where);
+        SDL_DestroyTexture(texture);
+    }
+    SDL_FreeSurface(surface);
+    return panel.h;
+}
+
+void draw_wireframes(const Window& window, const std::vector<trac0r::AABB>& boxes,
+                     const trac0r::Camera& camera, float near_distance) {
+    const trac0r::kernel::CameraRecord record =
+        trac0r::make_camera_record(camera, window.render_width(), window.render_height());
+    SDL_Renderer* renderer = window.renderer();
+    const SDL_Color c = overlay_aabb_color;
+    SDL_SetRenderDrawColor(renderer, c.r, c.g, c.b, c.a);
+    for (const trac0r::AABB& box : boxes) {
+        for (const trac0r::Segment2& s :
+             trac0r::project_aabb_wireframe(record, box, near_distance)) {
+            const SDL_FPoint a = window.render_to_window(s.a.x, s.a.y);
+            const SDL_FPoint b = window.render_to_window(s.b.x, s.b.y);
+            SDL_RenderDrawLineF(renderer, a.x, a.y, b.x, b.y);
+        }
+    }
+}
+
+std::string overlay_text(const OverlayFigures& f) {
+    const double fps = f.frame_seconds > 0.0 ? 1.0 / f.frame_seconds : 0.0;
+    std::string text = format("render   %.2f fps  %.0f ms/frame  %.2f Mpaths/s\n", fps,
+                              1e3 * f.frame_seconds, 1e-6 * fps * f.pixels);
+    if (f.preview_factor > 0) {
+        text += format("samples  %ld spp (1/%d-resolution preview while moving)\n", f.spp,
+                       f.preview_factor);
+    } else if (std::isfinite(f.relative_mse)) {
+        text += format("samples  %ld spp  rel. MSE \u2248 %.3g\n", f.spp, f.relative_mse);
+    } else {
+        text += format("samples  %ld spp  rel. MSE \u2248 ? (from 2 spp)\n", f.spp);
+    }
+    text += format("backend  %s: %s\n", f.backend.c_str(), f.device.c_str());
+    text += format("scene    %zu triangles, %zu shapes, %dx%d\n", f.triangles, f.shapes, f.width,
+                   f.height);
+    const glm::vec3 p = f.camera.position;
+    const glm::vec3 d = glm::normalize(f.camera.direction);
+    text += format("camera   pos (%.3f, %.3f, %.3f)  dir (%.3f, %.3f, %.3f)  fov %.1f\n", p.x,
+                   p.y, p.z, d.x, d.y, d.z, f.camera.vertical_fov);
+    text += f.mouse_in_image
+                ? format("mouse    pixel (%d, %d)  radiance (%.4g, %.4g, %.4g)\n", f.mouse_x,
+                         f.mouse_y, f.mouse_radiance.x, f.mouse_radiance.y, f.mouse_radiance.z)
+                : std::string("mouse    not over the image\n");
+    text += format("exposure %.3g   F1 overlay  H keys", f.exposure);
+    return text;
+}
+
+}  // namespace trac0r_viewer

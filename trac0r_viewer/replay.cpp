@@ -1,0 +1,264 @@
+#include "replay.h"
+
+#include <SDL.h>
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace trac0r_viewer {
+
+namespace {
+
+using Type = ReplayCommand::Type;
+
+std::string trim(const std::string& s) {
+    const std::size_t first = s.find_first_not_of(" \t\r");
+    if (first == std::string::npos) {
+        return "";
+    }
+    const std::size_t last = s.find_last_not_of(" \t\r");
+    return s.substr(first, last - first + 1);
+}
+
+// One line's reader: every failure names the file, the line and the text.
+class LineParser {
+  public:
+    LineParser(const std::string& origin, int line, const std::string& text)
+        : where_(origin + ":" + std::to_string(line) + ": "), text_(text) {}
+
+    [[noreturn]] void fail(const std::string& what) const {
+        throw ReplayError(where_ + what + ", got '" + text_ + "'");
+    }
+
+    long integer(const std::string& argument, long min, long max) const {
+        std::istringstream in(argument);
+        long value = 0;
+        std::string rest;
+        if (!(in >> value) || (in >> rest) || value < min || value > max) {
+            fail("expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
+                 "]");
+        }
+        return value;
+    }
+
+    long key(const std::string& name) const {
+        const SDL_Keycode code = SDL_GetKeyFromName(name.c_str());
+        if (name.empty() || code == SDLK_UNKNOWN) {
+            fail("expected an SDL key name (W, F1, Escape, Space, Left Shift, Keypad +, ...)");
+        }
+        return code;
+    }
+
+    long button(const std::string& name) const {
+        const std::map<std::string, long> buttons = {
+            {"left", SDL_BUTTON_LEFT}, {"middle", SDL_BUTTON_MIDDLE}, {"right", SDL_BUTTON_RIGHT}};
+        const auto b = buttons.find(name);
+        if (b == buttons.end()) {
+            fail("expected a mouse button: left, middle or right");
+        }
+        return b->second;
+    }
+
+  private:
+    std::string where_;
+    std::string text_;
+};
+
+std::vector<ReplayCommand> parse_line(const LineParser& p, const std::string& command,
+                                      const std::string& argument) {
+    ReplayCommand c;
+    if (command == "wait") {
+        c.type = Type::wait;
+        c.value = p.integer(argument, 0, 3600 * 1000);
+    } else if (command == "wait_spp") {
+        c.type = Type::wait_spp;
+        c.value = p.integer(argument, 1, 1L << 31);
+    } else if (command == "key") {
+        ReplayCommand down;
+        down.type = Type::key_down;
+        down.value = p.key(argument);
+        ReplayCommand up = down;
+        up.type = Type::key_up;
+        return {down, up};
+    } else if (command == "key_down" || command == "key_up") {
+        c.type = command == "key_down" ? Type::key_down : Type::key_up;
+        c.value = p.key(argument);
+    } else if (command == "mouse_move") {
+        std::istringstream in(argument);
+        std::string x;
+        std::string y;
+        std::string rest;
+        if (!(in >> x >> y) || (in >> rest)) {
+            p.fail("mouse_move: expected two integers X Y");
+        }
+        c.type = Type::mouse_move;
+        c.x = static_cast<int>(p.integer(x, -100000, 100000));
+        c.y = static_cast<int>(p.integer(y, -100000, 100000));
+    } else if (command == "mouse_down" || command == "mouse_up") {
+        c.type = command == "mouse_down" ? Type::mouse_down : Type::mouse_up;
+        c.value = p.button(argument);
+    } else if (command == "wheel") {
+        c.type = Type::wheel;
+        c.value = p.integer(argument, -1000, 1000);
+    } else {
+        p.fail("unknown command '" + command +
+               "' (expected wait, wait_spp, key, key_down, key_up, mouse_move, mouse_down, "
+               "mouse_up or wheel)");
+    }
+    return {c};
+}
+
+std::uint16_t modifier_of(SDL_Keycode key) {
+    switch (key) {
+    case SDLK_LSHIFT:
+        return KMOD_LSHIFT;
+    case SDLK_RSHIFT:
+        return KMOD_RSHIFT;
+    case SDLK_LCTRL:
+        return KMOD_LCTRL;
+    case SDLK_RCTRL:
+        return KMOD_RCTRL;
+    case SDLK_LALT:
+        return KMOD_LALT;
+    case SDLK_RALT:
+        return KMOD_RALT;
+    default:
+        return 0;
+    }
+}
+
+}  // namespace
+
+std::vector<ReplayCommand> parse_replay(const std::string& text, const std::string& origin) {
+    std::vector<ReplayCommand> commands;
+    std::istringstream in(text);
+    std::string raw;
+    int line = 0;
+    while (std::getline(in, raw)) {
+        ++line;
+        const std::string content = trim(raw.substr(0, raw.find('#')));
+        if (content.empty()) {
+            continue;
+        }
+        // The argument is the rest of the line: key names may hold spaces.
+        const std::size_t space = content.find_first_of(" \t");
+        const std::string command = content.substr(0, space);
+        const std::string argument =
+            space == std::string::npos ? "" : trim(content.substr(space));
+        const LineParser parser(origin, line, content);
+        for (const ReplayCommand& c : parse_line(parser, command, argument)) {
+            commands.push_back(c);
+        }
+    }
+    return commands;
+}
+
+std::vector<ReplayCommand> load_replay(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) {
+        throw ReplayError("--replay " + path + ": cannot open the file");
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    return parse_replay(text.str(), path);
+}
+
+ReplayPlayer::ReplayPlayer(std::vector<ReplayCommand> commands) : commands_(std::move(commands)) {}
+
+void ReplayPlayer::step(std::uint32_t window_id, std::uint32_t now_ms, long shown_spp) {
+    bool pushed = false;
+    while (next_ < commands_.size()) {
+        const ReplayCommand& c = commands_[next_];
+        const bool is_wait = c.type == Type::wait || c.type == Type::wait_spp;
+        if (is_wait && pushed) {
+            // The window handles the events first: a wait_spp right after a
+            // camera change must see the new view's samples, not the old.
+            return;
+        }
+        if (c.type == Type::wait) {
+            if (!waiting_) {
+                waiting_ = true;
+                wait_started_ms_ = now_ms;
+            }
+            if (now_ms - wait_started_ms_ < static_cast<std::uint32_t>(c.value)) {
+                return;
+            }
+            waiting_ = false;
+        } else if (c.type == Type::wait_spp) {
+            if (shown_spp < c.value) {
+                return;
+            }
+        } else {
+            push(window_id, c);
+            pushed = true;
+        }
+        ++next_;
+    }
+}
+
+void ReplayPlayer::push(std::uint32_t window_id, const ReplayCommand& c) {
+    SDL_Event e;
+    SDL_zero(e);
+    switch (c.type) {
+    case Type::key_down:
+    case Type::key_up: {
+        const SDL_Keycode key = static_cast<SDL_Keycode>(c.value);
+        const bool down = c.type == Type::key_down;
+        if (down) {
+            modifiers_ = static_cast<std::uint16_t>(modifiers_ | modifier_of(key));
+        } else {
+            modifiers_ = static_cast<std::uint16_t>(modifiers_ & ~modifier_of(key));
+        }
+        e.type = down ? SDL_KEYDOWN : SDL_KEYUP;
+        e.key.windowID = window_id;
+        e.key.state = down ? SDL_PRESSED : SDL_RELEASED;
+        e.key.keysym.sym = key;
+        e.key.keysym.scancode = SDL_GetScancodeFromKey(key);
+        e.key.keysym.mod = modifiers_;
+        break;
+    }
+    case Type::mouse_move:
+        e.type = SDL_MOUSEMOTION;
+        e.motion.windowID = window_id;
+        e.motion.state = mouse_buttons_;
+        e.motion.x = c.x;
+        e.motion.y = c.y;
+        e.motion.xrel = c.x - mouse_x_;
+        e.motion.yrel = c.y - mouse_y_;
+        mouse_x_ = c.x;
+        mouse_y_ = c.y;
+        break;
+    case Type::mouse_down:
+    case Type::mouse_up: {
+        const bool down = c.type == Type::mouse_down;
+        const std::uint32_t mask = SDL_BUTTON(static_cast<int>(c.value));
+        mouse_buttons_ = down ? (mouse_buttons_ | mask) : (mouse_buttons_ & ~mask);
+        e.type = down ? SDL_MOUSEBUTTONDOWN : SDL_MOUSEBUTTONUP;
+        e.button.windowID = window_id;
+        e.button.button = static_cast<std::uint8_t>(c.value);
+        e.button.state = down ? SDL_PRESSED : SDL_RELEASED;
+        e.button.clicks = 1;
+        e.button.x = mouse_x_;
+        e.button.y = mouse_y_;
+        break;
+    }
+    case Type::wheel:
+        e.type = SDL_MOUSEWHEEL;
+        e.wheel.windowID = window_id;
+        e.wheel.y = static_cast<std::int32_t>(c.value);
+        e.wheel.direction = SDL_MOUSEWHEEL_NORMAL;
+        break;
+    case Type::wait:
+    case Type::wait_spp:
+        return;
+    }
+    e.common.timestamp = SDL_GetTicks();
+    if (SDL_PushEvent(&e) < 0) {
+        std::fprintf(stderr, "trac0r_viewer: --replay: cannot push an event: %s\n",
+                     SDL_GetError());
+    }
+}
+
+}  // namespace trac0r_viewer

@@ -1,0 +1,73 @@
+// Scripted input for the window (--replay FILE): the tests' way, and a
+// user's, to drive the viewer reproducibly. Input commands become real SDL
+// events (SDL_PushEvent) that the window handles exactly as a person's.
+//
+// One command per line; '#' starts a comment; blank lines are ignored.
+//
+//   wait MS              pause for MS milliseconds
+//   wait_spp N           until the window shows the current view at full
+//                        resolution with at least N samples per pixel
+//   key NAME             press and release a key
+//   key_down NAME        press (and hold) a key
+//   key_up NAME          release it
+//   mouse_move X Y       move the pointer to window coordinates X, Y
+//   mouse_down BUTTON    left, middle or right, at the pointer
+//   mouse_up BUTTON
+//   wheel N              scroll N notches (positive: away from the user)
+//
+// NAME is an SDL key name: W, F1, Escape, Space, Left Shift, Keypad +, ...
+#ifndef TRAC0R_VIEWER_REPLAY_H
+#define TRAC0R_VIEWER_REPLAY_H
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace trac0r_viewer {
+
+// A bad replay file: "FILE:LINE: what was expected".
+class ReplayError : public std::runtime_error {
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+struct ReplayCommand {
+    enum class Type { wait, wait_spp, key_down, key_up, mouse_move, mouse_down, mouse_up, wheel };
+    Type type = Type::wait;
+    long value = 0;  // milliseconds, samples per pixel, SDL key code, SDL button or notches
+    int x = 0;       // mouse_move
+    int y = 0;
+};
+
+// Reads and checks the whole file (so a typo fails before a window opens).
+std::vector<ReplayCommand> load_replay(const std::string& path);
+std::vector<ReplayCommand> parse_replay(const std::string& text, const std::string& origin);
+
+class ReplayPlayer {
+  public:
+    explicit ReplayPlayer(std::vector<ReplayCommand> commands);
+
+    // Pushes the events of every command that is due, in order, stopping at
+    // the first wait that is not over, and before any wait that follows
+    // events pushed in this call (the window handles those first). now_ms: SDL ticks; shown_spp: samples
+    // per pixel of the current view on screen (0 while none at full size).
+    void step(std::uint32_t window_id, std::uint32_t now_ms, long shown_spp);
+    bool finished() const { return next_ >= commands_.size(); }
+
+  private:
+    void push(std::uint32_t window_id, const ReplayCommand& command);
+
+    std::vector<ReplayCommand> commands_;
+    std::size_t next_ = 0;
+    bool waiting_ = false;
+    std::uint32_t wait_started_ms_ = 0;
+    int mouse_x_ = 0;
+    int mouse_y_ = 0;
+    std::uint32_t mouse_buttons_ = 0;  // SDL_BUTTON masks
+    std::uint16_t modifiers_ = 0;      // KMOD_* of the held keys
+};
+
+}  // namespace trac0r_viewer
+
+#endif

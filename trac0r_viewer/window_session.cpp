@@ -1,0 +1,492 @@
+#include "window_session.h"
+
+#include "headless.h"
+#include "overlay.h"
+#include "replay.h"
+#include "window.h"
+
+#include "trac0r/fly_camera.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <set>
+#include <vector>
+
+namespace trac0r_viewer {
+
+namespace {
+
+// A text shown for a few seconds at the bottom of the window.
+struct Message {
+    std::string text;
+    std::uint32_t until_ms;
+};
+
+// "trac0r-20250101-120000-123": local time to the millisecond, so that
+// screenshots sort by time and two in one second do not collide.
+std::string timestamped_name() {
+    const auto now = std::chrono::system_clock::now();
+    const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
+    const long millis = static_cast<long>(
+        std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() %
+        1000);
+    std::tm local;
+    localtime_r(&seconds, &local);
+    char stamp[32];
+    std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &local);
+    char name[64];
+    std::snprintf(name, sizeof name, "trac0r-%s-%03ld", stamp, millis);
+    return name;
+}
+
+std::string in_working_directory(const std::string& name) {
+    char buffer[4096];
+    return getcwd(buffer, sizeof buffer) ? std::string(buffer) + "/" + name : name;
+}
+
+std::string without_trailing_newline(std::string s) {
+    while (!s.empty() && s.back() == '\n') {
+        s.pop_back();
+    }
+    return s;
+}
+
+// How far the camera moves per second, and the overlay's near plane: both
+// follow the scene's size, so a scene in millimetres behaves like one in
+// metres.
+float scene_size(const std::vector<trac0r::AABB>& boxes) {
+    trac0r::AABB all;
+    for (const trac0r::AABB& b : boxes) {
+        all.extend(b);
+    }
+    return all.empty() ? 1.0f : std::max(1e-6f, glm::length(all.max - all.min));
+}
+
+class Session {
+  public:
+    Session(const Options& options, Window& window, const Font& font,
+            std::unique_ptr<trac0r::Renderer> renderer,
+            const RenderWorker::BackendFactory& make_backend,
+            std::vector<ReplayCommand> replay);
+    int run();
+
+  private:
+    void handle(const SDL_Event& e);
+    void handle_key(const SDL_KeyboardEvent& key);
+    bool held(SDL_Keycode key) const { return held_.count(key) != 0; }
+    void move(float seconds);
+    void change_camera(const trac0r::Camera& camera);
+    void take_from_worker();
+    long shown_spp() const;
+    void draw();
+    OverlayFigures figures() const;
+    void save_screenshot();
+    void say(const std::string& text);
+
+    const Options& options_;
+    Window& window_;
+    const Font& font_;
+    std::vector<trac0r::AABB> boxes_;
+    std::size_t triangles_;
+    float scene_size_;
+    trac0r::Camera camera_;
+    std::uint32_t frame_event_;
+    std::unique_ptr<RenderWorker> worker_;  // after everything it may call
+    ReplayPlayer replay_;
+    bool replaying_;
+
+    std::uint64_t requested_generation_ = 0;
+    WorkerFrame shown_;  // the frame on screen
+    bool have_frame_ = false;
+    trac0r::Image last_full_image_;  // for --output at the end
+    float exposure_;
+    bool overlay_ = false;
+    bool help_ = false;
+    bool screenshot_requested_ = false;
+    bool quit_ = false;
+    bool dirty_ = true;
+    std::set<SDL_Keycode> held_;  // from events, so replayed keys count too
+    bool looking_ = false;        // right button held
+    int mouse_x_ = -1;
+    int mouse_y_ = -1;
+    std::vector<Message> messages_;
+};
+
+Session::Session(const Options& options, Window& window, const Font& font,
+                 std::unique_ptr<trac0r::Renderer> renderer,
+                 const RenderWorker::BackendFactory& make_backend,
+                 std::vector<ReplayCommand> replay)
+    : options_(options),
+      window_(window),
+      font_(font),
+      triangles_(renderer->packed().triangles.size()),
+      camera_(renderer->scene().camera),
+      frame_event_(SDL_RegisterEvents(1)),
+      replay_(std::move(replay)),
+      replaying_(!options.replay_path.empty()),
+      exposure_(options.exposure) {
+    for (const trac0r::Shape& shape : renderer->scene().shapes) {
+        boxes_.push_back(shape.aabb);
+    }
+    scene_size_ = scene_size(boxes_);
+    WorkerSettings settings;
+    settings.seed = options.seed;
+    settings.pack.accel = trac0r::parse_accel(options.accel);
+    settings.spp_limit = options.spp;
+    settings.seconds_limit = options.seconds;
+    const std::uint32_t event_type = frame_event_;
+    worker_ = std::make_unique<RenderWorker>(std::move(renderer), make_backend, settings, [=] {
+        // Wakes the event loop at once; SDL_PushEvent may be called from any thread.
+        SDL_Event e;
+        SDL_zero(e);
+        e.type = event_type;
+        SDL_PushEvent(&e);
+    });
+}
+
+int Session::run() {
+    std::uint32_t last_ms = SDL_GetTicks();
+    while (!quit_) {
+        // Block until input or a frame arrives; tick often only while keys
+        // move the camera or a replay waits for its time.
+        const bool busy = replaying_ || !held_.empty() || !messages_.empty();
+        SDL_Event e;
+        if (SDL_WaitEventTimeout(&e, busy ? 10 : 250)) {
+            handle(e);
+            // A screenshot shows the window as it was when P was pressed:
+            // the events after it wait for the next round.
+            while (!quit_ && !screenshot_requested_ && SDL_PollEvent(&e)) {
+                handle(e);
+            }
+        }
+        const std::uint32_t now = SDL_GetTicks();
+        // A stall (a window drag, a slow draw) must not throw the camera far.
+        move(std::min(0.1f, (now - last_ms) / 1000.0f));
+        last_ms = now;
+        take_from_worker();
+        const std::string failure = worker_->failure();
+        if (!failure.empty()) {
+            std::fprintf(stderr, "trac0r_viewer: error: rendering stopped: %s\n",
+                         failure.c_str());
+            return 1;
+        }
+        if (replaying_) {
+            replay_.step(window_.id(), now, shown_spp());
+            replaying_ = !replay_.finished();
+        }
+        const std::size_t before = messages_.size();
+        messages_.erase(std::remove_if(messages_.begin(), messages_.end(),
+                                       [&](const Message& m) { return now >= m.until_ms; }),
+                        messages_.end());
+        dirty_ = dirty_ || messages_.size() != before;
+        if (dirty_ || screenshot_requested_) {
+            draw();
+        }
+    }
+    window_.hide();  // the window goes at once; the frame in flight may take a while
+    if (!options_.outputs.empty()) {
+        if (last_full_image_.pixels.empty()) {
+            std::fprintf(stderr, "trac0r_viewer: --output: no frame had finished yet; nothing "
+                                 "saved\n");
+            return 1;
+        }
+        save_outputs(last_full_image_, options_);
+    }
+    return 0;
+}
+
+void Session::handle(const SDL_Event& e) {
+    switch (e.type) {
+    case SDL_QUIT:
+        quit_ = true;
+        break;
+    case SDL_WINDOWEVENT:
+        if (e.window.event == SDL_WINDOWEVENT_FOCUS_LOST) {
+            held_.clear();  // the key-up events will go elsewhere
+            looking_ = false;
+        }
+        dirty_ = true;
+        break;
+    case SDL_RENDER_TARGETS_RESET:
+    case SDL_RENDER_DEVICE_RESET:
+        if (have_frame_) {
+            window_.set_image(trac0r::tonemap_image(shown_.image, exposure_));
+        }
+        dirty_ = true;
+        break;
+    case SDL_KEYDOWN:
+        held_.insert(e.key.keysym.sym);
+        handle_key(e.key);
+        break;
+    case SDL_KEYUP:
+        held_.erase(e.key.keysym.sym);
+        break;
+    case SDL_MOUSEBUTTONDOWN:
+    case SDL_MOUSEBUTTONUP:
+        if (e.button.button == SDL_BUTTON_RIGHT) {
+            looking_ = e.type == SDL_MOUSEBUTTONDOWN;
+        }
+        break;
+    case SDL_MOUSEMOTION: {
+        mouse_x_ = e.motion.x;
+        mouse_y_ = e.motion.y;
+        dirty_ = dirty_ || overlay_;
+        if (looking_ && (e.motion.xrel != 0 || e.motion.yrel != 0)) {
+            // The scene follows the pointer: one window pixel turns the view
+            // by one pixel's share of the field of view.
+            const float radians_per_pixel =
+                glm::radians(camera_.vertical_fov) / std::max(1, window_.image_rect().h);
+            change_camera(trac0r::turn_camera(camera_, e.motion.xrel * radians_per_pixel,
+                                              -e.motion.yrel * radians_per_pixel));
+        }
+        break;
+    }
+    case SDL_MOUSEWHEEL: {
+        const int notches =
+            e.wheel.direction == SDL_MOUSEWHEEL_FLIPPED ? -e.wheel.y : e.wheel.y;
+        if (notches != 0) {
+            // Away from the user zooms in: a narrower field of view.
+            change_camera(trac0r::zoom_camera(camera_, std::pow(0.9f, static_cast<float>(notches))));
+        }
+        break;
+    }
+    default:
+        break;
+    }
+}
+
+void Session::handle_key(const SDL_KeyboardEvent& key) {
+    const SDL_Keycode k = key.keysym.sym;
+    if (k == SDLK_PLUS || k == SDLK_EQUALS || k == SDLK_KP_PLUS || k == SDLK_MINUS ||
+        k == SDLK_KP_MINUS) {
+        // Half a stop per press; held keys repeat.
+        const bool up = k == SDLK_PLUS || k == SDLK_EQUALS || k == SDLK_KP_PLUS;
+        exposure_ *= up ? std::sqrt(2.0f) : 1.0f / std::sqrt(2.0f);
+        if (have_frame_) {
+            window_.set_image(trac0r::tonemap_image(shown_.image, exposure_));
+        }
+        char text[64];
+        std::snprintf(text, sizeof text, "exposure %.3g", exposure_);
+        say(text);
+        return;
+    }
+    if (key.repeat) {
+        return;  // toggles and actions: once per press
+    }
+    switch (k) {
+    case SDLK_ESCAPE:
+        quit_ = true;
+        break;
+    case SDLK_F1:
+        overlay_ = !overlay_;
+        dirty_ = true;
+        break;
+    case SDLK_h:
+        help_ = !help_;
+        dirty_ = true;
+        break;
+    case SDLK_p:
+        if (have_frame_) {
+            screenshot_requested_ = true;
+        } else {
+            say("no image yet: the first frame is still rendering");
+        }
+        break;
+    case SDLK_r:
+        requested_generation_ = worker_->restart();
+        say("accumulation restarted");
+        break;
+    case SDLK_b: {
+        const std::string current = have_frame_ ? shown_.backend : options_.backend;
+        const std::string other = current == "cpu" ? "opencl" : "cpu";
+        requested_generation_ = worker_->switch_backend(other);
+        say("switching to the " + other + " backend...");
+        break;
+    }
+    default:
+        break;
+    }
+}
+
+void Session::move(float seconds) {
+    glm::vec3 direction(0.0f);  // x right, y up, z forward
+    direction.z += held(SDLK_w) ? 1.0f : 0.0f;
+    direction.z -= held(SDLK_s) ? 1.0f : 0.0f;
+    direction.x += held(SDLK_d) ? 1.0f : 0.0f;
+    direction.x -= held(SDLK_a) ? 1.0f : 0.0f;
+    direction.y += (held(SDLK_e) || held(SDLK_SPACE)) ? 1.0f : 0.0f;
+    direction.y -= (held(SDLK_q) || held(SDLK_LCTRL) || held(SDLK_RCTRL)) ? 1.0f : 0.0f;
+    if (direction == glm::vec3(0.0f) || seconds <= 0.0f) {
+        return;
+    }
+    // A quarter of the scene's diagonal per second; Shift five times that.
+    const float fast = (held(SDLK_LSHIFT) || held(SDLK_RSHIFT)) ? 5.0f : 1.0f;
+    const float distance = 0.25f * scene_size_ * fast * seconds;
+    change_camera(trac0r::move_camera(camera_, glm::normalize(direction) * distance));
+}
+
+void Session::change_camera(const trac0r::Camera& camera) {
+    camera_ = camera;
+    requested_generation_ = worker_->set_camera(camera_);
+    dirty_ = dirty_ || overlay_;  // the wireframes follow at once
+}
+
+void Session::take_from_worker() {
+    WorkerFrame frame;
+    if (worker_->take_frame(&frame)) {
+        shown_ = std::move(frame);
+        have_frame_ = true;
+        window_.set_image(trac0r::tonemap_image(shown_.image, exposure_));
+        if (!shown_.preview) {
+            last_full_image_ = shown_.image;
+        }
+        dirty_ = true;
+    }
+    for (const std::string& m : worker_->take_messages()) {
+        say(m);
+    }
+}
+
+// What --replay's wait_spp waits for: the newest view, at full resolution.
+long Session::shown_spp() const {
+    const bool current = have_frame_ && !shown_.preview &&
+                         shown_.generation == requested_generation_;
+    return current ? static_cast<long>(shown_.spp) : 0;
+}
+
+void Session::say(const std::string& text) {
+    std::fprintf(stderr, "%s\n", text.c_str());
+    messages_.push_back({text, SDL_GetTicks() + 4000});
+    dirty_ = true;
+}
+
+OverlayFigures Session::figures() const {
+    OverlayFigures f;
+    f.frame_seconds = shown_.frame_seconds;
+    f.pixels = static_cast<long>(shown_.image.width) * shown_.image.height;
+    f.spp = shown_.spp;
+    f.relative_mse = shown_.relative_mse;
+    f.preview_factor = shown_.preview ? window_.render_width() / std::max(1, shown_.image.width) : 0;
+    f.backend = have_frame_ ? shown_.backend : options_.backend;
+    f.device = have_frame_ ? shown_.device : "(first frame rendering)";
+    f.triangles = triangles_;
+    f.shapes = boxes_.size();
+    f.width = window_.render_width();
+    f.height = window_.render_height();
+    f.camera = camera_;
+    f.exposure = exposure_;
+    float x = 0.0f;
+    float y = 0.0f;
+    f.mouse_in_image = have_frame_ && window_.window_to_render(mouse_x_, mouse_y_, &x, &y);
+    if (f.mouse_in_image) {
+        f.mouse_x = static_cast<int>(x);
+        f.mouse_y = static_cast<int>(y);
+        // A preview is smaller: the same spot of it.
+        const int ix = std::min(shown_.image.width - 1,
+                                static_cast<int>(x * shown_.image.width / f.width));
+        const int iy = std::min(shown_.image.height - 1,
+                                static_cast<int>(y * shown_.image.height / f.height));
+        f.mouse_radiance = shown_.image.at(ix, iy);
+    }
+    return f;
+}
+
+void Session::draw() {
+    window_.draw_image();
+    if (overlay_) {
+        draw_wireframes(window_, boxes_, camera_, 1e-4f * scene_size_);
+        font_.draw_panel(window_.renderer(), overlay_text(figures()), 8, 8);
+    }
+    // The screenshot is the image as shown with the overlay, without the
+    // help and the messages, which only talk about the window.
+    if (screenshot_requested_) {
+        screenshot_requested_ = false;
+        save_screenshot();
+    }
+    if (help_) {
+        font_.draw_panel(window_.renderer(),
+                         "Keys and mouse\n" + without_trailing_newline(key_help_text()), -8, 8);
+    }
+    if (!messages_.empty()) {
+        std::string text;
+        for (const Message& m : messages_) {
+            text += (text.empty() ? "" : "\n") + m.text;
+        }
+        font_.draw_panel(window_.renderer(), text, 8, -8);
+    }
+    window_.present();
+    dirty_ = false;
+}
+
+// A base name no earlier screenshot has: two in one millisecond (a
+// script's) get "-2", "-3", ...
+std::string unused_screenshot_base() {
+    const std::string stamp = in_working_directory(timestamped_name());
+    std::string base = stamp;
+    for (int n = 2; std::ifstream(base + ".png") || std::ifstream(base + ".pfm"); ++n) {
+        base = stamp + "-" + std::to_string(n);
+    }
+    return base;
+}
+
+void Session::save_screenshot() {
+    const std::string base = unused_screenshot_base();
+    const std::string png = base + ".png";
+    const std::string pfm = base + ".pfm";
+    try {
+        trac0r::write_png(png, window_.read_image_area());
+        trac0r::write_pfm(pfm, shown_.image);
+    } catch (const std::exception& e) {
+        say(std::string("screenshot failed: ") + e.what());
+        return;
+    }
+    char text[8192];
+    std::snprintf(text, sizeof text, "screenshot: %s and %s (%u spp%s)", png.c_str(), pfm.c_str(),
+                  shown_.spp, shown_.preview ? ", low-resolution preview" : "");
+    say(text);
+}
+
+}  // namespace
+
+int run_window(const Options& options, const std::string& title,
+               const trac0r::RenderSettings& render, const RendererFactory& make_renderer,
+               const RenderWorker::BackendFactory& make_backend) {
+    std::vector<ReplayCommand> replay;
+    if (!options.replay_path.empty()) {
+        replay = load_replay(options.replay_path);
+    }
+    const bool benchmark = options.benchmark_frames > 0;
+    // The benchmark shows only the image: no text, no font needed.
+    std::unique_ptr<Font> font;
+    if (!benchmark) {
+        const int point_size = std::max(10, std::min(15, render.height / 40));
+        font = std::make_unique<Font>(overlay_font_path(), point_size);
+    }
+    Window window(title, render.width, render.height, !benchmark);
+    std::unique_ptr<trac0r::Renderer> renderer = make_renderer();
+    if (benchmark) {
+        return run_benchmark(*renderer, options, [&] {
+            window.set_image(trac0r::tonemap_image(renderer->image(), options.exposure));
+            window.draw_image();
+            window.present();
+            SDL_Event e;
+            while (SDL_PollEvent(&e)) {
+                if (e.type == SDL_QUIT ||
+                    (e.type == SDL_KEYDOWN && e.key.keysym.sym == SDLK_ESCAPE)) {
+                    return false;
+                }
+            }
+            return true;
+        });
+    }
+    Session session(options, window, *font, std::move(renderer), make_backend, std::move(replay));
+    return session.run();
+}
+
+}  // namespace trac0r_viewer

@@ -1,0 +1,258 @@
+#include "window_worker.h"
+
+#include "trac0r/noise.h"
+
+#include <algorithm>
+#include <exception>
+#include <limits>
+
+namespace trac0r_viewer {
+
+namespace {
+
+using Clock = RenderWorker::Clock;
+
+double seconds_since(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+int preview_factor(int width, int height) {
+    return std::max(1, std::min(4, std::min(width / 80, height / 60)));
+}
+
+RenderWorker::RenderWorker(std::unique_ptr<trac0r::Renderer> renderer,
+                           BackendFactory make_backend, const WorkerSettings& settings,
+                           std::function<void()> frame_ready)
+    : full_(std::move(renderer)),
+      preview_factor_(preview_factor(full_->width(), full_->height())),
+      make_backend_(std::move(make_backend)),
+      settings_(settings),
+      camera_(full_->scene().camera),
+      full_started_(Clock::now()),
+      frame_ready_(std::move(frame_ready)),
+      thread_(&RenderWorker::run, this) {}
+
+RenderWorker::~RenderWorker() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stop_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+}
+
+std::uint64_t RenderWorker::set_camera(const trac0r::Camera& camera) {
+    std::uint64_t generation;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        pending_.camera_changed = true;
+        pending_.camera = camera;
+        generation = pending_.generation = ++last_generation_;
+    }
+    wake_.notify_all();
+    return generation;
+}
+
+std::uint64_t RenderWorker::restart() {
+    std::uint64_t generation;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        pending_.restart = true;
+        generation = pending_.generation = ++last_generation_;
+    }
+    wake_.notify_all();
+    return generation;
+}
+
+std::uint64_t RenderWorker::switch_backend(const std::string& name) {
+    std::uint64_t generation;
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        pending_.backend = name;
+        generation = pending_.generation = ++last_generation_;
+    }
+    wake_.notify_all();
+    return generation;
+}
+
+bool RenderWorker::take_frame(WorkerFrame* frame) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!frame_fresh_) {
+        return false;
+    }
+    *frame = std::move(frame_);
+    frame_fresh_ = false;
+    return true;
+}
+
+std::vector<std::string> RenderWorker::take_messages() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<std::string> messages;
+    messages.swap(messages_);
+    return messages;
+}
+
+std::string RenderWorker::failure() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return failure_;
+}
+
+void RenderWorker::tell(const std::string& message) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    messages_.push_back(message);
+}
+
+// --spp and --seconds: the image is done; nothing to do until a request.
+bool RenderWorker::paused() const {
+    if (full_stale_) {
+        return false;
+    }
+    const bool spp_done = settings_.spp_limit > 0 && full_->frames() >= settings_.spp_limit;
+    const bool time_done =
+        settings_.seconds_limit > 0.0 && seconds_since(full_started_) >= settings_.seconds_limit;
+    return spp_done || time_done;
+}
+
+void RenderWorker::run() {
+    try {
+        for (;;) {
+            Requests requests;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                wake_.wait(lock, [&] {
+                    return stop_ || pending_.generation != applied_generation_ || !paused();
+                });
+                if (stop_) {
+                    return;
+                }
+                requests = pending_;
+                pending_ = Requests();
+                pending_.generation = requests.generation;
+            }
+            apply(requests);
+            if (requests.camera_changed && preview_factor_ > 1) {
+                render_preview();
+            } else {
+                render_full();
+            }
+        }
+    } catch (const std::exception& e) {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            failure_ = e.what();
+        }
+        frame_ready_();
+    }
+}
+
+void RenderWorker::apply(const Requests& requests) {
+    if (requests.camera_changed) {
+        camera_ = requests.camera;
+        full_stale_ = true;
+    }
+    if (requests.restart) {
+        full_stale_ = true;
+    }
+    if (!requests.backend.empty()) {
+        change_backend(requests.backend);
+    }
+    applied_generation_ = requests.generation;
+}
+
+// A new Renderer on the new backend: the Renderer has no way to swap its
+// backend, and packing the scene again costs far less than a frame.
+void RenderWorker::change_backend(const std::string& name) {
+    const std::string current = full_->backend().name();
+    if (name == current) {
+        return;
+    }
+    try {
+        trac0r::Scene scene = full_->scene();
+        scene.camera = camera_;
+        full_ = std::make_unique<trac0r::Renderer>(scene, make_backend_(name), settings_.seed,
+                                                   settings_.pack);
+        preview_.reset();  // made again on the new backend when needed
+        full_stale_ = true;
+        tell("backend: " + name + " (" + full_->backend().device() + ")");
+    } catch (const std::exception& e) {
+        tell("cannot switch to " + name + ": " + e.what() + "; staying on " + current);
+    }
+}
+
+void RenderWorker::render_preview() {
+    if (!preview_) {
+        trac0r::Scene scene = full_->scene();
+        scene.camera = camera_;
+        scene.render.width /= preview_factor_;
+        scene.render.height /= preview_factor_;
+        try {
+            preview_ = std::make_unique<trac0r::Renderer>(
+                scene, make_backend_(full_->backend().name()), settings_.seed, settings_.pack);
+        } catch (const std::exception& e) {
+            // Navigation still works, at full resolution.
+            tell(std::string("no low-resolution preview while moving: ") + e.what());
+            preview_factor_ = 1;
+            render_full();
+            return;
+        }
+    }
+    const Clock::time_point start = Clock::now();
+    preview_->set_camera(camera_);  // one frame per camera: no accumulation
+    preview_->render_frame();
+    publish(*preview_, true, start);
+}
+
+void RenderWorker::render_full() {
+    if (full_stale_) {
+        full_->set_camera(camera_);  // restarts accumulation
+        full_started_ = Clock::now();
+        full_stale_ = false;
+        last_estimate_spp_ = 0;
+    }
+    const Clock::time_point start = Clock::now();
+    full_->render_frame();
+    publish(*full_, false, start);
+}
+
+double RenderWorker::noise_estimate() {
+    if (full_->frames() < 2) {
+        return std::numeric_limits<double>::infinity();
+    }
+    // Fresh when there is none for this accumulation yet, when it is old,
+    // and for the last frame before a --spp or --seconds pause, which stays
+    // on screen.
+    const bool due = last_estimate_spp_ == 0 ||
+                     seconds_since(last_estimate_time_) >= noise_estimate_interval || paused();
+    if (due && last_estimate_spp_ != full_->frames()) {
+        last_estimate_ = trac0r::estimate_relative_mse(full_->accumulator(), full_->width(),
+                                                       full_->height());
+        last_estimate_spp_ = full_->frames();
+        last_estimate_time_ = Clock::now();
+    }
+    return last_estimate_;
+}
+
+void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time_point start) {
+    WorkerFrame frame;
+    frame.image = renderer.image();
+    frame.spp = renderer.frames();
+    frame.preview = preview;
+    frame.frame_seconds = seconds_since(start);
+    frame.relative_mse = preview ? std::numeric_limits<double>::infinity() : noise_estimate();
+    frame.generation = applied_generation_;
+    frame.backend = renderer.backend().name();
+    frame.device = renderer.backend().device();
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (last_generation_ != applied_generation_) {
+            return;  // a request came in during the frame: it shows an old view
+        }
+        frame_ = std::move(frame);
+        frame_fresh_ = true;
+    }
+    frame_ready_();
+}
+
+}  // namespace trac0r_viewer

@@ -1,0 +1,140 @@
+// The window's render thread. A frame takes up to seconds, so rendering
+// runs here and the window's thread only handles input and drawing.
+//
+// The Renderer is not thread-safe: this thread owns it outright. The window
+// sends requests (camera, restart, backend), which the thread applies
+// between frames, and takes copies of finished frames under a mutex.
+//
+// While the camera moves (a new camera arrived during the last frame), the
+// thread renders single frames at a reduced resolution, so navigation stays
+// fluid; once it stops, accumulation restarts at full resolution.
+#ifndef TRAC0R_VIEWER_WINDOW_WORKER_H
+#define TRAC0R_VIEWER_WINDOW_WORKER_H
+
+#include "trac0r/camera.h"
+#include "trac0r/image_io.h"
+#include "trac0r/renderer.h"
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace trac0r_viewer {
+
+// How often the worker refreshes WorkerFrame::relative_mse, in seconds.
+constexpr double noise_estimate_interval = 0.25;
+
+// A finished frame: the running mean and what the overlay says about it.
+struct WorkerFrame {
+    trac0r::Image image;  // linear radiance
+    std::uint32_t spp = 0;
+    bool preview = false;        // reduced resolution, while the camera moves
+    double frame_seconds = 0.0;  // rendering and reading back this frame
+    // trac0r::estimate_relative_mse of the running mean, refreshed at most
+    // every noise_estimate_interval (it reads every pixel's 5 x 5
+    // neighbourhood); +inf below 2 spp and for previews.
+    double relative_mse = 0.0;
+    std::uint64_t generation = 0;  // of the last request it reflects
+    std::string backend;
+    std::string device;
+};
+
+struct WorkerSettings {
+    std::uint64_t seed = 1;
+    trac0r::PackOptions pack;  // for renderers made on a backend switch
+    long spp_limit = 0;         // pause at this many samples per pixel (0: never)
+    double seconds_limit = 0.0;  // pause after this long since a restart (0: never)
+};
+
+class RenderWorker {
+  public:
+    // A backend by name ("cpu", "opencl"); throws, saying why, when it
+    // cannot be had.
+    using BackendFactory = std::function<std::unique_ptr<trac0r::Backend>(const std::string&)>;
+
+    // Starts the thread. `frame_ready` is called from it after each frame
+    // is published (and when it fails), to wake the window.
+    RenderWorker(std::unique_ptr<trac0r::Renderer> renderer, BackendFactory make_backend,
+                 const WorkerSettings& settings, std::function<void()> frame_ready);
+    ~RenderWorker();  // finishes the frame in flight, then stops
+    RenderWorker(const RenderWorker&) = delete;
+    RenderWorker& operator=(const RenderWorker&) = delete;
+
+    // Requests, applied before the next frame. Each returns its generation:
+    // frames that reflect it carry that number or a later one.
+    std::uint64_t set_camera(const trac0r::Camera& camera);
+    std::uint64_t restart();
+    std::uint64_t switch_backend(const std::string& name);
+
+    // The newest frame, when there is one not taken yet.
+    bool take_frame(WorkerFrame* frame);
+    // Things to tell the user (a backend switch and why it failed).
+    std::vector<std::string> take_messages();
+    // Why the thread stopped, or empty while it runs.
+    std::string failure();
+
+    using Clock = std::chrono::steady_clock;
+
+  private:
+    struct Requests {
+        bool camera_changed = false;
+        trac0r::Camera camera;
+        bool restart = false;
+        std::string backend;
+        std::uint64_t generation = 0;
+    };
+
+    void run();
+    bool paused() const;
+    void apply(const Requests& requests);
+    void change_backend(const std::string& name);
+    void render_preview();
+    void render_full();
+    // Copies the running mean out; frame_seconds counts from `start`.
+    void publish(trac0r::Renderer& renderer, bool preview, Clock::time_point start);
+    // The noise estimate of full_'s mean, or the last one while it is recent.
+    double noise_estimate();
+    void tell(const std::string& message);
+
+    // Owned by the thread (no lock): only run() and what it calls use them.
+    std::unique_ptr<trac0r::Renderer> full_;
+    std::unique_ptr<trac0r::Renderer> preview_;  // made on the first move
+    int preview_factor_;                         // 1: no preview
+    BackendFactory make_backend_;
+    WorkerSettings settings_;
+    trac0r::Camera camera_;
+    bool full_stale_ = false;  // full_ has not seen camera_ or a restart yet
+    Clock::time_point full_started_;
+    std::uint64_t applied_generation_ = 0;
+    double last_estimate_ = 0.0;
+    std::uint32_t last_estimate_spp_ = 0;  // 0: none since the last restart
+    Clock::time_point last_estimate_time_;
+
+    // Shared with the window's thread, under mutex_.
+    std::mutex mutex_;
+    std::condition_variable wake_;
+    Requests pending_;
+    std::uint64_t last_generation_ = 0;
+    bool stop_ = false;
+    bool frame_fresh_ = false;
+    WorkerFrame frame_;
+    std::vector<std::string> messages_;
+    std::string failure_;
+
+    std::function<void()> frame_ready_;
+    std::thread thread_;  // last: starts after everything above exists
+};
+
+// The divisor of the preview's resolution: about a sixteenth of the pixels,
+// but no smaller than 80 x 60; 1 (no preview) for images too small for it.
+int preview_factor(int width, int height);
+
+}  // namespace trac0r_viewer
+
+#endif
