@@ -2,6 +2,8 @@
 // writes, and the messages and exit codes of bad command lines.
 #include <catch2/catch.hpp>
 
+#include "viewer_process.h"
+
 #include "trac0r/image_io.h"
 
 #include <sys/wait.h>
@@ -146,5 +148,28 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
         REQUIRE(r.output.find(c.expected) != std::string::npos);
         // One message: a single line, no progress bar, no crash.
         REQUIRE(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+    }
+}
+
+// No SDL_VIDEODRIVER: a user's shell has none, and "dummy" or "offscreen"
+// would open an invisible window instead of saying there is no display.
+TEST_CASE("without a display: one message pointing to --headless, exit 1, no crash", "[cli]") {
+    using trac0r_test::run_viewer_process;
+    const std::string no_display = "env -u DISPLAY -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER";
+    const trac0r_test::ViewerRun runs[] = {
+        run_viewer_process(cornell + " --width 32 --height 24", no_display),
+        run_viewer_process("--benchmark 3 --width 32 --height 24", no_display),
+        // A display that is set but not there (no X server on :64999).
+        run_viewer_process("--width 32 --height 24",
+                           "env -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER DISPLAY=:64999"),
+    };
+    for (const trac0r_test::ViewerRun& r : runs) {
+        CAPTURE(r.err);
+        CHECK(r.exit_code == 1);
+        CHECK((r.err.find("no display") != std::string::npos ||
+               r.err.find("cannot open a window on DISPLAY=:64999") != std::string::npos));
+        CHECK(r.err.find("use --headless") != std::string::npos);
+        CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
+        CHECK(r.out.empty());
     }
 }

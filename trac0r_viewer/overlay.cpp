@@ -99,8 +99,12 @@ std::string overlay_text(const OverlayFigures& f) {
     if (f.preview_factor > 0) {
         text += format("samples  %ld spp (1/%d-resolution preview while moving)\n", f.spp,
                        f.preview_factor);
-    } else if (std::isfinite(f.relative_mse)) {
+    } else if (std::isfinite(f.relative_mse) && f.relative_mse_spp == f.spp) {
         text += format("samples  %ld spp  rel. MSE \u2248 %.3g\n", f.spp, f.relative_mse);
+    } else if (std::isfinite(f.relative_mse)) {
+        // Estimated every half second or so (window_worker.h): say when.
+        text += format("samples  %ld spp  rel. MSE \u2248 %.3g at %ld spp\n", f.spp,
+                       f.relative_mse, f.relative_mse_spp);
     } else {
         text += format("samples  %ld spp  rel. MSE \u2248 ? (from 2 spp)\n", f.spp);
     }

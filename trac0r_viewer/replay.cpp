@@ -168,6 +168,9 @@ std::vector<ReplayCommand> load_replay(const std::string& path) {
 ReplayPlayer::ReplayPlayer(std::vector<ReplayCommand> commands) : commands_(std::move(commands)) {}
 
 void ReplayPlayer::step(std::uint32_t window_id, std::uint32_t now_ms, long shown_spp) {
+    if (awaiting_marker_) {
+        return;  // the window has not handled the last batch yet
+    }
     bool pushed = false;
     while (next_ < commands_.size()) {
         const ReplayCommand& c = commands_[next_];
@@ -175,6 +178,7 @@ void ReplayPlayer::step(std::uint32_t window_id, std::uint32_t now_ms, long show
         if (is_wait && pushed) {
             // The window handles the events first: a wait_spp right after a
             // camera change must see the new view's samples, not the old.
+            push_marker(window_id);
             return;
         }
         if (c.type == Type::wait) {
@@ -196,6 +200,37 @@ void ReplayPlayer::step(std::uint32_t window_id, std::uint32_t now_ms, long show
         }
         ++next_;
     }
+    if (pushed) {
+        push_marker(window_id);  // finished() only once the window has seen all
+    }
+}
+
+void ReplayPlayer::push_marker(std::uint32_t window_id) {
+    if (marker_type_ == 0) {
+        marker_type_ = SDL_RegisterEvents(1);
+        if (marker_type_ == static_cast<std::uint32_t>(-1)) {
+            throw ReplayError("--replay: SDL has no user event type left");
+        }
+    }
+    SDL_Event e;
+    SDL_zero(e);
+    e.type = marker_type_;
+    e.user.windowID = window_id;
+    e.user.timestamp = SDL_GetTicks();
+    if (SDL_PushEvent(&e) < 0) {
+        std::fprintf(stderr, "trac0r_viewer: --replay: cannot push an event: %s\n",
+                     SDL_GetError());
+        return;  // nothing would ever hand it back
+    }
+    awaiting_marker_ = true;
+}
+
+bool ReplayPlayer::handled(const SDL_Event& e) {
+    if (marker_type_ == 0 || e.type != marker_type_) {
+        return false;
+    }
+    awaiting_marker_ = false;
+    return true;
 }
 
 void ReplayPlayer::push(std::uint32_t window_id, const ReplayCommand& c) {

@@ -19,6 +19,8 @@
 #ifndef TRAC0R_VIEWER_REPLAY_H
 #define TRAC0R_VIEWER_REPLAY_H
 
+#include <SDL_events.h>
+
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -49,14 +51,24 @@ class ReplayPlayer {
     explicit ReplayPlayer(std::vector<ReplayCommand> commands);
 
     // Pushes the events of every command that is due, in order, stopping at
-    // the first wait that is not over, and before any wait that follows
-    // events pushed in this call (the window handles those first). now_ms: SDL ticks; shown_spp: samples
+    // the first wait that is not over. now_ms: SDL ticks; shown_spp: samples
     // per pixel of the current view on screen (0 while none at full size).
+    //
+    // A wait only starts once the window has handled every event pushed
+    // before it: a batch of events ends with a marker event, and nothing
+    // more happens until the window passes that marker to handled(). (The
+    // window may leave events queued for a later round, e.g. those after a
+    // P; a wait_spp checked before a queued camera change would see the old
+    // view's samples.)
     void step(std::uint32_t window_id, std::uint32_t now_ms, long shown_spp);
-    bool finished() const { return next_ >= commands_.size(); }
+    // True (and the batch counts as handled) when `e` is the marker event;
+    // the window calls it for every event it takes from the queue.
+    bool handled(const SDL_Event& e);
+    bool finished() const { return next_ >= commands_.size() && !awaiting_marker_; }
 
   private:
     void push(std::uint32_t window_id, const ReplayCommand& command);
+    void push_marker(std::uint32_t window_id);
 
     std::vector<ReplayCommand> commands_;
     std::size_t next_ = 0;
@@ -66,6 +78,8 @@ class ReplayPlayer {
     int mouse_y_ = 0;
     std::uint32_t mouse_buttons_ = 0;  // SDL_BUTTON masks
     std::uint16_t modifiers_ = 0;      // KMOD_* of the held keys
+    std::uint32_t marker_type_ = 0;    // an SDL user event type, registered on first use
+    bool awaiting_marker_ = false;     // pushed events the window has not handled yet
 };
 
 }  // namespace trac0r_viewer

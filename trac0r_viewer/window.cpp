@@ -30,8 +30,16 @@ void open_video() {
         throw WindowError(std::string("no display: DISPLAY and WAYLAND_DISPLAY are not set") +
                           no_display_advice);
     }
+    if (!driver_chosen && !is_set("WAYLAND_DISPLAY")) {
+        // Only X11 can work: an unreachable DISPLAY must not fall through to
+        // Wayland's own error lines and SDL's offscreen driver.
+        SDL_SetHint(SDL_HINT_VIDEODRIVER, "x11");
+    }
     if (SDL_InitSubSystem(SDL_INIT_VIDEO) != 0) {
-        throw WindowError("cannot open a window (" + sdl_error() + ")" + no_display_advice);
+        const std::string display = is_set("DISPLAY") ? std::getenv("DISPLAY") : "";
+        throw WindowError("cannot open a window" +
+                          (display.empty() ? std::string() : " on DISPLAY=" + display) + " (" +
+                          sdl_error() + ")" + no_display_advice);
     }
     const std::string driver = SDL_GetCurrentVideoDriver();
     if (!driver_chosen && (driver == "offscreen" || driver == "dummy")) {

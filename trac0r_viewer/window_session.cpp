@@ -87,7 +87,8 @@ class Session {
     void draw();
     OverlayFigures figures() const;
     void save_screenshot();
-    void say(const std::string& text);
+    // `text` goes to stderr and, unless `shown` is given, to the window.
+    void say(const std::string& text, const std::string& shown = "");
 
     const Options& options_;
     Window& window_;
@@ -202,6 +203,9 @@ int Session::run() {
 }
 
 void Session::handle(const SDL_Event& e) {
+    if (replay_.handled(e)) {
+        return;  // --replay's events before it are handled: its next wait may start
+    }
     switch (e.type) {
     case SDL_QUIT:
         quit_ = true;
@@ -360,9 +364,9 @@ long Session::shown_spp() const {
     return current ? static_cast<long>(shown_.spp) : 0;
 }
 
-void Session::say(const std::string& text) {
+void Session::say(const std::string& text, const std::string& shown) {
     std::fprintf(stderr, "%s\n", text.c_str());
-    messages_.push_back({text, SDL_GetTicks() + 4000});
+    messages_.push_back({shown.empty() ? text : shown, SDL_GetTicks() + 4000});
     dirty_ = true;
 }
 
@@ -372,6 +376,7 @@ OverlayFigures Session::figures() const {
     f.pixels = static_cast<long>(shown_.image.width) * shown_.image.height;
     f.spp = shown_.spp;
     f.relative_mse = shown_.relative_mse;
+    f.relative_mse_spp = shown_.relative_mse_spp;
     f.preview_factor = shown_.preview ? window_.render_width() / std::max(1, shown_.image.width) : 0;
     f.backend = have_frame_ ? shown_.backend : options_.backend;
     f.device = have_frame_ ? shown_.device : "(first frame rendering)";
@@ -399,9 +404,10 @@ OverlayFigures Session::figures() const {
 
 void Session::draw() {
     window_.draw_image();
+    int panels_bottom = 0;  // the help goes below the overlay's text, never over it
     if (overlay_) {
         draw_wireframes(window_, boxes_, camera_, 1e-4f * scene_size_);
-        font_.draw_panel(window_.renderer(), overlay_text(figures()), 8, 8);
+        panels_bottom = 8 + font_.draw_panel(window_.renderer(), overlay_text(figures()), 8, 8);
     }
     // The screenshot is the image as shown with the overlay, without the
     // help and the messages, which only talk about the window.
@@ -411,7 +417,8 @@ void Session::draw() {
     }
     if (help_) {
         font_.draw_panel(window_.renderer(),
-                         "Keys and mouse\n" + without_trailing_newline(key_help_text()), -8, 8);
+                         "Keys and mouse\n" + without_trailing_newline(key_help_text()), -8,
+                         panels_bottom + 8);
     }
     if (!messages_.empty()) {
         std::string text;
@@ -446,10 +453,17 @@ void Session::save_screenshot() {
         say(std::string("screenshot failed: ") + e.what());
         return;
     }
+    const char* preview = shown_.preview ? ", low-resolution preview" : "";
     char text[8192];
     std::snprintf(text, sizeof text, "screenshot: %s and %s (%u spp%s)", png.c_str(), pfm.c_str(),
-                  shown_.spp, shown_.preview ? ", low-resolution preview" : "");
-    say(text);
+                  shown_.spp, preview);
+    // Full paths do not fit in a small window: the name, then the directory.
+    const std::size_t slash = base.rfind('/');
+    char shown[8192];
+    std::snprintf(shown, sizeof shown, "screenshot: %s.png and .pfm (%u spp%s)\nin %s",
+                  base.substr(slash + 1).c_str(), shown_.spp, preview,
+                  slash == std::string::npos ? "." : base.substr(0, slash).c_str());
+    say(text, shown);
 }
 
 }  // namespace

@@ -223,13 +223,17 @@ double RenderWorker::noise_estimate() {
     // Fresh when there is none for this accumulation yet, when it is old,
     // and for the last frame before a --spp or --seconds pause, which stays
     // on screen.
+    const double interval =
+        std::max(noise_estimate_interval, noise_estimate_cost_factor * last_estimate_cost_);
     const bool due = last_estimate_spp_ == 0 ||
-                     seconds_since(last_estimate_time_) >= noise_estimate_interval || paused();
+                     seconds_since(last_estimate_time_) >= interval || paused();
     if (due && last_estimate_spp_ != full_->frames()) {
+        const Clock::time_point start = Clock::now();
         last_estimate_ = trac0r::estimate_relative_mse(full_->accumulator(), full_->width(),
                                                        full_->height());
         last_estimate_spp_ = full_->frames();
         last_estimate_time_ = Clock::now();
+        last_estimate_cost_ = seconds_since(start);
     }
     return last_estimate_;
 }
@@ -241,6 +245,7 @@ void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time
     frame.preview = preview;
     frame.frame_seconds = seconds_since(start);
     frame.relative_mse = preview ? std::numeric_limits<double>::infinity() : noise_estimate();
+    frame.relative_mse_spp = preview ? 0 : last_estimate_spp_;
     frame.generation = applied_generation_;
     frame.backend = renderer.backend().name();
     frame.device = renderer.backend().device();

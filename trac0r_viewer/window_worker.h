@@ -27,8 +27,13 @@
 
 namespace trac0r_viewer {
 
-// How often the worker refreshes WorkerFrame::relative_mse, in seconds.
-constexpr double noise_estimate_interval = 0.25;
+// How often the worker refreshes WorkerFrame::relative_mse: at most every
+// noise_estimate_interval seconds, and, where one estimate takes long (it
+// reads every pixel's 5 x 5 neighbourhood: about 0.1 s at 1920 x 1080 on
+// one core), no more often than noise_estimate_cost_factor times its cost,
+// so it never takes more than a tenth of the render thread's time.
+constexpr double noise_estimate_interval = 0.5;
+constexpr double noise_estimate_cost_factor = 10.0;
 
 // A finished frame: the running mean and what the overlay says about it.
 struct WorkerFrame {
@@ -36,10 +41,11 @@ struct WorkerFrame {
     std::uint32_t spp = 0;
     bool preview = false;        // reduced resolution, while the camera moves
     double frame_seconds = 0.0;  // rendering and reading back this frame
-    // trac0r::estimate_relative_mse of the running mean, refreshed at most
-    // every noise_estimate_interval (it reads every pixel's 5 x 5
-    // neighbourhood); +inf below 2 spp and for previews.
+    // trac0r::estimate_relative_mse of the running mean at
+    // relative_mse_spp samples per pixel, refreshed as said above; +inf
+    // below 2 spp and for previews.
     double relative_mse = 0.0;
+    std::uint32_t relative_mse_spp = 0;
     std::uint64_t generation = 0;  // of the last request it reflects
     std::string backend;
     std::string device;
@@ -115,6 +121,7 @@ class RenderWorker {
     double last_estimate_ = 0.0;
     std::uint32_t last_estimate_spp_ = 0;  // 0: none since the last restart
     Clock::time_point last_estimate_time_;
+    double last_estimate_cost_ = 0.0;  // seconds
 
     // Shared with the window's thread, under mutex_.
     std::mutex mutex_;

@@ -1,0 +1,222 @@
+// The interactive window, driven by --replay scripts of key and mouse
+// events on a virtual X server. CTest runs this file under xvfb-run
+// (tests/CMakeLists.txt); without a display these tests fail.
+#include <catch2/catch.hpp>
+
+#include "viewer_process.h"
+
+#include "trac0r/fly_camera.h"
+#include "trac0r/image_io.h"
+#include "trac0r/scene_loader.h"
+
+#include <nlohmann/json.hpp>
+
+#include <sys/stat.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <vector>
+
+using trac0r_test::read_text_file;
+using trac0r_test::run_viewer_process;
+using trac0r_test::ViewerRun;
+
+namespace trac0r_test {
+void check_benchmark_json(const std::string& out, long frames, int width, int height,
+                          const std::string& backend);
+}
+
+namespace {
+
+const std::string cornell = std::string(TRAC0R_SOURCE_DIR) + "/scenes/cornell.json";
+
+// A fresh directory for one test's screenshots.
+std::string empty_directory(const std::string& name) {
+    REQUIRE(std::system(("rm -rf " + name).c_str()) == 0);
+    REQUIRE(mkdir(name.c_str(), 0755) == 0);
+    return name;
+}
+
+void write_file(const std::string& path, const std::string& text) {
+    std::ofstream out(path);
+    out << text;
+    REQUIRE(out.good());
+}
+
+struct Screenshot {
+    std::string png;
+    std::string pfm;
+    long spp;
+};
+
+// The "screenshot: A.png and A.pfm (N spp)" lines, in the order taken.
+std::vector<Screenshot> screenshots_said(const std::string& err) {
+    std::vector<Screenshot> shots;
+    const std::regex line("screenshot: (\\S+\\.png) and (\\S+\\.pfm) \\((\\d+) spp");
+    for (std::sregex_iterator i(err.begin(), err.end(), line), end; i != end; ++i) {
+        shots.push_back({(*i)[1].str(), (*i)[2].str(), std::stol((*i)[3].str())});
+    }
+    return shots;
+}
+
+// Pixels of exactly the overlay's AABB colour (255, 255, 0).
+long yellow_pixels(const trac0r::Rgb8Image& image) {
+    long count = 0;
+    for (std::size_t i = 0; i + 2 < image.bytes.size(); i += 3) {
+        count += image.bytes[i] == 255 && image.bytes[i + 1] == 255 && image.bytes[i + 2] == 0;
+    }
+    return count;
+}
+
+double mean_abs_difference(const trac0r::Image& a, const trac0r::Image& b) {
+    REQUIRE(a.width == b.width);
+    REQUIRE(a.height == b.height);
+    double total = 0.0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const glm::vec3 d = glm::abs(a.pixels[i] - b.pixels[i]);
+        total += d.x + d.y + d.z;
+    }
+    return total / a.pixels.size();
+}
+
+bool same_pixels(const trac0r::Image& a, const trac0r::Image& b) {
+    return a.width == b.width && a.height == b.height && a.pixels == b.pixels;
+}
+
+}  // namespace
+
+TEST_CASE("scripted input: movement restarts accumulation and changes the image, F1 draws "
+          "the AABBs, P saves screenshots, Esc exits 0",
+          "[window]") {
+    const std::string dir = empty_directory("window_session");
+    // --spp 4: the window pauses at 4 samples per pixel, so every screenshot
+    // below is of exactly 4 spp of its view.
+    write_file(dir + "/script.txt", R"(# test_window.cpp
+wait_spp 4
+key P            # 1: the scene's camera
+wheel 2          # zoom in two notches: the field of view times 0.9^2
+wait_spp 4
+key P            # 2: zoomed
+key_down W       # fly forward for a moment
+wait 300
+key_up W
+wait_spp 4
+key P            # 3: moved
+key F1           # the debug overlay (after the screenshot: the window keeps the order)
+mouse_move 40 30
+wait 100
+key P            # 4: with the overlay
+key Escape
+)");
+    const ViewerRun r =
+        run_viewer_process(cornell + " --width 200 --height 150 --spp 4 --replay script.txt",
+                           "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);  // Esc quits cleanly
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 4);
+
+    std::vector<trac0r::Rgb8Image> png;
+    std::vector<trac0r::Image> pfm;
+    for (const Screenshot& s : shots) {
+        INFO(s.png);
+        CHECK(s.spp == 4);
+        CHECK(s.png.find("/" + dir + "/trac0r-") != std::string::npos);  // where it runs
+        png.push_back(trac0r::read_png(s.png));
+        pfm.push_back(trac0r::read_pfm(s.pfm));
+        CHECK(png.back().width == 200);  // the window shows the render 1:1
+        CHECK(png.back().height == 150);
+        CHECK(pfm.back().width == 200);
+        CHECK(pfm.back().height == 150);
+    }
+
+    // The zoom restarted accumulation: the 4 spp shown are exactly those of
+    // a fresh render from the zoomed camera (same seed, frames 0 to 3); had
+    // the old view's samples stayed in the mean, the images would differ.
+    trac0r::Camera zoomed = trac0r::load_scene_file(cornell).camera;
+    zoomed = trac0r::zoom_camera(zoomed, std::pow(0.9f, 2.0f));
+    nlohmann::json scene = nlohmann::json::parse(read_text_file(cornell));
+    scene["camera"]["vertical_fov"] = static_cast<double>(zoomed.vertical_fov);
+    write_file(dir + "/zoomed.json", scene.dump());
+    const ViewerRun fresh = run_viewer_process(
+        "zoomed.json --headless --width 200 --height 150 --spp 4 --output fresh.pfm",
+        "cd " + dir + " &&");
+    INFO(fresh.err);
+    REQUIRE(fresh.exit_code == 0);
+    const trac0r::Image fresh_image = trac0r::read_pfm(dir + "/fresh.pfm");
+    CHECK(same_pixels(pfm[1], fresh_image));
+
+    // Zooming and flying changed the image, by far more than noise: at 4
+    // spp two renders of one view differ by much less than a view change.
+    CHECK(mean_abs_difference(pfm[0], pfm[1]) > 0.01);
+    CHECK(mean_abs_difference(pfm[1], pfm[2]) > 0.01);
+    CHECK(png[0].bytes != png[1].bytes);
+    CHECK(png[1].bytes != png[2].bytes);
+    // The overlay adds nothing to the render, only to the window.
+    CHECK(same_pixels(pfm[2], pfm[3]));
+
+    // F1: yellow AABB wireframes; never that exact colour without them.
+    CHECK(yellow_pixels(png[0]) == 0);
+    CHECK(yellow_pixels(png[2]) == 0);
+    CHECK(yellow_pixels(png[3]) > 100);
+}
+
+TEST_CASE("right-drag looks around, the wheel zooms, R restarts, B says what it did",
+          "[window]") {
+    const std::string dir = empty_directory("window_look");
+    write_file(dir + "/script.txt", R"(wait_spp 3
+key P
+mouse_move 60 45
+mouse_down right
+mouse_move 80 45   # drag 20 pixels to the right: turn right
+mouse_up right
+wait_spp 3
+key P
+key R
+wait_spp 3
+key P
+key B            # to OpenCL (PoCL), or a message why not
+wait 200
+key Escape
+)");
+    const ViewerRun r =
+        run_viewer_process(cornell + " --width 120 --height 90 --spp 3 --replay script.txt",
+                           "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 3);
+    const trac0r::Image before = trac0r::read_pfm(shots[0].pfm);
+    const trac0r::Image turned = trac0r::read_pfm(shots[1].pfm);
+    const trac0r::Image restarted = trac0r::read_pfm(shots[2].pfm);
+    CHECK(mean_abs_difference(before, turned) > 0.01);
+    // R restarts the same view: the same seed gives the same 3 spp.
+    CHECK(same_pixels(turned, restarted));
+    CHECK(r.err.find("accumulation restarted") != std::string::npos);
+    CHECK(r.err.find("switching to the opencl backend") != std::string::npos);
+}
+
+TEST_CASE("--benchmark in the window prints its JSON line and exits 0", "[window]") {
+    const ViewerRun r = run_viewer_process("--benchmark 3 --width 64 --height 48");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    trac0r_test::check_benchmark_json(r.out, 3, 64, 48, "cpu");
+}
+
+TEST_CASE("a bad --replay file is one message naming the line, before any window", "[window]") {
+    write_file("bad_replay.txt", "wait 10\nkey NoSuchKey\n");
+    const ViewerRun r = run_viewer_process("--replay bad_replay.txt");
+    CHECK(r.exit_code == 1);
+    CHECK(r.err.find("bad_replay.txt:2: expected an SDL key name") != std::string::npos);
+    CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
+    const ViewerRun missing = run_viewer_process("--replay no_such_replay.txt");
+    CHECK(missing.exit_code == 1);
+    CHECK(missing.err.find("no_such_replay.txt") != std::string::npos);
+    const ViewerRun headless = run_viewer_process("--replay bad_replay.txt --headless "
+                                                  "--output x.png");
+    CHECK(headless.exit_code == 2);
+    CHECK(headless.err.find("--replay") != std::string::npos);
+}
