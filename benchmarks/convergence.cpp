@@ -39,7 +39,8 @@ using Clock = std::chrono::steady_clock;
 const char* usage = R"(Usage: bench_convergence [SCENE.json] [options]
 
 Renders SCENE.json (default: the built-in Cornell box) with each --config,
-with checkpoints at 1, 2, 4, ... samples per pixel, and prints at each the
+with checkpoints at 1, 2, 4, ... samples per pixel (the configurations take
+turns frame by frame, so they share the machine's load alike), and prints at each the
 render time, RMSE, relative MSE and PSNR against a reference, and the
 renderer's own relative MSE estimate.
 
@@ -222,12 +223,6 @@ bool file_exists(const std::string& path) {
     return stat(path.c_str(), &st) == 0;
 }
 
-void render_until(Renderer& r, long spp) {
-    while (static_cast<long>(r.frames()) < spp) {
-        r.render_frame();
-    }
-}
-
 // The reference image and its own estimated relative MSE (what its noise
 // adds to every error measured against it).
 struct Reference {
@@ -324,9 +319,21 @@ int run(const Options& o) {
                 o.scene_path.empty() ? "built-in Cornell box" : o.scene_path.c_str(), o.width,
                 o.height, o.reference_path.empty() ? "rendered" : o.reference_path.c_str(),
                 ref.own_rel_mse);
+    std::printf("seconds: render time only, frames of all configurations interleaved, after\n"
+                "one warm-up frame each (no OpenCL build)\n\n");
     std::printf("| config | spp | seconds | RMSE | rel. MSE | PSNR dB | estimated rel. MSE |\n");
     std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
-    std::vector<std::string> slopes;
+    // Every configuration renders in turn, one frame each, so all of them
+    // see the same load on a shared machine: their times compare side by
+    // side. Each frame is timed on its own.
+    struct Run {
+        const Config* config;
+        std::unique_ptr<Renderer> renderer;
+        double seconds;
+        bool stopped;
+        std::vector<Checkpoint> points;
+    };
+    std::vector<Run> runs;
     for (const Config& c : o.configs) {
         Scene s = scene;
         if (c.max_depth > 0) {
@@ -335,24 +342,50 @@ int run(const Options& o) {
         PackOptions pack;
         pack.accel = parse_accel(c.accel);
         pack.integrator = parse_integrator(c.integrator);
-        Renderer r(s, make_backend(c.backend), 1, pack);
-        double render_seconds = 0.0;
-        std::vector<Checkpoint> points;
-        for (long spp = 1; spp <= o.max_spp; spp *= 2) {
-            if (o.seconds > 0.0 && render_seconds >= o.seconds) {
-                break;
+        std::unique_ptr<Renderer> r(new Renderer(s, make_backend(c.backend), 1, pack));
+        // One frame first, then thrown away: the OpenCL program build and
+        // first-touch allocations are not render time. Frames are seeded by
+        // (seed, frame), so the image after restart() is the same as without.
+        r->render_frame();
+        r->restart();
+        runs.push_back(Run{&c, std::move(r), 0.0, false, {}});
+    }
+    for (long spp = 1; spp <= o.max_spp; spp *= 2) {
+        for (Run& run : runs) {
+            run.stopped = run.stopped || (o.seconds > 0.0 && run.seconds >= o.seconds);
+        }
+        bool pending = true;
+        while (pending) {
+            pending = false;
+            for (Run& run : runs) {
+                if (!run.stopped && static_cast<long>(run.renderer->frames()) < spp) {
+                    const Clock::time_point start = Clock::now();
+                    run.renderer->render_frame();  // returns when the frame is done
+                    run.seconds += std::chrono::duration<double>(Clock::now() - start).count();
+                    pending = true;
+                }
             }
-            const Clock::time_point start = Clock::now();
-            render_until(r, spp);  // render_frame returns when the frame is done
-            render_seconds += std::chrono::duration<double>(Clock::now() - start).count();
-            Checkpoint p{spp, render_seconds, image_error(r.image(), ref.image),
-                         spp >= 2 ? estimate_relative_mse(r.accumulator(), o.width, o.height)
-                                  : std::nan("")};
-            points.push_back(p);
+        }
+        for (Run& run : runs) {
+            if (run.stopped) {
+                continue;
+            }
+            Renderer& r = *run.renderer;
+            run.points.push_back(
+                Checkpoint{spp, run.seconds, image_error(r.image(), ref.image),
+                           spp >= 2 ? estimate_relative_mse(r.accumulator(), o.width, o.height)
+                                    : std::nan("")});
+        }
+        std::fprintf(stderr, "  checkpoint %ld spp\n", spp);
+    }
+    std::vector<std::string> slopes;
+    for (const Run& run : runs) {
+        const Config& c = *run.config;
+        const std::vector<Checkpoint>& points = run.points;
+        for (const Checkpoint& p : points) {
             std::printf("| %s | %ld | %.3f | %.4g | %.4g | %.2f | %.4g |\n", c.label.c_str(),
                         p.spp, p.seconds, p.error.rmse, p.error.relative_mse, p.error.psnr,
                         p.estimated_rel_mse);
-            std::fflush(stdout);
             csv << '"' << c.label << "\"," << p.spp << ',' << p.seconds << ',' << p.error.rmse
                 << ',' << p.error.relative_mse << ',' << p.error.psnr << ','
                 << p.estimated_rel_mse << ',' << ref.own_rel_mse << '\n';

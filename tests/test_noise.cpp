@@ -30,19 +30,22 @@ void render_frames(Renderer& r, std::uint32_t until) {
 
 // Estimated against true relative MSE at the checkpoints of a convergence
 // run (doubling samples per pixel), within the factor 1.5 the issue asks.
-void check_estimate(const std::string& name, std::uint32_t first_checkpoint) {
+void check_estimate(const std::string& name, std::uint32_t first_checkpoint,
+                    Integrator integrator = Integrator::naive) {
     const Scene scene = small(name);
+    PackOptions pack;
+    pack.integrator = integrator;
     // The reference: 32 times the samples of the last checkpoint, another
     // seed. Its own noise adds to the measured error (independent renders:
     // E[(L - L_ref)^2] = var L + var L_ref), so subtract its estimate (at
     // most a 32nd of the error measured).
     const std::uint32_t last_checkpoint = 64;
-    Renderer reference(scene, std::make_unique<CpuBackend>(), 1000);
+    Renderer reference(scene, std::make_unique<CpuBackend>(), 1000, pack);
     render_frames(reference, 32 * last_checkpoint);
     const Image reference_image = reference.image();
     const double reference_noise = estimate_relative_mse(reference.accumulator(), 32, 24);
 
-    Renderer r(scene, std::make_unique<CpuBackend>(), 7);
+    Renderer r(scene, std::make_unique<CpuBackend>(), 7, pack);
     for (std::uint32_t spp = first_checkpoint; spp <= last_checkpoint; spp *= 2) {
         render_frames(r, spp);
         const double estimated = estimate_relative_mse(r.accumulator(), 32, 24);
@@ -115,4 +118,13 @@ TEST_CASE("the noise estimate tracks the true error: diffuse Cornell box", "[noi
 
 TEST_CASE("the noise estimate tracks the true error: thesis Cornell box", "[noise]") {
     check_estimate("cornell.json", 8);
+}
+
+// Next-event estimation finds the light at every diffuse hit, so its
+// samples are less heavy-tailed; but the glass and mirror paths that carry
+// the caustics still find it by chance, and at 8 spp their rare bright
+// samples make the sample variance low (estimate / truth about 0.64 on the
+// 160 x 120 convergence run). From 16 spp on it is within the factor 1.5.
+TEST_CASE("the noise estimate tracks the true error: thesis Cornell box with NEE", "[noise]") {
+    check_estimate("cornell.json", 16, Integrator::nee);
 }
