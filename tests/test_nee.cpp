@@ -1,0 +1,443 @@
+// Next-event estimation against the thesis' integrator: both estimate the
+// same image (block by block, within a tolerance derived from the renders'
+// own noise), NEE is the less noisy of the two, a scene without a light list
+// renders identically, surfaces that emit and scatter (the furnace) stay
+// exact, and the OpenCL build of the NEE kernel agrees with the CPU backend.
+// Then the parts MIS rests on: eval_material against scatter_material, the
+// power heuristic, and the light list's picks and densities.
+#include <catch2/catch.hpp>
+
+#include "trac0r/cpu_backend.h"
+#include "trac0r/kernel/trace.h"
+#include "trac0r/opencl_backend.h"
+#include "trac0r/renderer.h"
+#include "trac0r/scene_loader.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+#include <vector>
+
+using namespace trac0r;
+
+namespace {
+
+Scene load(const std::string& name, int width, int height) {
+    Scene scene = load_scene_file(std::string(TRAC0R_SOURCE_DIR) + "/scenes/" + name);
+    scene.render.width = width;
+    scene.render.height = height;
+    return scene;
+}
+
+PackOptions with_integrator(Integrator integrator) {
+    PackOptions options;
+    options.integrator = integrator;
+    return options;
+}
+
+std::vector<kernel::AccumPixel> render(const Scene& scene, Integrator integrator,
+                                       std::uint64_t seed, int frames) {
+    Renderer r(scene, std::make_unique<CpuBackend>(), seed, with_integrator(integrator));
+    for (int i = 0; i < frames; ++i) {
+        r.render_frame();
+    }
+    REQUIRE(r.stats().samples_dropped == 0);
+    return r.accumulator();
+}
+
+// The luminance mean of a block of pixels and the variance of that mean:
+// each pixel's sample variance M2 / (n - 1) over its n samples, divided by
+// n, summed over the block's independent pixels and divided by the pixel
+// count squared.
+struct BlockMean {
+    int x, y;
+    double mean;
+    double variance;
+};
+
+std::vector<BlockMean> block_means(const std::vector<kernel::AccumPixel>& accum, int width,
+                                   int height, int block_width, int block_height) {
+    std::vector<BlockMean> blocks;
+    for (int by = 0; by + block_height <= height; by += block_height) {
+        for (int bx = 0; bx + block_width <= width; bx += block_width) {
+            double sum = 0.0, variance = 0.0;
+            for (int y = by; y < by + block_height; ++y) {
+                for (int x = bx; x < bx + block_width; ++x) {
+                    const kernel::AccumPixel& p = accum[static_cast<std::size_t>(y) * width + x];
+                    const double n = p.moments.z;
+                    sum += p.moments.x;
+                    variance += p.moments.y / (n - 1.0) / n;
+                }
+            }
+            const double pixels = static_cast<double>(block_width) * block_height;
+            blocks.push_back({bx, by, sum / pixels, variance / (pixels * pixels)});
+        }
+    }
+    return blocks;
+}
+
+// Bonferroni: to keep the chance that any of `comparisons` two-sided tests
+// of a true null exceeds k standard errors under family_false_alarm, each
+// may do so with probability family_false_alarm / comparisons, i.e.
+// erfc(k / sqrt 2) = family_false_alarm / comparisons (normal block means:
+// each holds thousands of samples). Solved by bisection; erfc falls in k.
+double bonferroni_k(int comparisons, double family_false_alarm) {
+    double lo = 0.0, hi = 40.0;
+    for (int i = 0; i < 100; ++i) {
+        const double k = 0.5 * (lo + hi);
+        if (comparisons * std::erfc(k / std::sqrt(2.0)) > family_false_alarm) {
+            lo = k;
+        } else {
+            hi = k;
+        }
+    }
+    return hi;
+}
+
+// Naive and NEE renders of a scene with independent seeds, compared per
+// 4x4-pixel block and over the whole image (which catches a bias too small
+// for one block to show): |a - b| <= k sqrt(se_a^2 + se_b^2), with k from
+// bonferroni_k over all these comparisons at a family-wise false alarm rate
+// of 1e-3 (k = 4.3 for 49 comparisons).
+void require_same_image(const std::string& name, int frames) {
+    const int width = 32, height = 24, block = 4;
+    const Scene scene = load(name, width, height);
+    const std::vector<kernel::AccumPixel> naive_accum =
+        render(scene, Integrator::naive, 101, frames);
+    const std::vector<kernel::AccumPixel> nee_accum = render(scene, Integrator::nee, 202, frames);
+    std::vector<BlockMean> naive = block_means(naive_accum, width, height, block, block);
+    std::vector<BlockMean> nee = block_means(nee_accum, width, height, block, block);
+    const BlockMean naive_image = block_means(naive_accum, width, height, width, height).at(0);
+    const BlockMean nee_image = block_means(nee_accum, width, height, width, height).at(0);
+    naive.push_back(naive_image);
+    nee.push_back(nee_image);
+    const double k = bonferroni_k(static_cast<int>(naive.size()), 1e-3);
+    double worst_z = 0.0;
+    for (std::size_t i = 0; i < naive.size(); ++i) {
+        const double se = std::sqrt(naive[i].variance + nee[i].variance);
+        const double difference = std::fabs(naive[i].mean - nee[i].mean);
+        CAPTURE(name, naive[i].x, naive[i].y, naive[i].mean, nee[i].mean, se, k);
+        REQUIRE(difference <= k * se);
+        worst_z = std::fmax(worst_z, difference / se);
+    }
+    // The test must have teeth: over the whole image, a bias of a few
+    // percent (an MIS error that drops or doubles direct light is tens of
+    // percent) is outside the tolerance.
+    const double image_tolerance =
+        k * std::sqrt(naive_image.variance + nee_image.variance) / naive_image.mean;
+    CAPTURE(name, k, worst_z, image_tolerance);
+    REQUIRE(image_tolerance < 0.05);
+}
+
+}  // namespace
+
+TEST_CASE("naive and NEE converge to the same image of cornell_diffuse.json", "[nee]") {
+    require_same_image("cornell_diffuse.json", 512);
+}
+
+TEST_CASE("naive and NEE converge to the same image of cornell.json (glass, glossy)", "[nee]") {
+    require_same_image("cornell.json", 512);
+}
+
+TEST_CASE("NEE is less noisy than naive at equal samples per pixel", "[nee]") {
+    // A behaviour check, not a bound from theory: on cornell_diffuse the small
+    // lamp is found by a light sample at every diffuse hit, by scattering only
+    // rarely. The median over pixels of the ratio of per-sample variances
+    // (NEE / naive) skips what NEE does not change: pixels on the lamp's
+    // edge, whose noise is the camera ray's, and the black background
+    // (zero variance, left out). Measured: 0.06; a quarter leaves a wide
+    // margin for a seed's luck and still fails an NEE that does not help.
+    const Scene scene = load("cornell_diffuse.json", 32, 24);
+    const int frames = 64;
+    const std::vector<kernel::AccumPixel> naive = render(scene, Integrator::naive, 5, frames);
+    const std::vector<kernel::AccumPixel> nee = render(scene, Integrator::nee, 5, frames);
+    std::vector<double> ratios;
+    for (std::size_t i = 0; i < naive.size(); ++i) {
+        if (naive[i].moments.y > 0.0f) {
+            ratios.push_back(static_cast<double>(nee[i].moments.y) / naive[i].moments.y);
+        }
+    }
+    REQUIRE(ratios.size() > naive.size() / 4);
+    std::nth_element(ratios.begin(), ratios.begin() + ratios.size() / 2, ratios.end());
+    const double median = ratios[ratios.size() / 2];
+    CAPTURE(ratios.size(), median);
+    REQUIRE(median < 0.25);
+}
+
+TEST_CASE("a scene without a light list renders the same with both integrators", "[nee]") {
+    // No emitter, and an emitter of black colour (positive emittance, zero
+    // power): the light list is empty, NEE is left out of the feature mask,
+    // and the two renders are the same bit for bit.
+    const char* materials[] = {
+        R"("white": {"type": "diffuse", "color": [0.7, 0.7, 0.7]})",
+        R"("white": {"type": "emissive", "color": [0, 0, 0], "emittance": 5})",
+    };
+    for (const char* material : materials) {
+        const std::string json =
+            std::string(R"({"camera": {"position": [0, 0, -1.2]},
+                            "render": {"width": 16, "height": 12, "max_depth": 5},
+                            "materials": {"glass": {"type": "glass", "color": [1, 1, 1]},
+                                          "glossy": {"type": "glossy", "color": [1, 1, 1],
+                                                     "roughness": 0.3},)") +
+            material + R"(},
+                 "shapes": [{"type": "box", "material": "white", "size": [3, 3, 3]},
+                            {"type": "icosphere", "material": "glass", "radius": 0.3},
+                            {"type": "plane", "material": "glossy", "position": [0, -1, 0],
+                             "size": [1, 1]}]})";
+        CAPTURE(material);
+        const Scene scene = parse_scene(json, "no-lights", ".");
+        const PackedScene packed = pack_scene(scene, with_integrator(Integrator::nee));
+        REQUIRE(packed.lights.empty());
+        REQUIRE((packed.features & T0_FEATURE_NEE) == 0u);
+        const std::vector<kernel::AccumPixel> naive = render(scene, Integrator::naive, 9, 4);
+        const std::vector<kernel::AccumPixel> nee = render(scene, Integrator::nee, 9, 4);
+        int different_pixels = 0;
+        for (std::size_t i = 0; i < naive.size(); ++i) {
+            if (naive[i].sum != nee[i].sum || naive[i].moments != nee[i].moments) {
+                ++different_pixels;
+            }
+        }
+        REQUIRE(different_pixels == 0);
+    }
+}
+
+TEST_CASE("NEE in the furnace: surfaces that emit, scatter and block light", "[nee][furnace]") {
+    // scenes/furnace.json: diffuse walls of albedo rho = 0.5 emitting
+    // Le = colour x emittance = 0.5. Every wall is in the light list and
+    // occludes the others; the image mean is Le (1 - rho^D) / (1 - rho).
+    const Scene scene = load("furnace.json", 32, 24);
+    const double rho = scene.materials.at(0).color.x;
+    const double le = rho * scene.materials.at(0).emittance;
+    const int depth = scene.render.max_depth;
+    const double expected = le * (1.0 - std::pow(rho, depth)) / (1.0 - rho);
+    const std::vector<kernel::AccumPixel> accum = render(scene, Integrator::nee, 3, 24);
+    double sum = 0.0, m2 = 0.0, n = 0.0;
+    for (const kernel::AccumPixel& p : accum) {
+        sum += static_cast<double>(p.moments.x) * p.moments.z;
+        m2 += p.moments.y;
+        n += p.moments.z;
+    }
+    const double mean = sum / n;
+    // Within-pixel spread only: every pixel has the same expectation here.
+    const double se = std::sqrt(m2 / (n - 1.0) / n);
+    CAPTURE(mean, expected, se);
+    REQUIRE(se < 0.01 * expected);
+    REQUIRE(std::fabs(mean - expected) < 5.0 * se);  // 5 standard errors
+}
+
+TEST_CASE("the NEE kernel builds as OpenCL C and agrees with the CPU backend", "[nee][opencl]") {
+    // No skip: CI installs PoCL, so no device means a broken installation.
+    REQUIRE_FALSE(list_opencl_devices().empty());
+    const Scene scene = load("cornell.json", 48, 36);
+    const PackOptions nee = with_integrator(Integrator::nee);
+    const PackedScene packed = pack_scene(scene, nee);
+    REQUIRE((packed.features & T0_FEATURE_NEE) != 0u);
+    {
+        // -Werror: any warning fails the build, whose log the exception carries.
+        OpenClBackend backend(0);
+        setenv("TRAC0R_OPENCL_OPTIONS", "-Werror", 1);
+        REQUIRE_NOTHROW(backend.set_scene(packed));
+        unsetenv("TRAC0R_OPENCL_OPTIONS");
+        char mask[32];
+        std::snprintf(mask, sizeof mask, "-DT0_FEATURES=0x%xu", packed.features);
+        CAPTURE(backend.build_options());
+        REQUIRE(backend.build_options().find(mask) != std::string::npos);
+    }
+    // The same seed gives both backends the same random numbers, so most
+    // pixels agree to float rounding; a path that takes another branch on a
+    // last-bit difference diverges, so 90% of pixels must agree closely and
+    // every 6x6 block's mean within 5 standard errors of the difference.
+    const int frames = 16;
+    Renderer cpu(scene, std::make_unique<CpuBackend>(), 11, nee);
+    Renderer gpu(scene, std::make_unique<OpenClBackend>(0), 11, nee);
+    for (int i = 0; i < frames; ++i) {
+        cpu.render_frame();
+        gpu.render_frame();
+    }
+    const Image a = cpu.image();
+    const Image b = gpu.image();
+    int close_pixels = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const glm::vec3 d = glm::abs(a.pixels[i] - b.pixels[i]);
+        if (d.x + d.y + d.z <= 1e-3f * (1.0f + a.pixels[i].x + a.pixels[i].y + a.pixels[i].z)) {
+            ++close_pixels;
+        }
+    }
+    CAPTURE(close_pixels, a.pixels.size());
+    REQUIRE(close_pixels >= static_cast<int>(0.9 * a.pixels.size()));
+    const std::vector<BlockMean> ca = block_means(cpu.accumulator(), a.width, a.height, 6, 6);
+    const std::vector<BlockMean> gb = block_means(gpu.accumulator(), a.width, a.height, 6, 6);
+    for (std::size_t i = 0; i < ca.size(); ++i) {
+        // Twice one render's variance: the difference of two independent
+        // means (an upper bound: the shared seed correlates them).
+        const double se = std::sqrt(2.0 * ca[i].variance);
+        CAPTURE(ca[i].x, ca[i].y, ca[i].mean, gb[i].mean, se);
+        REQUIRE(std::fabs(ca[i].mean - gb[i].mean) <= 5.0 * se + 1e-6);
+    }
+}
+
+namespace {
+
+using kernel::float3;
+using kernel::make_float3;
+using kernel::t0_u32;
+
+kernel::MaterialRecord make_material(t0_u32 type, float roughness) {
+    kernel::MaterialRecord m = {};
+    m.color = kernel::make_float4(0.8f, 0.6f, 0.4f, 0.0f);
+    m.params = kernel::make_float4(0.0f, roughness, 1.5f, 0.0f);
+    m.type = kernel::make_uint4(type, 0u, 0u, 0u);
+    return m;
+}
+
+// A unit direction arriving at angle theta from the normal +z, travelling
+// downwards in the xz plane.
+float3 incoming_at(double theta) {
+    return make_float3(static_cast<float>(std::sin(theta)), 0.0f,
+                       static_cast<float>(-std::cos(theta)));
+}
+
+}  // namespace
+
+TEST_CASE("eval_material agrees with scatter_material's directions, weights and pdfs",
+          "[nee][material]") {
+    // What MIS needs of a material: for a direction its sampling produced,
+    // eval gives the same density and f cos = weight x density; and eval's
+    // density integrates to the probability that sampling succeeds (the
+    // glossy cone loses what falls below the surface). The integral is a
+    // Monte Carlo estimate with uniform directions in the lobe's own cone,
+    // independent of the sampling code.
+    kernel::SceneView scene = {};
+    scene.features = T0_FEATURE_DIFFUSE | T0_FEATURE_GLOSSY;
+    const float3 normal = make_float3(0.0f, 0.0f, 1.0f);
+    struct Case {
+        t0_u32 type;
+        float roughness;
+        double theta;
+    };
+    const Case cases[] = {{T0_MATERIAL_DIFFUSE, 0.0f, 0.3},  {T0_MATERIAL_GLOSSY, 0.09f, 0.2},
+                          {T0_MATERIAL_GLOSSY, 0.09f, 1.5},  {T0_MATERIAL_GLOSSY, 0.5f, 1.0},
+                          {T0_MATERIAL_GLOSSY, 1.0f, 0.7},   {T0_MATERIAL_GLOSSY, 0.007f, 0.5}};
+    for (const Case& c : cases) {
+        CAPTURE(c.type, c.roughness, c.theta);
+        const kernel::MaterialRecord m = make_material(c.type, c.roughness);
+        const float3 incoming = incoming_at(c.theta);
+        kernel::Rng rng;
+        kernel::rng_seed(&rng, 77);
+        const int n = 100000;
+        int succeeded = 0;
+        double worst_pdf_error = 0.0, worst_f_cos_error = 0.0;
+        for (int i = 0; i < n; ++i) {
+            const kernel::ScatterSample s =
+                kernel::scatter_material(&scene, &m, incoming, normal, normal, &rng);
+            if (!(s.weight.x > 0.0f)) {
+                continue;
+            }
+            ++succeeded;
+            const kernel::MaterialEval e =
+                kernel::eval_material(&scene, &m, incoming, normal, s.direction);
+            worst_pdf_error = std::fmax(worst_pdf_error, std::fabs(e.pdf / s.pdf - 1.0));
+            for (int channel = 0; channel < 3; ++channel) {
+                const double expected = s.weight[channel] * s.pdf;
+                worst_f_cos_error =
+                    std::fmax(worst_f_cos_error, std::fabs(e.f_cos[channel] / expected - 1.0));
+            }
+        }
+        // Densities: cos / (pi sin^2) from the sample's own cosine and from a
+        // dot product of the rotated direction; 1e-3 relative is float
+        // rounding (including normalize) with a wide margin.
+        CAPTURE(worst_pdf_error, worst_f_cos_error);
+        REQUIRE(worst_pdf_error < 1e-3);
+        REQUIRE(worst_f_cos_error < 1e-3);
+        const float3 axis = c.type == T0_MATERIAL_DIFFUSE
+                                ? normal
+                                : kernel::reflect_direction(incoming, normal);
+        const double half_angle = c.type == T0_MATERIAL_DIFFUSE ? 0.5 * M_PI
+                                                                : c.roughness * 0.5 * M_PI;
+        const double solid_angle = 2.0 * M_PI * (1.0 - std::cos(half_angle));
+        const kernel::Frame frame = kernel::frame_from_normal(axis);
+        double sum = 0.0, sum2 = 0.0;
+        for (int i = 0; i < n; ++i) {
+            // Uniform in the cone: cos theta uniform in [cos half_angle, 1].
+            const double cos_t = 1.0 - kernel::rng_float(&rng) * (1.0 - std::cos(half_angle));
+            const double sin_t = std::sqrt(std::fmax(0.0, 1.0 - cos_t * cos_t));
+            const double phi = 2.0 * M_PI * kernel::rng_float(&rng);
+            const float3 local = make_float3(static_cast<float>(sin_t * std::cos(phi)),
+                                             static_cast<float>(sin_t * std::sin(phi)),
+                                             static_cast<float>(cos_t));
+            const float3 d = glm::normalize(kernel::frame_to_world(frame, local));
+            const double value =
+                kernel::eval_material(&scene, &m, incoming, normal, d).pdf * solid_angle;
+            sum += value;
+            sum2 += value * value;
+        }
+        const double integral = sum / n;
+        const double integral_se = std::sqrt(std::fmax(0.0, sum2 / n - integral * integral) / n);
+        const double p = static_cast<double>(succeeded) / n;
+        const double p_se = std::sqrt(p * (1.0 - p) / n);
+        CAPTURE(integral, integral_se, p, p_se);
+        REQUIRE(p > 0.1);
+        // 5 standard errors of the difference of two independent estimates.
+        const double se = std::sqrt(integral_se * integral_se + p_se * p_se);
+        REQUIRE(std::fabs(integral - p) <= 5.0 * se);
+    }
+}
+
+TEST_CASE("power_heuristic: the two strategies' weights sum to one, finitely", "[nee]") {
+    const float pdfs[] = {1e-30f, 1e-6f, 0.3f, 1.0f, 7.0f, 1e6f, 1e30f, 3e38f};
+    for (float a : pdfs) {
+        for (float b : pdfs) {
+            CAPTURE(a, b);
+            const float wa = kernel::power_heuristic(a, b);
+            const float wb = kernel::power_heuristic(b, a);
+            REQUIRE(std::isfinite(wa));
+            REQUIRE(wa >= 0.0f);
+            REQUIRE(wa + wb == Approx(1.0f).epsilon(1e-6));
+        }
+        REQUIRE(kernel::power_heuristic(a, 0.0f) == 1.0f);
+        REQUIRE(kernel::power_heuristic(0.0f, a) == 0.0f);
+    }
+}
+
+TEST_CASE("the light list: picks in proportion to power, densities per area", "[nee]") {
+    // Two lamps, the second of three times the emittance and twice the side
+    // (four times the area): powers 1 : 12, two triangles each.
+    const Scene scene = parse_scene(
+        R"({"materials": {"dim": {"type": "emissive", "color": [1, 1, 1], "emittance": 1},
+                          "bright": {"type": "emissive", "color": [1, 1, 1], "emittance": 3},
+                          "white": {"type": "diffuse", "color": [0.5, 0.5, 0.5]}},
+            "shapes": [{"type": "plane", "material": "dim", "size": [0.5, 0.5]},
+                       {"type": "plane", "material": "bright", "position": [2, 0, 0],
+                        "size": [1, 1]},
+                       {"type": "plane", "material": "white", "position": [0, -1, 0],
+                        "size": [4, 4]}]})",
+        "lights", ".");
+    const PackedScene packed = pack_scene(scene, with_integrator(Integrator::nee));
+    REQUIRE(packed.lights.size() == 4);
+    REQUIRE(packed.lights.back().cdf.x == 1.0f);
+    const kernel::SceneView view = packed.view();
+    const int n = 1000000;
+    std::vector<int> picks(packed.lights.size(), 0);
+    for (int i = 0; i < n; ++i) {
+        ++picks[kernel::pick_light(&view, (i + 0.5f) / n)];
+    }
+    double total = 0.0;
+    for (std::size_t k = 0; k < packed.lights.size(); ++k) {
+        const kernel::LightRecord& light = packed.lights[k];
+        const kernel::TriangleRecord& tri = packed.triangles[light.triangle.x];
+        const kernel::MaterialRecord& m = packed.materials[tri.ids.x];
+        CAPTURE(k, light.cdf.y, picks[k]);
+        REQUIRE(tri.ids.z == k);
+        // Power share: emittance x area over the total, 1 x 0.25 + 3 x 1.
+        REQUIRE(light.cdf.y ==
+                Approx(m.params.x * 0.5 * tri.normal.w / (0.25 + 3.0)).epsilon(1e-5));
+        REQUIRE(light.cdf.z * 0.5f * tri.normal.w == Approx(light.cdf.y).epsilon(1e-6));
+        // A grid of a million u values: off by at most one per boundary.
+        REQUIRE(std::abs(picks[k] - light.cdf.y * n) <= 2.0);
+        total += light.cdf.y;
+    }
+    REQUIRE(total == Approx(1.0).epsilon(1e-6));
+}
