@@ -266,8 +266,7 @@ TEST_CASE("offset_ray_origin moves to the requested side, by a small amount",
         int wrong_side = 0;
         int too_far = 0;
         for (int i = 0; i < 20000; ++i) {
-            // Coordinates of every size up to the magnitude (some tiny, which
-            // take the fixed-fraction path, some large, the ULP path).
+            // Coordinates of every size up to the magnitude, some zero.
             float3 p;
             for (int k = 0; k < 3; ++k) {
                 const float size = magnitude * std::pow(10.0f, -uniform(0.0f, 4.0f));
@@ -281,8 +280,8 @@ TEST_CASE("offset_ray_origin moves to the requested side, by a small amount",
             const float3 in = offset_ray_origin(p, -n, magnitude);
             wrong_side += !(dot_d(out - p, n) > 0.0);
             wrong_side += !(dot_d(in - p, n) < 0.0);
-            // Both paths move a coordinate by at most 256 ULPs (2^-15
-            // relative) or magnitude / 65536: the whole offset stays under
+            // The offset is 8 eps of the magnitude plus one float per
+            // coordinate (kernel/intersect.h): the whole offset stays under
             // 1e-4 of the magnitude, invisible at the scene's scale.
             too_far += !(length(out - p) < 1e-4f * magnitude);
             too_far += !(length(in - p) < 1e-4f * magnitude);

@@ -1,5 +1,7 @@
 #include "trac0r/geometry.h"
 
+#include <cfloat>
+
 namespace trac0r {
 
 Triangle::Triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c)
@@ -8,8 +10,19 @@ Triangle::Triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c)
     const glm::dvec3 e2 = glm::dvec3(c) - glm::dvec3(a);
     const glm::dvec3 n = glm::cross(e1, e2);
     const double twice_area = glm::length(n);
+    const double longest2 = glm::max(glm::max(glm::dot(e1, e1), glm::dot(e2, e2)),
+                                     glm::dot(e2 - e1, e2 - e1));
+    // Degenerate when its height over its longest edge, twice_area /
+    // longest^2, is below float resolution (FLT_EPSILON = 2^-23): the third
+    // vertex is within rounding of the line of the other two, as when it was
+    // computed to be on it, and the normal would be rounding noise. Relative,
+    // so it does not depend on the scene's scale; then area and normal are
+    // zero, pack_scene drops it and the kernel never hits it.
+    if (!(twice_area > static_cast<double>(FLT_EPSILON) * longest2)) {
+        return;
+    }
     area = static_cast<float>(0.5 * twice_area);
-    normal = twice_area > 0.0 ? glm::vec3(n / twice_area) : glm::vec3(0.0f);
+    normal = glm::vec3(n / twice_area);
 }
 
 AABB Triangle::bounds() const {

@@ -26,7 +26,8 @@ struct AABB {
 
 // A triangle with its normal (from the winding v0 -> v1 -> v2), centroid and
 // area precomputed. The area is computed in double so that needle-thin
-// triangles are told from degenerate ones.
+// triangles are told from degenerate ones: those whose height is below
+// FLT_EPSILON of their longest edge get area 0 and normal 0 (geometry.cpp).
 struct Triangle {
     glm::vec3 v0, v1, v2;
     glm::vec3 normal{0.0f};
