@@ -12,6 +12,7 @@
 #include "trac0r/opencl_backend.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
+#include "test_support.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,13 +25,6 @@
 using namespace trac0r;
 
 namespace {
-
-Scene load(const std::string& name, int width, int height) {
-    Scene scene = load_scene_file(std::string(TRAC0R_SOURCE_DIR) + "/scenes/" + name);
-    scene.render.width = width;
-    scene.render.height = height;
-    return scene;
-}
 
 PackOptions with_integrator(Integrator integrator) {
     PackOptions options;
@@ -104,7 +98,7 @@ double bonferroni_k(int comparisons, double family_false_alarm) {
 // of 1e-3 (k = 4.3 for 49 comparisons).
 void require_same_image(const std::string& name, int frames) {
     const int width = 32, height = 24, block = 4;
-    const Scene scene = load(name, width, height);
+    const Scene scene = load_test_scene(name, width, height);
     const std::vector<kernel::AccumPixel> naive_accum =
         render(scene, Integrator::naive, 101, frames);
     const std::vector<kernel::AccumPixel> nee_accum = render(scene, Integrator::nee, 202, frames);
@@ -150,7 +144,7 @@ TEST_CASE("NEE is less noisy than naive at equal samples per pixel", "[nee]") {
     // edge, whose noise is the camera ray's, and the black background
     // (zero variance, left out). Measured: 0.06; a quarter leaves a wide
     // margin for a seed's luck and still fails an NEE that does not help.
-    const Scene scene = load("cornell_diffuse.json", 32, 24);
+    const Scene scene = load_test_scene("cornell_diffuse.json", 32, 24);
     const int frames = 64;
     const std::vector<kernel::AccumPixel> naive = render(scene, Integrator::naive, 5, frames);
     const std::vector<kernel::AccumPixel> nee = render(scene, Integrator::nee, 5, frames);
@@ -208,7 +202,7 @@ TEST_CASE("NEE in the furnace: surfaces that emit, scatter and block light", "[n
     // scenes/furnace.json: diffuse walls of albedo rho = 0.5 emitting
     // Le = colour x emittance = 0.5. Every wall is in the light list and
     // occludes the others; the image mean is Le (1 - rho^D) / (1 - rho).
-    const Scene scene = load("furnace.json", 32, 24);
+    const Scene scene = load_test_scene("furnace.json", 32, 24);
     const double rho = scene.materials.at(0).color.x;
     const double le = rho * scene.materials.at(0).emittance;
     const int depth = scene.render.max_depth;
@@ -231,21 +225,11 @@ TEST_CASE("NEE in the furnace: surfaces that emit, scatter and block light", "[n
 TEST_CASE("the NEE kernel builds as OpenCL C and agrees with the CPU backend", "[nee][opencl]") {
     // No skip: CI installs PoCL, so no device means a broken installation.
     REQUIRE_FALSE(list_opencl_devices().empty());
-    const Scene scene = load("cornell.json", 48, 36);
+    const Scene scene = load_test_scene("cornell.json", 48, 36);
     const PackOptions nee = with_integrator(Integrator::nee);
     const PackedScene packed = pack_scene(scene, nee);
     REQUIRE((packed.features & T0_FEATURE_NEE) != 0u);
-    {
-        // -Werror: any warning fails the build, whose log the exception carries.
-        OpenClBackend backend(0);
-        setenv("TRAC0R_OPENCL_OPTIONS", "-Werror", 1);
-        REQUIRE_NOTHROW(backend.set_scene(packed));
-        unsetenv("TRAC0R_OPENCL_OPTIONS");
-        char mask[32];
-        std::snprintf(mask, sizeof mask, "-DT0_FEATURES=0x%xu", packed.features);
-        CAPTURE(backend.build_options());
-        REQUIRE(backend.build_options().find(mask) != std::string::npos);
-    }
+    require_warning_free_build(packed);
     // The same seed gives both backends the same random numbers, so most
     // pixels agree to float rounding; a path that takes another branch on a
     // last-bit difference diverges, so 90% of pixels must agree closely and

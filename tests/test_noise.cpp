@@ -6,6 +6,7 @@
 #include "trac0r/noise.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
+#include "test_support.h"
 
 #include <cmath>
 #include <memory>
@@ -16,10 +17,7 @@ using namespace trac0r;
 namespace {
 
 Scene small(const std::string& name) {
-    Scene scene = load_scene_file(std::string(TRAC0R_SOURCE_DIR) + "/scenes/" + name);
-    scene.render.width = 32;
-    scene.render.height = 24;
-    return scene;
+    return load_test_scene(name, 32, 24);
 }
 
 void render_frames(Renderer& r, std::uint32_t until) {

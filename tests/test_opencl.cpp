@@ -8,6 +8,7 @@
 #include "trac0r/opencl_backend.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
+#include "test_support.h"
 
 #include <sys/wait.h>
 
@@ -18,17 +19,6 @@
 #include <string>
 
 using namespace trac0r;
-
-namespace {
-
-Scene load(const std::string& name, int width, int height) {
-    Scene scene = load_scene_file(std::string(TRAC0R_SOURCE_DIR) + "/scenes/" + name);
-    scene.render.width = width;
-    scene.render.height = height;
-    return scene;
-}
-
-}  // namespace
 
 TEST_CASE("an OpenCL device is present", "[opencl]") {
     // No skip: CI installs PoCL, so no device means a broken installation.
@@ -44,23 +34,14 @@ TEST_CASE("the kernel builds as OpenCL C for every scene's feature mask, warning
                             "mesh_demo.json"};
     for (const char* name : scenes) {
         CAPTURE(name);
-        const Scene scene = load(name, 8, 8);
+        const Scene scene = load_test_scene(name, 8, 8);
         const PackedScene packed = pack_scene(scene);
-        OpenClBackend backend(0);
-        // -Werror turns any warning into a failed build, whose log the
-        // exception carries; the mask is in the options.
-        setenv("TRAC0R_OPENCL_OPTIONS", "-Werror", 1);
-        REQUIRE_NOTHROW(backend.set_scene(packed));
-        unsetenv("TRAC0R_OPENCL_OPTIONS");
-        CAPTURE(backend.build_options());
-        char mask[32];
-        std::snprintf(mask, sizeof mask, "-DT0_FEATURES=0x%xu", packed.features);
-        REQUIRE(backend.build_options().find(mask) != std::string::npos);
+        require_warning_free_build(packed);
     }
 }
 
 TEST_CASE("a program is built once per feature mask and then reused", "[opencl]") {
-    const PackedScene packed = pack_scene(load("cornell_diffuse.json", 8, 8));
+    const PackedScene packed = pack_scene(load_test_scene("cornell_diffuse.json", 8, 8));
     OpenClBackend first(0);
     first.set_scene(packed);
     OpenClBackend second(0);
@@ -75,7 +56,7 @@ TEST_CASE("a program is built once per feature mask and then reused", "[opencl]"
 // standard errors of the difference (from the per-pixel spread in the CPU
 // image), and most individual pixels must agree closely.
 static void compare_backends(const std::string& name) {
-    const Scene scene = load(name, 64, 48);
+    const Scene scene = load_test_scene(name, 64, 48);
     const int frames = 16;
     Renderer cpu(scene, std::make_unique<CpuBackend>(), 11);
     Renderer gpu(scene, std::make_unique<OpenClBackend>(0), 11);
@@ -130,7 +111,7 @@ TEST_CASE("OpenCL and CPU images of cornell_diffuse.json agree", "[opencl]") {
 TEST_CASE("furnace on the OpenCL backend", "[opencl][furnace]") {
     // scenes/furnace.json: diffuse walls of albedo rho = 0.5 that emit
     // Le = colour x emittance = 0.5.
-    Scene scene = load("furnace.json", 32, 24);
+    Scene scene = load_test_scene("furnace.json", 32, 24);
     const double rho = scene.materials.at(0).color.x;
     const double le = rho * scene.materials.at(0).emittance;
     const int depth = scene.render.max_depth;
@@ -161,7 +142,7 @@ TEST_CASE("a kernel that fails to build reports the build log", "[opencl]") {
     // A define that breaks the kernel source.
     setenv("TRAC0R_OPENCL_OPTIONS", "-Dmake_ray=syntax_error(", 1);
     OpenClBackend backend(0);
-    const PackedScene packed = pack_scene(load("furnace.json", 8, 8));
+    const PackedScene packed = pack_scene(load_test_scene("furnace.json", 8, 8));
     REQUIRE_THROWS_WITH(backend.set_scene(packed), Catch::Contains("build log") &&
                                                        Catch::Contains("syntax_error"));
     unsetenv("TRAC0R_OPENCL_OPTIONS");

@@ -1,0 +1,42 @@
+// What several test files need: the repository's scenes at a test's size,
+// and a warning-free OpenCL build of a packed scene.
+#ifndef TRAC0R_TESTS_TEST_SUPPORT_H
+#define TRAC0R_TESTS_TEST_SUPPORT_H
+
+#include <catch2/catch.hpp>
+
+#include "trac0r/opencl_backend.h"
+#include "trac0r/packed_scene.h"
+#include "trac0r/scene_loader.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+namespace trac0r {
+
+// scenes/NAME from the source tree, rendered at width x height.
+inline Scene load_test_scene(const std::string& name, int width, int height) {
+    Scene scene = load_scene_file(std::string(TRAC0R_SOURCE_DIR) + "/scenes/" + name);
+    scene.render.width = width;
+    scene.render.height = height;
+    return scene;
+}
+
+// Builds packed's OpenCL program on device 0 with -Werror (any warning
+// fails the build, whose log the exception carries) and checks that the
+// scene's feature mask is among the build options.
+inline void require_warning_free_build(const PackedScene& packed) {
+    OpenClBackend backend(0);
+    setenv("TRAC0R_OPENCL_OPTIONS", "-Werror", 1);
+    REQUIRE_NOTHROW(backend.set_scene(packed));
+    unsetenv("TRAC0R_OPENCL_OPTIONS");
+    CAPTURE(backend.build_options());
+    char mask[32];
+    std::snprintf(mask, sizeof mask, "-DT0_FEATURES=0x%xu", packed.features);
+    REQUIRE(backend.build_options().find(mask) != std::string::npos);
+}
+
+}  // namespace trac0r
+
+#endif
