@@ -4,7 +4,9 @@
 //
 //   build/benchmarks/bench_accel_crossover [--frames N] [--size W H]
 //
-// Prints a Markdown table; PackedScene's auto_bvh_min_triangles comes from it.
+// Prints a Markdown table of paths per second on the machine's cores, from
+// CPU time (benchmarks/timing.h); PackedScene's auto_bvh_min_triangles comes
+// from it.
 #include "timing.h"
 
 #include "trac0r/cpu_backend.h"
@@ -62,7 +64,9 @@ int main(int argc, char** argv) {
         return 2;
     }
     CpuBackend cpu;
-    std::printf("%d x %d, %d timed frames, %s\n\n", width, height, frames, cpu.device().c_str());
+    std::printf("%d x %d, %d timed frames, %s; paths per second on %d free cores, from CPU "
+                "time\n\n",
+                width, height, frames, cpu.device().c_str(), trac0r_bench::machine_cores());
     std::printf("| triangles | flat Mpaths/s | BVH Mpaths/s | BVH / flat |\n");
     std::printf("| --- | --- | --- | --- |\n");
     for (int boxes : {0, 1, 2, 3, 4, 5, 6, 8, 12, 20}) {
@@ -76,8 +80,10 @@ int main(int argc, char** argv) {
         const PackedScene flat_packed = pack_scene(scene, flat);
         const PackedScene bvh_packed = pack_scene(scene, bvh);
         const double pixels = static_cast<double>(width) * height;
-        const double f = pixels / trac0r_bench::measure(cpu, flat_packed, scene, frames).frame_seconds;
-        const double b = pixels / trac0r_bench::measure(cpu, bvh_packed, scene, frames).frame_seconds;
+        const double f =
+            pixels / trac0r_bench::measure(cpu, flat_packed, scene, frames).free_frame_seconds();
+        const double b =
+            pixels / trac0r_bench::measure(cpu, bvh_packed, scene, frames).free_frame_seconds();
         std::printf("| %zu | %.3f | %.3f | %.2f |\n", flat_packed.triangles.size(), f * 1e-6,
                     b * 1e-6, b / f);
         std::fflush(stdout);

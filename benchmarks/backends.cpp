@@ -1,13 +1,17 @@
-// Paths per second of the two backends, side by side in one run, and what
-// compiling the OpenCL program for the scene's feature mask saves against a
-// program with every material compiled in.
+// Paths per second of the two backends with the flat list and the BVH,
+// side by side in one run; rays per second of ray casting alone (primary
+// rays and diffuse bounces, benchmarks/ray_cast.h); and what compiling the
+// OpenCL program for the scene's feature mask saves against a program with
+// every material compiled in.
 //
-//   build/benchmarks/bench_backends [--frames N] [--width W --height H] [SCENE.json ...]
+//   build/benchmarks/bench_backends [--frames N] [--width W --height H]
+//                                   [--accel flat,bvh] [SCENE.json ...]
 //
 // Prints Markdown tables (the README's). PoCL's on-disk kernel cache is
 // switched off, and each timed build gets a unique dummy define so the
 // process-wide program cache cannot answer it either: build times are real
 // compiles.
+#include "ray_cast.h"
 #include "timing.h"
 
 #include "trac0r/cpu_backend.h"
@@ -33,8 +37,40 @@ struct Config {
     int frames = 5;
     int width = 800;
     int height = 600;
+    std::vector<Accel> accels = {Accel::flat, Accel::bvh};
     std::vector<std::string> scenes;
+    bool help = false;
 };
+
+const char* usage = R"(Usage: bench_backends [options] [SCENE.json ...]
+
+Paths per second of the CPU (OpenMP) and OpenCL backends with each
+acceleration structure, rays per second of ray casting alone, and OpenCL
+program build times, for each scene (default: scenes/cornell.json and
+scenes/cornell_diffuse.json), as Markdown tables.
+
+  --frames N            timed frames (and ray casting passes) after one warm-up (default 5)
+  --width W --height H  resolution (default 800 x 600)
+  --accel LIST          structures to compare, of flat, bvh, auto (default flat,bvh)
+  -h, --help            this text
+)";
+
+std::vector<Accel> parse_accels(const std::string& list) {
+    std::vector<Accel> out;
+    std::size_t start = 0;
+    while (start <= list.size()) {
+        const std::size_t comma = std::min(list.find(',', start), list.size());
+        const std::string name = list.substr(start, comma - start);
+        try {
+            out.push_back(parse_accel(name));
+        } catch (const std::invalid_argument&) {
+            throw std::invalid_argument("--accel: unknown structure '" + name +
+                                        "' (expected a list of flat, bvh, auto)");
+        }
+        start = comma + 1;
+    }
+    return out;
+}
 
 Config parse(int argc, char** argv) {
     Config c;
@@ -46,14 +82,21 @@ Config parse(int argc, char** argv) {
             }
             return std::atoi(argv[++i]);
         };
-        if (a == "--frames") {
+        if (a == "-h" || a == "--help") {
+            c.help = true;
+        } else if (a == "--frames") {
             c.frames = value();
+        } else if (a == "--accel") {
+            if (i + 1 >= argc) {
+                throw std::invalid_argument(a + ": expected a value");
+            }
+            c.accels = parse_accels(argv[++i]);
         } else if (a == "--width") {
             c.width = value();
         } else if (a == "--height") {
             c.height = value();
         } else if (!a.empty() && a[0] == '-') {
-            throw std::invalid_argument(a + ": unknown option");
+            throw std::invalid_argument(a + ": unknown option (see --help)");
         } else {
             c.scenes.push_back(a);
         }
@@ -92,12 +135,65 @@ double median_build_seconds(const Scene& scene, const PackedScene& packed,
     return seconds[1];
 }
 
+// Rays per second of ray casting alone: the same rays (made once from the
+// BVH scene) through each structure on each backend.
+void print_ray_table(const Config& config) {
+    std::printf("\nRays per second of ray casting alone (nearest hit, no shading), %d x %d: "
+                "one jittered primary ray per pixel, and one cosine-distributed diffuse "
+                "bounce from each primary hit that does not emit; %d passes after "
+                "one warm-up, on %d free cores from CPU time (benchmarks/ray_cast.h):\n\n",
+                config.width, config.height, config.frames, trac0r_bench::machine_cores());
+    std::printf("| scene | backend | accel | primary Mrays/s | diffuse bounce Mrays/s |\n");
+    std::printf("| --- | --- | --- | --- | --- |\n");
+    trac0r_bench::OpenClCaster opencl;
+    for (const std::string& path : config.scenes) {
+        const Scene scene = load_scene_file(path);
+        PackOptions bvh_options;
+        bvh_options.accel = Accel::bvh;
+        const kernel::CameraRecord camera =
+            make_camera_record(scene.camera, config.width, config.height);
+        const trac0r_bench::RaySets rays =
+            trac0r_bench::make_ray_sets(pack_scene(scene, bvh_options), camera);
+        std::size_t expected_hits[2] = {0, 0};
+        bool first = true;
+        for (int backend = 0; backend < 2; ++backend) {
+            for (Accel accel : config.accels) {
+                PackOptions options;
+                options.accel = accel;
+                const PackedScene packed = pack_scene(scene, options);
+                trac0r_bench::CastResult r[2];
+                const trac0r_bench::RaySet* sets[2] = {&rays.primary, &rays.bounce};
+                for (int k = 0; k < 2; ++k) {
+                    r[k] = backend == 0 ? trac0r_bench::cast_cpu(packed, *sets[k], config.frames)
+                                        : opencl.cast(packed, *sets[k], config.frames);
+                    if (first) {
+                        expected_hits[k] = r[k].hits;
+                    } else if (r[k].hits != expected_hits[k]) {
+                        std::printf("(warning: %zu of %zu rays hit here, %zu in the first row)\n",
+                                    r[k].hits, sets[k]->size(), expected_hits[k]);
+                    }
+                }
+                first = false;
+                std::printf("| %s | %s | %s | %.2f | %.2f |\n", path.c_str(),
+                            backend == 0 ? "cpu" : "opencl", to_string(accel),
+                            rays.primary.size() / r[0].seconds * 1e-6,
+                            rays.bounce.size() / r[1].seconds * 1e-6);
+                std::fflush(stdout);
+            }
+        }
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     try {
         setenv("POCL_KERNEL_CACHE", "0", 1);
         const Config config = parse(argc, argv);
+        if (config.help) {
+            std::fputs(usage, stdout);
+            return 0;
+        }
         const std::uint32_t all_materials = T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE |
                                             T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
                                             T0_FEATURE_EMITTANCE;
@@ -106,37 +202,68 @@ int main(int argc, char** argv) {
         std::printf("%d x %d, %d timed frames after one warm-up; CPU: %s; OpenCL: %s\n\n",
                     config.width, config.height, config.frames, cpu.device().c_str(),
                     opencl.device().c_str());
-        std::printf("Acceleration: --accel auto (mask bit 0x40 = BVH, 0x20 = flat list)\n\n");
-        std::printf("| scene | backend | mask | build s | ms/frame | fps | Mpaths/s |\n");
-        std::printf("| --- | --- | --- | --- | --- | --- | --- |\n");
+        const int cores = trac0r_bench::machine_cores();
+        std::printf("Mask bits: 0x40 = BVH, 0x20 = flat list. A frame is one path per pixel. "
+                    "fps and Mpaths/s on %d free cores: %d / the frame's CPU time (all threads); "
+                    "wall ms/frame depends on the machine's load.\n\n",
+                    cores, cores);
+        std::printf("| scene | backend | accel | mask | build s | wall ms/frame | CPU ms/frame | "
+                    "fps | Mpaths/s |\n");
+        std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
+        const double pixels = static_cast<double>(config.width) * config.height;
+        std::string ratios;
         for (const std::string& path : config.scenes) {
             Scene scene = load_scene_file(path);
             scene.render.width = config.width;
             scene.render.height = config.height;
-            const PackedScene packed = pack_scene(scene);
-            PackedScene full = packed;
-            full.features |= all_materials;
-            struct Row {
-                Backend* backend;
-                const PackedScene* packed;
-                const char* mask;
-            };
-            const Row rows[] = {{&cpu, &packed, "scene's"},
-                                {&opencl, &packed, "scene's"},
-                                {&opencl, &full, "all materials"}};
-            for (const Row& row : rows) {
-                if (row.packed == &full && full.features == packed.features) {
-                    continue;  // the scene already uses every material
+            double paths[2][3] = {};  // [cpu, opencl][Accel] with the scene's mask
+            for (Accel accel : config.accels) {
+                PackOptions options;
+                options.accel = accel;
+                const PackedScene packed = pack_scene(scene, options);
+                PackedScene full = packed;
+                full.features |= all_materials;
+                struct Row {
+                    Backend* backend;
+                    const PackedScene* packed;
+                    const char* mask;
+                };
+                const Row rows[] = {{&cpu, &packed, "scene's"},
+                                    {&opencl, &packed, "scene's"},
+                                    {&opencl, &full, "all materials"}};
+                for (const Row& row : rows) {
+                    if (row.packed == &full &&
+                        (full.features == packed.features || accel != config.accels.back())) {
+                        continue;  // the scene uses every material; or once per scene
+                    }
+                    const trac0r_bench::Timing t =
+                        trac0r_bench::measure(*row.backend, *row.packed, scene, config.frames);
+                    const double free = t.free_frame_seconds();
+                    std::printf("| %s | %s | %s | %s (0x%02x) | %.2f | %.0f | %.0f | %.2f "
+                                "| %.3f |\n",
+                                path.c_str(), row.backend->name().c_str(), to_string(accel),
+                                row.mask, row.packed->features, t.build_seconds,
+                                1e3 * t.frame_seconds, 1e3 * t.cpu_frame_seconds, 1.0 / free,
+                                pixels / free * 1e-6);
+                    std::fflush(stdout);
+                    if (row.packed == &packed) {
+                        paths[row.backend == &cpu ? 0 : 1][static_cast<int>(accel)] = pixels / free;
+                    }
                 }
-                const trac0r_bench::Timing t = trac0r_bench::measure(*row.backend, *row.packed, scene, config.frames);
-                const double pixels = static_cast<double>(config.width) * config.height;
-                std::printf("| %s | %s | %s (0x%02x) | %.2f | %.0f | %.2f | %.3f |\n",
-                            path.c_str(), row.backend->name().c_str(), row.mask,
-                            row.packed->features, t.build_seconds, 1e3 * t.frame_seconds,
-                            1.0 / t.frame_seconds, pixels / t.frame_seconds * 1e-6);
-                std::fflush(stdout);
+            }
+            const int flat = static_cast<int>(Accel::flat);
+            const int bvh = static_cast<int>(Accel::bvh);
+            if (paths[0][flat] > 0.0 && paths[0][bvh] > 0.0) {
+                char line[256];
+                std::snprintf(line, sizeof line, "- %s: CPU %.2f, OpenCL %.2f\n", path.c_str(),
+                              paths[0][bvh] / paths[0][flat], paths[1][bvh] / paths[1][flat]);
+                ratios += line;
             }
         }
+        if (!ratios.empty()) {
+            std::printf("\nBVH / flat list, paths per second:\n\n%s", ratios.c_str());
+        }
+        print_ray_table(config);
         std::printf("\nOpenCL program build time, to the end of the first (8 x 8) launch, "
                     "median of 3 real compiles:\n\n");
         std::printf("| scene | mask | build s |\n| --- | --- | --- |\n");

@@ -1,5 +1,13 @@
 // Shared by the benchmark programs: time frames of a packed scene on a
 // backend, after one warm-up frame.
+//
+// Wall-clock time and the process's CPU time (all its threads: OpenMP's and
+// PoCL's workers). On a machine shared with other work the wall clock
+// measures the load as much as the renderer, while CPU time counts only the
+// time our threads ran; so the tables compare CPU time, and turn it into
+// "on N free cores" figures: N cores give N CPU-seconds per second (what a
+// frame's wall time is when the machine is otherwise idle: both backends use
+// every core).
 #ifndef TRAC0R_BENCHMARKS_TIMING_H
 #define TRAC0R_BENCHMARKS_TIMING_H
 
@@ -8,13 +16,29 @@
 #include "trac0r/packed_scene.h"
 #include "trac0r/scene.h"
 
+#include <omp.h>
+#include <time.h>
+
 #include <chrono>
 
 namespace trac0r_bench {
 
+// Seconds of CPU time this process has used, over all its threads.
+inline double process_cpu_seconds() {
+    timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+// The cores that the "on N free cores" figures assume.
+inline int machine_cores() { return omp_get_num_procs(); }
+
 struct Timing {
-    double build_seconds;  // set_scene: upload, and the OpenCL program build
-    double frame_seconds;  // mean over the timed frames
+    double build_seconds;      // set_scene: upload, and the OpenCL program build
+    double frame_seconds;      // wall clock, mean over the timed frames
+    double cpu_frame_seconds;  // CPU time of all threads, mean over the timed frames
+    // A frame's seconds on machine_cores() free cores: CPU time / cores.
+    double free_frame_seconds() const { return cpu_frame_seconds / machine_cores(); }
 };
 
 inline Timing measure(trac0r::Backend& backend, const trac0r::PackedScene& packed,
@@ -28,11 +52,13 @@ inline Timing measure(trac0r::Backend& backend, const trac0r::PackedScene& packe
         trac0r::make_camera_record(scene.camera, scene.render.width, scene.render.height);
     backend.render_frame(camera, 1, 0, scene.render.max_depth);
     const Clock::time_point start = Clock::now();
+    const double cpu_start = process_cpu_seconds();
     for (int i = 1; i <= frames; ++i) {
         backend.render_frame(camera, 1, static_cast<std::uint32_t>(i), scene.render.max_depth);
     }
+    const double cpu = process_cpu_seconds() - cpu_start;
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    return {build, seconds / frames};
+    return {build, seconds / frames, cpu / frames};
 }
 
 }  // namespace trac0r_bench
