@@ -32,6 +32,29 @@ T0_INLINE float continuation_probability(int depth, int max_depth, float3 throug
     return fmin(by_depth, by_throughput);
 }
 
+// With next-event estimation every vertex adds a light sample of low
+// variance, so a path is worth more the longer it goes on: roulette starts
+// only once the throughput has fallen below 1/2 (the rule above with the
+// throughput doubled). On cornell_diffuse.json, thresholds of 1, 1/2, 1/3,
+// 1/4 and 1/8 gave 4.2, 5.3, 5.3, 5.2 and 4.9 times the naive integrator's
+// efficiency (variance ratio over cost ratio; README, "Next-event
+// estimation").
+#define T0_NEE_ROULETTE_THRESHOLD 0.5f
+
+T0_INLINE float nee_continuation_probability(int depth, int max_depth, float3 throughput) {
+    return continuation_probability(depth, max_depth, throughput / T0_NEE_ROULETTE_THRESHOLD);
+}
+
+// Russian roulette: whether the path goes on, with probability q; a
+// survivor's throughput is divided by q.
+T0_INLINE int survives_roulette(float q, float3* throughput, Rng* rng) {
+    if (!(rng_float(rng) < q)) {
+        return 0;
+    }
+    *throughput /= q;
+    return 1;
+}
+
 // The light list's inverse CDF: the first light whose cdf.x exceeds u.
 T0_INLINE t0_u32 pick_light(const SceneView* scene, float u) {
     t0_u32 lo = 0u;
@@ -145,24 +168,34 @@ T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng*
             break;
         }
 
-        // Russian roulette.
-        const float q = continuation_probability(depth, max_depth, throughput);
-        if (!(rng_float(rng) < q)) {
+        // Russian roulette, without next-event estimation (the thesis'
+        // integrator) right here; with it, after the light sample.
+        const int nee = T0_HAS_FEATURE(scene, T0_FEATURE_NEE);
+        if (!nee && !survives_roulette(continuation_probability(depth, max_depth, throughput),
+                                       &throughput, rng)) {
             break;
         }
-        throughput /= q;
         const float3 position = hit_position(tri, hit);
         const float magnitude = hit_magnitude(tri, position);
 
-        // Sample a light (next-event estimation), after the roulette: the
-        // light it finds is what the next vertex would emit, and a path
-        // only reaches that vertex if it survives.
+        // Sample a light (next-event estimation), before the roulette: the
+        // light sample is this vertex's and counts whether or not the path
+        // goes on; the emission that the scattered ray finds counts only on
+        // paths that survive, divided by the probability. Both are
+        // unbiased, and the MIS weights still sum to one.
+        // Not at the last vertex a path may have: the light sample stands
+        // for the next vertex, which max_depth does not allow.
         lights_sampled = 0;
-        if (T0_HAS_FEATURE(scene, T0_FEATURE_NEE) && scene->light_count > 0u &&
+        if (nee && depth + 1 < max_depth && scene->light_count > 0u &&
             material_samples_lights(scene, m)) {
             radiance += throughput * sample_light(scene, m, ray.direction, facing_normal, position,
                                                   magnitude, rng);
             lights_sampled = 1;
+        }
+
+        if (nee && !survives_roulette(nee_continuation_probability(depth, max_depth, throughput),
+                                      &throughput, rng)) {
+            break;
         }
 
         // Sample the material.
