@@ -12,6 +12,8 @@
 #include "trac0r/noise.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
+
+#include "timing.h"
 #ifdef TRAC0R_HAVE_OPENCL
 #include "trac0r/opencl_backend.h"
 #endif
@@ -50,6 +52,7 @@ renderer's own relative MSE estimate.
                       e.g. --config backend=opencl --config backend=cpu,max_depth=2
   --max-spp N         last checkpoint (default 1024)
   --seconds S         no new checkpoint once a configuration has rendered S s
+                      (on free cores, as in the table)
   --width W --height H  resolution (default 200 x 150)
   --reference FILE    reference image (.pfm, the same resolution); default:
                       rendered on the CPU with another seed at --reference-spp
@@ -284,7 +287,8 @@ Reference reference_image(const Options& o, const Scene& scene) {
 
 struct Checkpoint {
     long spp;
-    double seconds;
+    double seconds;       // on machine_cores() free cores: CPU seconds / cores
+    double wall_seconds;
     ImageError error;
     double estimated_rel_mse;
 };
@@ -314,22 +318,28 @@ int run(const Options& o) {
     if (!csv) {
         throw std::runtime_error(o.csv_path + ": cannot write");
     }
-    csv << "config,spp,seconds,rmse,rel_mse,psnr,estimated_rel_mse,reference_rel_mse\n";
+    csv << "config,spp,seconds,rmse,rel_mse,psnr,estimated_rel_mse,reference_rel_mse,"
+           "wall_seconds\n";
     std::printf("scene %s, %dx%d, reference %s (its own rel. MSE %.2g)\n\n",
                 o.scene_path.empty() ? "built-in Cornell box" : o.scene_path.c_str(), o.width,
                 o.height, o.reference_path.empty() ? "rendered" : o.reference_path.c_str(),
                 ref.own_rel_mse);
-    std::printf("seconds: render time only, frames of all configurations interleaved, after\n"
-                "one warm-up frame each (no OpenCL build)\n\n");
-    std::printf("| config | spp | seconds | RMSE | rel. MSE | PSNR dB | estimated rel. MSE |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
+    std::printf("seconds: render time on %d free cores (the process's CPU time over all its\n"
+                "threads / %d; the wall clock measures a shared machine's load as well),\n"
+                "frames of all configurations interleaved, after one warm-up frame each\n"
+                "(no OpenCL build); wall s: the wall clock\n\n",
+                trac0r_bench::machine_cores(), trac0r_bench::machine_cores());
+    std::printf(
+        "| config | spp | seconds | wall s | RMSE | rel. MSE | PSNR dB | estimated rel. MSE |\n");
+    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
     // Every configuration renders in turn, one frame each, so all of them
     // see the same load on a shared machine: their times compare side by
     // side. Each frame is timed on its own.
     struct Run {
         const Config* config;
         std::unique_ptr<Renderer> renderer;
-        double seconds;
+        double seconds;       // on free cores, from CPU time
+        double wall_seconds;
         bool stopped;
         std::vector<Checkpoint> points;
     };
@@ -348,7 +358,7 @@ int run(const Options& o) {
         // (seed, frame), so the image after restart() is the same as without.
         r->render_frame();
         r->restart();
-        runs.push_back(Run{&c, std::move(r), 0.0, false, {}});
+        runs.push_back(Run{&c, std::move(r), 0.0, 0.0, false, {}});
     }
     for (long spp = 1; spp <= o.max_spp; spp *= 2) {
         for (Run& run : runs) {
@@ -360,8 +370,12 @@ int run(const Options& o) {
             for (Run& run : runs) {
                 if (!run.stopped && static_cast<long>(run.renderer->frames()) < spp) {
                     const Clock::time_point start = Clock::now();
+                    const double cpu_start = trac0r_bench::process_cpu_seconds();
                     run.renderer->render_frame();  // returns when the frame is done
-                    run.seconds += std::chrono::duration<double>(Clock::now() - start).count();
+                    run.seconds += (trac0r_bench::process_cpu_seconds() - cpu_start) /
+                                   trac0r_bench::machine_cores();
+                    run.wall_seconds +=
+                        std::chrono::duration<double>(Clock::now() - start).count();
                     pending = true;
                 }
             }
@@ -372,7 +386,7 @@ int run(const Options& o) {
             }
             Renderer& r = *run.renderer;
             run.points.push_back(
-                Checkpoint{spp, run.seconds, image_error(r.image(), ref.image),
+                Checkpoint{spp, run.seconds, run.wall_seconds, image_error(r.image(), ref.image),
                            spp >= 2 ? estimate_relative_mse(r.accumulator(), o.width, o.height)
                                     : std::nan("")});
         }
@@ -383,12 +397,13 @@ int run(const Options& o) {
         const Config& c = *run.config;
         const std::vector<Checkpoint>& points = run.points;
         for (const Checkpoint& p : points) {
-            std::printf("| %s | %ld | %.3f | %.4g | %.4g | %.2f | %.4g |\n", c.label.c_str(),
-                        p.spp, p.seconds, p.error.rmse, p.error.relative_mse, p.error.psnr,
-                        p.estimated_rel_mse);
+            std::printf("| %s | %ld | %.3f | %.3f | %.4g | %.4g | %.2f | %.4g |\n",
+                        c.label.c_str(), p.spp, p.seconds, p.wall_seconds, p.error.rmse,
+                        p.error.relative_mse, p.error.psnr, p.estimated_rel_mse);
             csv << '"' << c.label << "\"," << p.spp << ',' << p.seconds << ',' << p.error.rmse
                 << ',' << p.error.relative_mse << ',' << p.error.psnr << ','
-                << p.estimated_rel_mse << ',' << ref.own_rel_mse << '\n';
+                << p.estimated_rel_mse << ',' << ref.own_rel_mse << ',' << p.wall_seconds
+                << '\n';
         }
         // The slope where the reference's own noise is under a tenth of the
         // error and the per-pixel estimates have settled (8 spp on).

@@ -53,7 +53,7 @@ def main():
     if reference_noise > 0:
         ax.axhline(reference_noise, color="black", lw=0.8, alpha=0.5,
                    label="reference's own noise")
-    ax.set_xlabel("render time (s)")
+    ax.set_xlabel("render time on free cores (s): CPU time / cores")
     ax.set_ylabel("relative MSE")
     ax.set_title("Error against render time")
     ax.grid(True, which="both", alpha=0.3)
