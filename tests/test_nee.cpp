@@ -95,7 +95,7 @@ double bonferroni_k(int comparisons, double family_false_alarm) {
 // 4x4-pixel block and over the whole image (which catches a bias too small
 // for one block to show): |a - b| <= k sqrt(se_a^2 + se_b^2), with k from
 // bonferroni_k over all these comparisons at a family-wise false alarm rate
-// of 1e-3 (k = 4.3 for 49 comparisons).
+// of 1e-3 (k = 4.3 for the 49 comparisons of 4x4 blocks).
 void require_same_image(const std::string& name, int frames, int max_depth = 0, int block = 4) {
     const int width = 32, height = 24;
     Scene scene = load_test_scene(name, width, height);

@@ -138,6 +138,9 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
         {"--headless --target-error 0 --output x.png", "--target-error: expected a positive"},
         {"--headless --accel kd --output x.png", "--accel: expected one of flat|bvh|auto"},
         {"--headless --width", "--width: expected a value"},
+        {"--headless --output --spp", "--output: expected a value after it, got the option --spp"},
+        {"--headless --benchmark 3 --spp 8", "--benchmark: renders exactly N frames"},
+        {"--replay .", "--replay .: cannot open the file"},
         {"no_such_scene.json --headless --output x.png", "no_such_scene.json"},
     };
     for (const Case& c : cases) {

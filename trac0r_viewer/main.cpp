@@ -36,6 +36,10 @@ void check_options(const Options& o) {
         throw UsageError("--headless: nothing to do; give --output FILE (.png or .pfm) or "
                          "--benchmark N");
     }
+    if (o.benchmark_frames > 0 && (o.spp > 0 || o.seconds > 0.0 || o.target_error > 0.0)) {
+        throw UsageError("--benchmark: renders exactly N frames; it does not go with --spp, "
+                         "--seconds or --target-error");
+    }
     if (!o.replay_path.empty() && (o.headless || o.benchmark_frames > 0)) {
         throw UsageError("--replay: scripts the interactive window; it does not go with "
                          "--headless or --benchmark");

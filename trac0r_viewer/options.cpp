@@ -44,7 +44,8 @@ Rendering:
   --max-depth D          maximum path length in vertices (default: the scene's)
   --threads N            CPU threads (default: all)
   --accel flat|bvh|auto  acceleration structure (default auto)
-  --integrator naive|nee the thesis' algorithm or next-event estimation
+  --integrator naive|nee the thesis' algorithm (default), or next-event
+                         estimation with MIS
   --target-error E       stop when the estimated relative MSE (no reference
                          needed: from each pixel's sample variance) reaches E,
                          e.g. 0.01; with --spp or --seconds, whichever first
@@ -158,6 +159,10 @@ Options parse_options(int argc, const char* const* argv) {
         if (setter != with_value.end()) {
             if (i + 1 >= argc) {
                 throw UsageError(arg + ": expected a value after it");
+            }
+            const std::string value = argv[i + 1];
+            if (value.size() > 2 && value.compare(0, 2, "--") == 0) {
+                throw UsageError(arg + ": expected a value after it, got the option " + value);
             }
             setter->second(arg, argv[++i]);
             continue;

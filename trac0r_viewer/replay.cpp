@@ -1,6 +1,7 @@
 #include "replay.h"
 
 #include <SDL.h>
+#include <sys/stat.h>
 
 #include <cstdio>
 #include <fstream>
@@ -156,12 +157,21 @@ std::vector<ReplayCommand> parse_replay(const std::string& text, const std::stri
 }
 
 std::vector<ReplayCommand> load_replay(const std::string& path) {
+    // A directory opens as a stream that reads nothing: an empty script,
+    // and a window that never closes. Only a regular file will do.
+    struct stat st;
+    if (stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) {
+        throw ReplayError("--replay " + path + ": cannot open the file (expected a script file)");
+    }
     std::ifstream in(path);
     if (!in) {
         throw ReplayError("--replay " + path + ": cannot open the file");
     }
     std::ostringstream text;
     text << in.rdbuf();
+    if (in.bad()) {
+        throw ReplayError("--replay " + path + ": cannot read the file");
+    }
     return parse_replay(text.str(), path);
 }
 

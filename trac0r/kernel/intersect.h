@@ -351,6 +351,11 @@ T0_INLINE float3 hit_position(T0_GLOBAL const TriangleRecord* tri, Hit hit) {
     const float3 e2 = v2 - v0;
     const float pull_per_area =
         T0_RAY_OFFSET_PER_MAGNITUDE * triangle_magnitude(tri) / tri->normal.w;
+    if (!(pull_per_area < 1e30f)) {
+        // An area so small that a device flushing denormals takes it for 0
+        // (inf pull, then inf / inf): the centroid, which is inside.
+        return (v0 + v1 + v2) * (1.0f / 3.0f);
+    }
     const float w0 = fmax(1.0f - hit.u - hit.v, length(v2 - v1) * pull_per_area);
     const float w1 = fmax(hit.u, length(e2) * pull_per_area);
     const float w2 = fmax(hit.v, length(e1) * pull_per_area);
