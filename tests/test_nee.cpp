@@ -226,18 +226,7 @@ TEST_CASE("NEE in the furnace: surfaces that emit, scatter and block light", "[n
     const int depth = scene.render.max_depth;
     const double expected = le * (1.0 - std::pow(rho, depth)) / (1.0 - rho);
     const std::vector<kernel::AccumPixel> accum = render(scene, Integrator::nee, 3, 24);
-    double sum = 0.0, m2 = 0.0, n = 0.0;
-    for (const kernel::AccumPixel& p : accum) {
-        sum += static_cast<double>(p.moments.x) * p.moments.z;
-        m2 += p.moments.y;
-        n += p.moments.z;
-    }
-    const double mean = sum / n;
-    // Within-pixel spread only: every pixel has the same expectation here.
-    const double se = std::sqrt(m2 / (n - 1.0) / n);
-    CAPTURE(mean, expected, se);
-    REQUIRE(se < 0.01 * expected);
-    REQUIRE(std::fabs(mean - expected) < 5.0 * se);  // 5 standard errors
+    require_furnace_mean(accum, expected);
 }
 
 TEST_CASE("the NEE kernel builds as OpenCL C and agrees with the CPU backend", "[nee][opencl]") {

@@ -120,18 +120,7 @@ TEST_CASE("furnace on the OpenCL backend", "[opencl][furnace]") {
     for (int i = 0; i < 24; ++i) {
         r.render_frame();
     }
-    double sum = 0.0, m2 = 0.0, n = 0.0;
-    for (const kernel::AccumPixel& p : r.accumulator()) {
-        sum += static_cast<double>(p.moments.x) * p.moments.z;
-        m2 += p.moments.y;
-        n += p.moments.z;
-    }
-    const double mean = sum / n;
-    // Within-pixel spread only: every pixel has the same expectation here.
-    const double se = std::sqrt(m2 / (n - 1.0) / n);
-    CAPTURE(mean, expected, se);
-    REQUIRE(se < 0.01 * expected);
-    REQUIRE(std::fabs(mean - expected) < 5.0 * se);
+    require_furnace_mean(r.accumulator(), expected);
 }
 
 TEST_CASE("an unknown device index is an error", "[opencl]") {

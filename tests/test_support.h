@@ -5,13 +5,16 @@
 
 #include <catch2/catch.hpp>
 
+#include "trac0r/kernel/types.h"
 #include "trac0r/opencl_backend.h"
 #include "trac0r/packed_scene.h"
 #include "trac0r/scene_loader.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace trac0r {
 
@@ -35,6 +38,24 @@ inline void require_warning_free_build(const PackedScene& packed) {
     char mask[32];
     std::snprintf(mask, sizeof mask, "-DT0_FEATURES=0x%xu", packed.features);
     REQUIRE(backend.build_options().find(mask) != std::string::npos);
+}
+
+// A furnace render (every pixel has the same expectation): the mean over
+// all samples is within 5 standard errors of expected, and the render is
+// long enough that 5 standard errors are under 5% of it. The spread is the
+// within-pixel one, from the accumulator's per-pixel M2.
+inline void require_furnace_mean(const std::vector<kernel::AccumPixel>& accum, double expected) {
+    double sum = 0.0, m2 = 0.0, n = 0.0;
+    for (const kernel::AccumPixel& p : accum) {
+        sum += static_cast<double>(p.moments.x) * p.moments.z;
+        m2 += p.moments.y;
+        n += p.moments.z;
+    }
+    const double mean = sum / n;
+    const double se = std::sqrt(m2 / (n - 1.0) / n);
+    CAPTURE(mean, expected, se);
+    REQUIRE(se < 0.01 * expected);
+    REQUIRE(std::fabs(mean - expected) < 5.0 * se);
 }
 
 }  // namespace trac0r
