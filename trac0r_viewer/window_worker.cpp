@@ -43,38 +43,31 @@ RenderWorker::~RenderWorker() {
     thread_.join();
 }
 
-std::uint64_t RenderWorker::set_camera(const trac0r::Camera& camera) {
+template <typename Change>
+std::uint64_t RenderWorker::request(Change change) {
     std::uint64_t generation;
     {
         std::lock_guard<std::mutex> lock(mutex_);
-        pending_.camera_changed = true;
-        pending_.camera = camera;
+        change(pending_);
         generation = pending_.generation = ++last_generation_;
     }
     wake_.notify_all();
     return generation;
+}
+
+std::uint64_t RenderWorker::set_camera(const trac0r::Camera& camera) {
+    return request([&](Requests& r) {
+        r.camera_changed = true;
+        r.camera = camera;
+    });
 }
 
 std::uint64_t RenderWorker::restart() {
-    std::uint64_t generation;
-    {
-        std::lock_guard<std::mutex> lock(mutex_);
-        pending_.restart = true;
-        generation = pending_.generation = ++last_generation_;
-    }
-    wake_.notify_all();
-    return generation;
+    return request([](Requests& r) { r.restart = true; });
 }
 
 std::uint64_t RenderWorker::switch_backend(const std::string& name) {
-    std::uint64_t generation;
-    {
-        std::lock_guard<std::mutex> lock(mutex_);
-        pending_.backend = name;
-        generation = pending_.generation = ++last_generation_;
-    }
-    wake_.notify_all();
-    return generation;
+    return request([&](Requests& r) { r.backend = name; });
 }
 
 bool RenderWorker::take_frame(WorkerFrame* frame) {

@@ -96,6 +96,10 @@ class RenderWorker {
         std::uint64_t generation = 0;
     };
 
+    // Changes pending_ under the lock, gives it a new generation and wakes
+    // the thread: what every request does.
+    template <typename Change>
+    std::uint64_t request(Change change);
     void run();
     bool paused() const;
     void apply(const Requests& requests);
