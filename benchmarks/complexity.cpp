@@ -9,6 +9,7 @@
 //
 // Prints a Markdown table and writes a CSV; plot it with
 // benchmarks/plot_complexity.py.
+#include "cli.h"
 #include "timing.h"
 
 #include "trac0r/cpu_backend.h"
@@ -34,6 +35,8 @@ using namespace trac0r;
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using trac0r_bench::UsageError;
+using trac0r_bench::parse_long;
 
 const char* usage = R"(Usage: bench_complexity [options]
 
@@ -55,10 +58,6 @@ frames per second against the triangle count as a Markdown table and a CSV.
   -h, --help            this text
 )";
 
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
 struct Options {
     int frames = 5;
     int width = 160;
@@ -70,22 +69,6 @@ struct Options {
     int repeats = 1;
     std::string csv_path = "benchmarks/results/complexity.csv";
 };
-
-long parse_long(const std::string& flag, const char* text, long lo, long hi) {
-    const std::string s = text;
-    std::size_t used = 0;
-    long v = 0;
-    try {
-        v = std::stol(s, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (s.empty() || used != s.size() || v < lo || v > hi) {
-        throw UsageError(flag + ": expected an integer in [" + std::to_string(lo) + ", " +
-                         std::to_string(hi) + "], got '" + s + "'");
-    }
-    return v;
-}
 
 double parse_seconds(const std::string& flag, const char* text) {
     const std::string s = text;
@@ -438,18 +421,12 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
+    return trac0r_bench::run_main("bench_complexity", [&] {
         Options o;
         if (!parse(argc, argv, o)) {
             std::fputs(usage, stdout);
             return 0;
         }
         return run(o);
-    } catch (const UsageError& e) {
-        std::fprintf(stderr, "bench_complexity: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "bench_complexity: %s\n", e.what());
-        return 1;
-    }
+    });
 }

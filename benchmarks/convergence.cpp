@@ -13,6 +13,7 @@
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
 
+#include "cli.h"
 #include "timing.h"
 #ifdef TRAC0R_HAVE_OPENCL
 #include "trac0r/opencl_backend.h"
@@ -37,6 +38,8 @@ using namespace trac0r;
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using trac0r_bench::UsageError;
+using trac0r_bench::parse_long;
 
 const char* usage = R"(Usage: bench_convergence [SCENE.json] [options]
 
@@ -83,25 +86,6 @@ struct Options {
     std::string cache_dir = "convergence_cache";
     std::string csv_path = "convergence.csv";
 };
-
-struct UsageError : std::runtime_error {
-    using std::runtime_error::runtime_error;
-};
-
-long parse_long(const std::string& flag, const std::string& text, long lo, long hi) {
-    std::size_t used = 0;
-    long v = 0;
-    try {
-        v = std::stol(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != text.size() || text.empty() || v < lo || v > hi) {
-        throw UsageError(flag + ": expected an integer in [" + std::to_string(lo) + ", " +
-                         std::to_string(hi) + "], got '" + text + "'");
-    }
-    return v;
-}
 
 Config parse_config(const std::string& spec) {
     Config c;
@@ -441,13 +425,6 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
-        return run(parse_options(argc, argv));
-    } catch (const UsageError& e) {
-        std::fprintf(stderr, "bench_convergence: %s\n", e.what());
-        return 2;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "bench_convergence: %s\n", e.what());
-        return 1;
-    }
+    return trac0r_bench::run_main("bench_convergence",
+                                  [&] { return run(parse_options(argc, argv)); });
 }
