@@ -147,15 +147,22 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
     const long target_spp =
         options.spp > 0 ? options.spp : (options.seconds > 0.0 || by_error ? 0 : 64);
     const double pixels = static_cast<double>(renderer.width()) * renderer.height();
-    const auto estimate = [&renderer] {
-        return trac0r::estimate_relative_mse(renderer.accumulator(), renderer.width(),
-                                             renderer.height());
+    // The noise estimate reads the accumulator back and passes over the
+    // image: computed at most once per spp count.
+    double last_estimate = std::numeric_limits<double>::infinity();
+    long estimate_spp = 0;
+    long spp = 0;
+    const auto estimate = [&] {
+        if (estimate_spp != spp) {
+            last_estimate = trac0r::estimate_relative_mse(renderer.accumulator(),
+                                                          renderer.width(), renderer.height());
+            estimate_spp = spp;
+        }
+        return last_estimate;
     };
     Progress progress(target_spp, options.seconds, options.target_error);
     const Clock::time_point start = Clock::now();
-    long spp = 0;
     long error_check = next_error_check(0);
-    double last_estimate = std::numeric_limits<double>::infinity();
     bool error_reached = false;
     for (;;) {
         const double elapsed = seconds_since(start);
@@ -168,13 +175,12 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
         ++spp;
         const double now = seconds_since(start);
         if (by_error && spp >= error_check) {
-            last_estimate = estimate();
-            error_reached = last_estimate <= options.target_error;
+            error_reached = estimate() <= options.target_error;
             error_check = next_error_check(spp);
         }
         if (progress.due(spp, now, last_estimate)) {
             if (!by_error && spp >= 2) {
-                last_estimate = estimate();
+                estimate();
             }
             progress.update(spp, now, spp * pixels / now, last_estimate);
         }
@@ -182,7 +188,7 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
     const double elapsed = seconds_since(start);
     const double paths_per_second = elapsed > 0.0 ? spp * pixels / elapsed : 0.0;
     if (spp >= 2) {
-        last_estimate = estimate();
+        estimate();
     }
     progress.finish(spp, elapsed, paths_per_second, last_estimate);
     const trac0r::RenderStats stats = renderer.stats();
