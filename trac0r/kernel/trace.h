@@ -70,6 +70,12 @@ T0_INLINE t0_u32 pick_light(const SceneView* scene, float u) {
     return lo;
 }
 
+// A density per area on a light turned into one per solid angle, seen from
+// squared distance distance2 at cosine cos_light to the light's surface.
+T0_INLINE float area_to_solid_angle(float pdf_area, float distance2, float cos_light) {
+    return pdf_area * distance2 / cos_light;
+}
+
 // The density per solid angle, seen from distance away along unit
 // direction, with which next-event estimation picks a point on the emitting
 // triangle tri; zero for a triangle that is not in the light list. Emitters
@@ -80,7 +86,7 @@ T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const Tr
         return 0.0f;
     }
     const float cos_light = fabs(dot(direction, xyz(tri->normal)));
-    return scene->lights[tri->ids.z].cdf.z * distance * distance / cos_light;
+    return area_to_solid_angle(scene->lights[tri->ids.z].cdf.z, distance * distance, cos_light);
 }
 
 // Next-event estimation at a surface point: picks an emitting triangle in
@@ -126,7 +132,7 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
                                             shadow_length)) {
         return float3_splat(0.0f);
     }
-    const float light_pdf = light->cdf.z * distance2 / cos_light;
+    const float light_pdf = area_to_solid_angle(light->cdf.z, distance2, cos_light);
     const float3 emitted = material_emission(&scene->materials[tri->ids.x]);
     return e.f_cos * emitted * (power_heuristic(light_pdf, e.pdf) / light_pdf);
 }
