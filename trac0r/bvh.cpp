@@ -1,9 +1,11 @@
 #include "trac0r/bvh.h"
 
+#include "trac0r/kernel/intersect.h"
+
 #include <algorithm>
-#include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 namespace trac0r {
 
@@ -26,17 +28,14 @@ float surface_area(const AABB& b) {
     return 2.0f * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
-float as_float_bits(std::uint32_t u) {
-    float f;
-    std::memcpy(&f, &u, sizeof f);
-    return f;
-}
-
-std::uint32_t as_uint_bits(float f) {
-    std::uint32_t u;
-    std::memcpy(&u, &f, sizeof u);
-    return u;
-}
+// A node of the binary tree the SAH builds, before it is collapsed into
+// 4-wide nodes: an interior node's children are at first and first + 1,
+// a leaf holds count triangles from first.
+struct BinaryNode {
+    AABB bounds;
+    std::uint32_t first = 0;
+    std::uint32_t count = 0;  // 0: interior
+};
 
 struct BuildItem {
     AABB bounds;
@@ -55,24 +54,25 @@ class Builder {
     Builder(std::vector<BuildItem> items, int max_leaf_size)
         : items_(std::move(items)), max_leaf_(max_leaf_size) {}
 
-    Bvh build() {
-        Bvh bvh;
+    // The binary tree (node 0 the root) and, in `order`, the items in leaf
+    // order.
+    std::vector<BinaryNode> build(std::vector<std::uint32_t>& order) {
         nodes_.reserve(2 * items_.size() / static_cast<std::size_t>(std::max(1, max_leaf_ / 2)) + 1);
         nodes_.emplace_back();
         build_node(0, 0, items_.size(), 1);
-        bvh.nodes = std::move(nodes_);
-        bvh.order.reserve(items_.size());
+        order.clear();
+        order.reserve(items_.size());
         for (const BuildItem& item : items_) {
-            bvh.order.push_back(item.index);
+            order.push_back(item.index);
         }
-        bvh.depth = depth_;
-        return bvh;
+        return std::move(nodes_);
     }
 
   private:
     void set_node(std::size_t node, const AABB& bounds, std::uint32_t first, std::uint32_t count) {
-        nodes_[node].aabb_min = glm::vec4(bounds.min, as_float_bits(first));
-        nodes_[node].aabb_max = glm::vec4(bounds.max, as_float_bits(count));
+        nodes_[node].bounds = bounds;
+        nodes_[node].first = first;
+        nodes_[node].count = count;
     }
 
     // The best binned SAH split of [begin, end), or axis -1 when no split
@@ -130,7 +130,6 @@ class Builder {
     }
 
     void build_node(std::size_t node, std::size_t begin, std::size_t end, int depth) {
-        depth_ = std::max(depth_, depth);
         AABB bounds;
         AABB centroid_bounds;
         for (std::size_t i = begin; i < end; ++i) {
@@ -192,9 +191,76 @@ class Builder {
     }
 
     std::vector<BuildItem> items_;
-    std::vector<kernel::BvhNode> nodes_;
+    std::vector<BinaryNode> nodes_;
     int max_leaf_;
-    int depth_ = 0;
+};
+
+// Collapses the binary tree into 4-wide nodes: a wide node's lanes are the
+// grandchildren of a binary node (or a child, where that is a leaf), so
+// each wide level takes two binary levels and the depth halves.
+class Collapser {
+  public:
+    explicit Collapser(const std::vector<BinaryNode>& binary) : binary_(binary) {}
+
+    std::vector<kernel::BvhNode> collapse(int& depth) {
+        wide_.emplace_back();
+        depth = fill(0, 0);
+        return std::move(wide_);
+    }
+
+  private:
+    // Fills wide node `wide` from binary node `b`; returns the depth of the
+    // wide subtree, in nodes.
+    int fill(std::size_t wide, std::uint32_t b) {
+        std::uint32_t lanes[4];
+        int lane_count = 0;
+        if (binary_[b].count > 0) {
+            lanes[lane_count++] = b;  // a tree that is one leaf
+        } else {
+            for (std::uint32_t c = binary_[b].first; c < binary_[b].first + 2; ++c) {
+                if (binary_[c].count > 0) {
+                    lanes[lane_count++] = c;
+                } else {
+                    lanes[lane_count++] = binary_[c].first;
+                    lanes[lane_count++] = binary_[c].first + 1;
+                }
+            }
+        }
+        kernel::BvhNode node;
+        for (int axis = 0; axis < 3; ++axis) {
+            node.bounds[2 * axis] = glm::vec4(std::numeric_limits<float>::max());
+            node.bounds[2 * axis + 1] = glm::vec4(-std::numeric_limits<float>::max());
+        }
+        node.child = glm::uvec4(0u);
+        node.count = glm::uvec4(0u);
+        std::vector<std::pair<int, std::uint32_t>> interior;  // (lane, binary node)
+        for (int i = 0; i < lane_count; ++i) {
+            const BinaryNode& n = binary_[lanes[i]];
+            for (int axis = 0; axis < 3; ++axis) {
+                node.bounds[2 * axis][i] = n.bounds.min[axis];
+                node.bounds[2 * axis + 1][i] = n.bounds.max[axis];
+            }
+            if (n.count > 0) {
+                node.child[i] = n.first;
+                node.count[i] = n.count;
+            } else {
+                interior.emplace_back(i, lanes[i]);
+            }
+        }
+        // Children nodes side by side, then their subtrees.
+        const std::size_t first_child = wide_.size();
+        wide_.resize(wide_.size() + interior.size());
+        int depth = 1;
+        for (std::size_t k = 0; k < interior.size(); ++k) {
+            node.child[interior[k].first] = static_cast<std::uint32_t>(first_child + k);
+            depth = std::max(depth, 1 + fill(first_child + k, interior[k].second));
+        }
+        wide_[wide] = node;
+        return depth;
+    }
+
+    const std::vector<BinaryNode>& binary_;
+    std::vector<kernel::BvhNode> wide_;
 };
 
 }  // namespace
@@ -212,11 +278,15 @@ Bvh build_bvh(const std::vector<AABB>& triangle_bounds, int max_leaf_size) {
         items.push_back({triangle_bounds[i], triangle_bounds[i].center(),
                          static_cast<std::uint32_t>(i)});
     }
-    return Builder(std::move(items), std::max(1, max_leaf_size)).build();
+    Bvh bvh;
+    const std::vector<BinaryNode> binary =
+        Builder(std::move(items), std::max(1, max_leaf_size)).build(bvh.order);
+    bvh.nodes = Collapser(binary).collapse(bvh.depth);
+    // The traversal stack holds at most three entries per level.
+    if (3 * bvh.depth > T0_BVH_STACK_SIZE) {
+        throw std::runtime_error("build_bvh: tree too deep for the traversal stack");
+    }
+    return bvh;
 }
-
-std::uint32_t bvh_node_first(const kernel::BvhNode& node) { return as_uint_bits(node.aabb_min.w); }
-
-std::uint32_t bvh_node_count(const kernel::BvhNode& node) { return as_uint_bits(node.aabb_max.w); }
 
 }  // namespace trac0r

@@ -41,6 +41,33 @@ T0_INLINE int is_finite_f(float f) { return isfinite(f); }
 T0_INLINE float buffer_component(__global const float4* v, int k) {
     return ((__global const float*)v)[k];
 }
+T0_INLINE t0_u32 buffer_uint_component(__global const uint4* v, int k) {
+    return ((__global const uint*)v)[k];
+}
+#define T0_INFINITY INFINITY
+// The index of the lowest set bit of m (m != 0).
+T0_INLINE int lowest_set_bit(int m) { return 31 - (int)clz(m & -m); }
+
+// Four floats that one instruction works on: the BVH tests a node's four
+// child boxes at once (kernel/intersect.h). OpenCL's float4 is one.
+typedef float4 t0_lanes;
+T0_INLINE t0_lanes lanes_load(__global const float4* p) { return *p; }
+T0_INLINE t0_lanes lanes_splat(float v) { return (float4)(v); }
+T0_INLINE t0_lanes lanes_sub(t0_lanes a, t0_lanes b) { return a - b; }
+T0_INLINE t0_lanes lanes_mul(t0_lanes a, t0_lanes b) { return a * b; }
+// a < b ? a : b and a > b ? a : b per lane, as SSE's minps and maxps.
+T0_INLINE t0_lanes lanes_min(t0_lanes a, t0_lanes b) { return select(b, a, isless(a, b)); }
+T0_INLINE t0_lanes lanes_max(t0_lanes a, t0_lanes b) { return select(b, a, isgreater(a, b)); }
+// Bit i set where lane i of a <= lane i of b.
+T0_INLINE int lanes_le_mask(t0_lanes a, t0_lanes b) {
+    const int4 m = islessequal(a, b);
+    return (m.x & 1) | (m.y & 2) | (m.z & 4) | (m.w & 8);
+}
+// Lane i of x where a <= b there, else of y.
+T0_INLINE t0_lanes lanes_select_le(t0_lanes a, t0_lanes b, t0_lanes x, t0_lanes y) {
+    return select(y, x, islessequal(a, b));
+}
+T0_INLINE void lanes_store(t0_lanes v, float* out) { vstore4(v, 0, out); }
 
 #else  // C++
 
@@ -50,6 +77,10 @@ T0_INLINE float buffer_component(__global const float4* v, int k) {
 
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
+
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
 
 #define T0_GLOBAL
 #define T0_INLINE inline
@@ -81,10 +112,14 @@ using glm::normalize;
 using std::copysign;
 using std::cos;
 using std::fabs;
-using std::fmax;
-using std::fmin;
 using std::sin;
 using std::sqrt;
+
+// fmax and fmin with their C99 meaning (a NaN argument gives the other),
+// written out: std::fmax is a call into libm unless -ffast-math lets the
+// compiler assume no NaN, and these sit in every path's inner loop.
+inline float fmax(float a, float b) { return a > b || b != b ? a : b; }
+inline float fmin(float a, float b) { return a < b || b != b ? a : b; }
 
 inline float3 make_float3(float x, float y, float z) { return float3(x, y, z); }
 inline float4 make_float4(float x, float y, float z, float w) { return float4(x, y, z, w); }
@@ -92,12 +127,13 @@ inline uint4 make_uint4(t0_u32 x, t0_u32 y, t0_u32 z, t0_u32 w) { return uint4(x
 inline float3 float3_splat(float v) { return float3(v); }
 inline float3 xyz(float4 v) { return float3(v); }
 inline float3 vmin3(float3 a, float3 b) {
-    return float3(std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z));
+    return float3(fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z));
 }
 inline float3 vmax3(float3 a, float3 b) {
-    return float3(std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z));
+    return float3(fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z));
 }
-inline float3 vabs3(float3 a) { return glm::abs(a); }
+// std::fabs, which clears the sign bit; glm::abs compares and branches.
+inline float3 vabs3(float3 a) { return float3(std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)); }
 inline int float_bits(float f) {
     int i;
     std::memcpy(&i, &f, sizeof i);
@@ -111,6 +147,56 @@ inline float bits_float(int i) {
 inline int is_finite_f(float f) { return std::isfinite(f) ? 1 : 0; }
 // glm's own view of a vector as an array of its components.
 inline float buffer_component(const float4* v, int k) { return glm::value_ptr(*v)[k]; }
+inline t0_u32 buffer_uint_component(const uint4* v, int k) { return glm::value_ptr(*v)[k]; }
+#define T0_INFINITY HUGE_VALF
+// The index of the lowest set bit of m (m != 0).
+inline int lowest_set_bit(int m) { return __builtin_ctz(static_cast<unsigned>(m)); }
+
+// Four floats that one instruction works on (see the OpenCL side): SSE,
+// which every x86-64 CPU has, or a plain array elsewhere.
+#if defined(__SSE__)
+typedef __m128 t0_lanes;
+inline t0_lanes lanes_load(const float4* p) { return _mm_loadu_ps(glm::value_ptr(*p)); }
+inline t0_lanes lanes_splat(float v) { return _mm_set1_ps(v); }
+inline t0_lanes lanes_sub(t0_lanes a, t0_lanes b) { return _mm_sub_ps(a, b); }
+inline t0_lanes lanes_mul(t0_lanes a, t0_lanes b) { return _mm_mul_ps(a, b); }
+inline t0_lanes lanes_min(t0_lanes a, t0_lanes b) { return _mm_min_ps(a, b); }
+inline t0_lanes lanes_max(t0_lanes a, t0_lanes b) { return _mm_max_ps(a, b); }
+inline int lanes_le_mask(t0_lanes a, t0_lanes b) { return _mm_movemask_ps(_mm_cmple_ps(a, b)); }
+inline t0_lanes lanes_select_le(t0_lanes a, t0_lanes b, t0_lanes x, t0_lanes y) {
+    const __m128 m = _mm_cmple_ps(a, b);
+    return _mm_or_ps(_mm_and_ps(m, x), _mm_andnot_ps(m, y));
+}
+inline void lanes_store(t0_lanes v, float* out) { _mm_storeu_ps(out, v); }
+#else
+struct t0_lanes {
+    float v[4];
+};
+inline t0_lanes lanes_load(const float4* p) { return t0_lanes{{p->x, p->y, p->z, p->w}}; }
+inline t0_lanes lanes_splat(float v) { return t0_lanes{{v, v, v, v}}; }
+#define T0_LANEWISE(expr)            \
+    t0_lanes r;                      \
+    for (int i = 0; i < 4; ++i) {    \
+        r.v[i] = (expr);             \
+    }                                \
+    return r
+inline t0_lanes lanes_sub(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] - b.v[i]); }
+inline t0_lanes lanes_mul(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] * b.v[i]); }
+inline t0_lanes lanes_min(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] < b.v[i] ? a.v[i] : b.v[i]); }
+inline t0_lanes lanes_max(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] > b.v[i] ? a.v[i] : b.v[i]); }
+inline t0_lanes lanes_select_le(t0_lanes a, t0_lanes b, t0_lanes x, t0_lanes y) {
+    T0_LANEWISE(a.v[i] <= b.v[i] ? x.v[i] : y.v[i]);
+}
+#undef T0_LANEWISE
+inline int lanes_le_mask(t0_lanes a, t0_lanes b) {
+    int m = 0;
+    for (int i = 0; i < 4; ++i) {
+        m |= (a.v[i] <= b.v[i] ? 1 : 0) << i;
+    }
+    return m;
+}
+inline void lanes_store(t0_lanes v, float* out) { std::memcpy(out, v.v, sizeof v.v); }
+#endif
 
 T0_NAMESPACE_END
 

@@ -218,36 +218,96 @@ T0_INLINE Hit traverse_flat(const SceneView* scene, Ray ray, float t_max, int an
     return hit;
 }
 
-// Longest root-to-leaf path the traversal stack holds; trac0r/bvh.cpp
-// builds no deeper tree (SAH to depth 32, then halving).
-#define T0_BVH_STACK_SIZE 64
+// Entries the traversal stack holds: a node pushes at most three children
+// (its nearest is visited next), so 3 x the tree's depth in nodes, which
+// trac0r/bvh.cpp checks (SAH to binary depth 32, then halving, and two
+// binary levels per 4-wide node).
+#define T0_BVH_STACK_SIZE 96
 
-T0_INLINE t0_u32 bvh_first(T0_GLOBAL const BvhNode* n) { return (t0_u32)float_bits(n->aabb_min.w); }
-T0_INLINE t0_u32 bvh_count(T0_GLOBAL const BvhNode* n) { return (t0_u32)float_bits(n->aabb_max.w); }
+// The ray against the boxes of node n's four children over [0, t_max]: bit
+// i of the result is set when it enters child i's box, at entry[i] (the
+// others get infinity, beyond every entry). Lane for lane the floats of
+// aabb_entry, four boxes per operation.
+T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, Ray ray, float t_max, float* entry) {
+    if (ray.any_parallel) {
+        // aabb_entry's slow path, one lane at a time; unused lanes (their
+        // box is inverted) are skipped.
+        int mask = 0;
+        for (int i = 0; i < 4; ++i) {
+            const float3 lo = make_float3(buffer_component(&n->bounds[0], i),
+                                          buffer_component(&n->bounds[2], i),
+                                          buffer_component(&n->bounds[4], i));
+            const float3 hi = make_float3(buffer_component(&n->bounds[1], i),
+                                          buffer_component(&n->bounds[3], i),
+                                          buffer_component(&n->bounds[5], i));
+            const float t = lo.x <= hi.x ? aabb_entry(lo, hi, ray, t_max) : T0_NO_HIT;
+            entry[i] = t < T0_NO_HIT ? t : T0_INFINITY;
+            mask |= (t < T0_NO_HIT ? 1 : 0) << i;
+        }
+        return mask;
+    }
+    // The near plane of each slab is the minimum for a positive direction
+    // and the maximum for a negative one: for a box, the same floats as the
+    // min and max of aabb_entry (rounding is monotonic), and for an unused
+    // lane's inverted box an entry beyond the exit.
+    const int sx = ray.inv_direction.x < 0.0f ? 1 : 0;
+    const int sy = ray.inv_direction.y < 0.0f ? 1 : 0;
+    const int sz = ray.inv_direction.z < 0.0f ? 1 : 0;
+    const t0_lanes ox = lanes_splat(ray.origin.x);
+    const t0_lanes oy = lanes_splat(ray.origin.y);
+    const t0_lanes oz = lanes_splat(ray.origin.z);
+    const t0_lanes ix = lanes_splat(ray.inv_direction.x);
+    const t0_lanes iy = lanes_splat(ray.inv_direction.y);
+    const t0_lanes iz = lanes_splat(ray.inv_direction.z);
+    const t0_lanes near_x = lanes_mul(lanes_sub(lanes_load(&n->bounds[sx]), ox), ix);
+    const t0_lanes far_x = lanes_mul(lanes_sub(lanes_load(&n->bounds[1 - sx]), ox), ix);
+    const t0_lanes near_y = lanes_mul(lanes_sub(lanes_load(&n->bounds[2 + sy]), oy), iy);
+    const t0_lanes far_y = lanes_mul(lanes_sub(lanes_load(&n->bounds[3 - sy]), oy), iy);
+    const t0_lanes near_z = lanes_mul(lanes_sub(lanes_load(&n->bounds[4 + sz]), oz), iz);
+    const t0_lanes far_z = lanes_mul(lanes_sub(lanes_load(&n->bounds[5 - sz]), oz), iz);
+    const t0_lanes t_near =
+        lanes_max(lanes_max(near_x, near_y), lanes_max(near_z, lanes_splat(0.0f)));
+    const t0_lanes t_far = lanes_mul(lanes_min(lanes_min(far_x, far_y), far_z),
+                                     lanes_splat(1.0f + 2.0f * T0_GAMMA3));
+    const t0_lanes limit = lanes_min(t_far, lanes_splat(t_max));
+    lanes_store(lanes_select_le(t_near, limit, t_near, lanes_splat(T0_INFINITY)), entry);
+    return lanes_le_mask(t_near, limit);
+}
 
-// Nearest hit below t_max through the BVH; with any_hit, stops at the first
-// hit (shadow rays). Nearer child first; the farther one waits on the stack
-// with its entry distance, and is skipped if a hit has come closer since.
+// Puts positions i and j of a node's (entry, lane) list in order of entry;
+// selects, not branches.
+T0_INLINE void order_lanes(float* entry, int* lane, int i, int j) {
+    const float ei = entry[i];
+    const float ej = entry[j];
+    const int li = lane[i];
+    const int lj = lane[j];
+    const int swap = ej < ei;
+    entry[i] = swap ? ej : ei;
+    entry[j] = swap ? ei : ej;
+    lane[i] = swap ? lj : li;
+    lane[j] = swap ? li : lj;
+}
+
+// Nearest hit below t_max through the 4-wide BVH; with any_hit, stops at
+// the first hit (shadow rays). Of a node's children that the ray enters,
+// the nearest is visited next and the others wait on the stack with their
+// entry distances, farthest at the bottom; one is skipped if a hit has come
+// closer since.
 T0_INLINE Hit traverse_bvh(const SceneView* scene, Ray ray, float t_max, int any_hit) {
     Hit hit;
     hit.t = t_max;
     hit.u = 0.0f;
     hit.v = 0.0f;
     hit.triangle = -1;
-    t0_u32 stack_node[T0_BVH_STACK_SIZE];
+    t0_u32 stack_child[T0_BVH_STACK_SIZE];
+    t0_u32 stack_count[T0_BVH_STACK_SIZE];
     float stack_entry[T0_BVH_STACK_SIZE];
     int top = 0;
-    T0_GLOBAL const BvhNode* root = &scene->nodes[0];
-    if (!(aabb_entry(xyz(root->aabb_min), xyz(root->aabb_max), ray, hit.t) < hit.t)) {
-        return hit;
-    }
-    t0_u32 node = 0;
+    t0_u32 child = 0u;  // what is visited: node 0, the root,
+    t0_u32 count = 0u;  // or with count > 0 a leaf's triangles from child
     for (;;) {
-        T0_GLOBAL const BvhNode* n = &scene->nodes[node];
-        const t0_u32 count = bvh_count(n);
-        const t0_u32 first = bvh_first(n);
         if (count > 0u) {
-            for (t0_u32 i = first; i < first + count; ++i) {
+            for (t0_u32 i = child; i < child + count; ++i) {
                 float u = 0.0f;
                 float v = 0.0f;
                 const float t = intersect_triangle(&scene->triangles[i], ray, &u, &v);
@@ -262,19 +322,48 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, Ray ray, float t_max, int any
                 }
             }
         } else {
-            T0_GLOBAL const BvhNode* a = &scene->nodes[first];
-            T0_GLOBAL const BvhNode* b = &scene->nodes[first + 1u];
-            const float ta = aabb_entry(xyz(a->aabb_min), xyz(a->aabb_max), ray, hit.t);
-            const float tb = aabb_entry(xyz(b->aabb_min), xyz(b->aabb_max), ray, hit.t);
-            if (ta < T0_NO_HIT || tb < T0_NO_HIT) {
-                // The farther child is written to the stack either way and
-                // kept only if hit: no branch to mispredict (5% more rays).
-                const int a_first = ta <= tb;
-                const float t_far = a_first ? tb : ta;
-                stack_node[top] = a_first ? first + 1u : first;
-                stack_entry[top] = t_far;
-                top += t_far < T0_NO_HIT ? 1 : 0;
-                node = a_first ? first : first + 1u;
+            T0_GLOBAL const BvhNode* n = &scene->nodes[child];
+            float entry[4];
+            const int mask = child_entries(n, ray, hit.t, entry);
+            const int entered = (mask & 1) + ((mask >> 1) & 1) + ((mask >> 2) & 1) + (mask >> 3);
+            // One or two children entered (most nodes): no sort.
+            if (entered == 1) {
+                const int only = lowest_set_bit(mask);
+                child = buffer_uint_component(&n->child, only);
+                count = buffer_uint_component(&n->count, only);
+                continue;
+            }
+            if (entered == 2) {
+                const int a = lowest_set_bit(mask);
+                const int b = lowest_set_bit(mask & (mask - 1));
+                const int a_first = entry[a] <= entry[b];
+                const int near = a_first ? a : b;
+                const int far = a_first ? b : a;
+                stack_child[top] = buffer_uint_component(&n->child, far);
+                stack_count[top] = buffer_uint_component(&n->count, far);
+                stack_entry[top] = entry[far];
+                ++top;
+                child = buffer_uint_component(&n->child, near);
+                count = buffer_uint_component(&n->count, near);
+                continue;
+            }
+            if (entered > 2) {
+                // A sorting network: the entered children nearest first,
+                // then the others (infinity).
+                int lane[4] = {0, 1, 2, 3};
+                order_lanes(entry, lane, 0, 1);
+                order_lanes(entry, lane, 2, 3);
+                order_lanes(entry, lane, 0, 2);
+                order_lanes(entry, lane, 1, 3);
+                order_lanes(entry, lane, 1, 2);
+                for (int i = entered - 1; i > 0; --i) {
+                    stack_child[top] = buffer_uint_component(&n->child, lane[i]);
+                    stack_count[top] = buffer_uint_component(&n->count, lane[i]);
+                    stack_entry[top] = entry[i];
+                    ++top;
+                }
+                child = buffer_uint_component(&n->child, lane[0]);
+                count = buffer_uint_component(&n->count, lane[0]);
                 continue;
             }
         }
@@ -285,7 +374,8 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, Ray ray, float t_max, int any
             }
             --top;
             if (stack_entry[top] < hit.t) {
-                node = stack_node[top];
+                child = stack_child[top];
+                count = stack_count[top];
                 break;
             }
         }
@@ -320,9 +410,10 @@ T0_INLINE int occluded(const SceneView* scene, Ray ray, float t_max) {
 // origin, 2 units, enough to jump through a wall of a room of size 2.
 #define T0_RAY_OFFSET_PER_MAGNITUDE (8.0f * 5.9604645e-8f)
 
+// Plain comparisons (max_f): the points and vertices here are finite.
 T0_INLINE float max_abs3(float3 a) {
     const float3 m = vabs3(a);
-    return fmax(m.x, fmax(m.y, m.z));
+    return max_f(m.x, max_f(m.y, m.z));
 }
 
 // The size of the numbers a point of the triangle is computed from.

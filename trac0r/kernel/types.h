@@ -60,12 +60,15 @@ typedef struct T0_ALIGN16 ShapeRecord {
     uint4 range;      // x: first triangle, y: triangle count, z: material
 } ShapeRecord;
 
-// A node of the BVH (trac0r/bvh.h). The w components hold integer bits:
-// aabb_min.w the first child (interior; the second is first + 1) or the
-// first triangle (leaf), aabb_max.w the triangle count (0: interior).
+// A node of the 4-wide BVH (trac0r/bvh.h): the boxes of its (up to) four
+// children side by side, lane i of each vector for child i, so that one
+// vector operation per plane tests all four boxes. bounds[2 axis] holds the
+// minima on an axis, bounds[2 axis + 1] the maxima. An unused lane has the
+// empty box min = +FLT_MAX, max = -FLT_MAX, which no ray enters.
 typedef struct T0_ALIGN16 BvhNode {
-    float4 aabb_min;
-    float4 aabb_max;
+    float4 bounds[6];  // min x, max x, min y, max y, min z, max z
+    uint4 child;       // per lane: a node index (count 0) or the first triangle
+    uint4 count;       // per lane: the leaf's triangle count; 0: a node (or unused)
 } BvhNode;
 
 typedef struct T0_ALIGN16 MaterialRecord {
@@ -120,7 +123,7 @@ T0_NAMESPACE_BEGIN
 T0_STATIC_ASSERT_SIZE(TriangleRecord, 80);
 T0_STATIC_ASSERT_SIZE(ShapeRecord, 48);
 T0_STATIC_ASSERT_SIZE(MaterialRecord, 48);
-T0_STATIC_ASSERT_SIZE(BvhNode, 32);
+T0_STATIC_ASSERT_SIZE(BvhNode, 128);
 T0_STATIC_ASSERT_SIZE(LightRecord, 32);
 T0_STATIC_ASSERT_SIZE(CameraRecord, 96);
 T0_STATIC_ASSERT_SIZE(AccumPixel, 48);
