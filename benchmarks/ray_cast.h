@@ -129,7 +129,8 @@ const char* const cast_kernel_source = R"(
 __kernel void cast_rays(__global const TriangleRecord* triangles,
                         __global const ShapeRecord* shapes, __global const BvhNode* nodes,
                         uint shape_count, __global const float4* origins,
-                        __global const float4* directions, __global int* hit, uint count) {
+                        __global const float4* directions, __global int* hit, uint count,
+                        __global const TrianglePacket* packets) {
     const uint i = (uint)get_global_id(0);
     if (i >= count) {
         return;
@@ -138,6 +139,7 @@ __kernel void cast_rays(__global const TriangleRecord* triangles,
     scene.triangles = triangles;
     scene.shapes = shapes;
     scene.nodes = nodes;
+    scene.packets = packets;
     scene.shape_count = shape_count;
     scene.features = T0_FEATURES;
     const Ray ray = make_ray(origins[i].xyz, directions[i].xyz);
@@ -191,6 +193,8 @@ class OpenClCaster {
         cl_mem shapes =
             upload(packed.shapes.data(), packed.shapes.size() * sizeof(packed.shapes[0]));
         cl_mem nodes = upload(packed.nodes.data(), packed.nodes.size() * sizeof(packed.nodes[0]));
+        cl_mem packets =
+            upload(packed.packets.data(), packed.packets.size() * sizeof(packed.packets[0]));
         cl_mem origins = upload(rays.origins.data(), rays.size() * sizeof(glm::vec4));
         cl_mem directions = upload(rays.directions.data(), rays.size() * sizeof(glm::vec4));
         cl_int status = CL_SUCCESS;
@@ -209,6 +213,7 @@ class OpenClCaster {
         check(clSetKernelArg(kernel, 5, sizeof(cl_mem), &directions), "clSetKernelArg");
         check(clSetKernelArg(kernel, 6, sizeof(cl_mem), &hit), "clSetKernelArg");
         check(clSetKernelArg(kernel, 7, sizeof count, &count), "clSetKernelArg");
+        check(clSetKernelArg(kernel, 8, sizeof(cl_mem), &packets), "clSetKernelArg");
         const std::size_t group = 64;
         const std::size_t global = (rays.size() + group - 1) / group * group;
         CastResult result;

@@ -71,14 +71,28 @@ int check_subtree(const PackedScene& p, std::uint32_t node, std::vector<int>& se
         }
         ++used;
         if (n.count[i] > 0) {
+            // A leaf: packet child[i], whose first count[i] lanes are
+            // triangles (the same floats as their records) and the rest
+            // unused (area 0, never hit).
             REQUIRE(n.count[i] <= 4);
-            for (std::uint32_t t = n.child[i]; t < n.child[i] + n.count[i]; ++t) {
+            REQUIRE(n.child[i] < p.packets.size());
+            const kernel::TrianglePacket& packet = p.packets[n.child[i]];
+            for (std::uint32_t lane = 0; lane < 4; ++lane) {
+                if (lane >= n.count[i]) {
+                    REQUIRE(packet.area[lane] == 0.0f);
+                    continue;
+                }
+                const std::uint32_t t = packet.triangle[lane];
                 ++seen.at(t);
                 const kernel::TriangleRecord& tri = p.triangles[t];
-                // The record holds the vertices themselves, and the boxes
-                // are built from the same floats: containment is exact.
-                for (const glm::vec3& v : {glm::vec3(tri.v0), glm::vec3(tri.v1), glm::vec3(tri.v2)}) {
-                    REQUIRE(contains(box, v));
+                REQUIRE(packet.area[lane] == tri.normal.w);
+                const glm::vec3 vertices[3] = {glm::vec3(tri.v0), glm::vec3(tri.v1), glm::vec3(tri.v2)};
+                for (int k = 0; k < 3; ++k) {
+                    REQUIRE(glm::vec3(packet.vertex[3 * k][lane], packet.vertex[3 * k + 1][lane],
+                                      packet.vertex[3 * k + 2][lane]) == vertices[k]);
+                    // The boxes are built from the same floats: containment
+                    // is exact.
+                    REQUIRE(contains(box, vertices[k]));
                 }
             }
             continue;

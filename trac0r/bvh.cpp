@@ -202,10 +202,11 @@ class Collapser {
   public:
     explicit Collapser(const std::vector<BinaryNode>& binary) : binary_(binary) {}
 
-    std::vector<kernel::BvhNode> collapse(int& depth) {
+    void collapse(Bvh& bvh) {
         wide_.emplace_back();
-        depth = fill(0, 0);
-        return std::move(wide_);
+        bvh.depth = fill(0, 0);
+        bvh.nodes = std::move(wide_);
+        bvh.leaves = std::move(leaves_);
     }
 
   private:
@@ -241,8 +242,9 @@ class Collapser {
                 node.bounds[2 * axis + 1][i] = n.bounds.max[axis];
             }
             if (n.count > 0) {
-                node.child[i] = n.first;
+                node.child[i] = static_cast<std::uint32_t>(leaves_.size());
                 node.count[i] = n.count;
+                leaves_.push_back(BvhLeaf{n.first, n.count});
             } else {
                 interior.emplace_back(i, lanes[i]);
             }
@@ -261,6 +263,7 @@ class Collapser {
 
     const std::vector<BinaryNode>& binary_;
     std::vector<kernel::BvhNode> wide_;
+    std::vector<BvhLeaf> leaves_;
 };
 
 }  // namespace
@@ -279,9 +282,9 @@ Bvh build_bvh(const std::vector<AABB>& triangle_bounds, int max_leaf_size) {
                          static_cast<std::uint32_t>(i)});
     }
     Bvh bvh;
-    const std::vector<BinaryNode> binary =
-        Builder(std::move(items), std::max(1, max_leaf_size)).build(bvh.order);
-    bvh.nodes = Collapser(binary).collapse(bvh.depth);
+    const int leaf_size = std::min(std::max(1, max_leaf_size), 4);  // one packet
+    const std::vector<BinaryNode> binary = Builder(std::move(items), leaf_size).build(bvh.order);
+    Collapser(binary).collapse(bvh);
     // The traversal stack holds at most three entries per level.
     if (3 * bvh.depth > T0_BVH_STACK_SIZE) {
         throw std::runtime_error("build_bvh: tree too deep for the traversal stack");

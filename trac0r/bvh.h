@@ -1,5 +1,6 @@
-// A bounding volume hierarchy over triangles: binned SAH build, flattened
-// into the node array both backends traverse (kernel/intersect.h).
+// A bounding volume hierarchy over triangles: a binary tree by binned SAH,
+// collapsed into the 4-wide node array both backends traverse
+// (kernel/intersect.h).
 #ifndef TRAC0R_BVH_H
 #define TRAC0R_BVH_H
 
@@ -11,23 +12,27 @@
 
 namespace trac0r {
 
+// A leaf: `count` (1 to 4) triangles from `first` of Bvh::order.
+struct BvhLeaf {
+    std::uint32_t first = 0;
+    std::uint32_t count = 0;
+};
+
 struct Bvh {
-    // Node 0 is the root. An interior node's children are adjacent, at
-    // `first` and `first + 1`; a leaf holds `count` triangles from `first`
-    // of `order`. See kernel::BvhNode for the packed form.
+    // Node 0 is the root. Each node has up to four children (lanes), each
+    // a node or, with count > 0, leaf `child` of `leaves`: see
+    // kernel::BvhNode. The packer turns leaf i into TrianglePacket i.
     std::vector<kernel::BvhNode> nodes;
+    std::vector<BvhLeaf> leaves;
     // order[i]: which input triangle is the i-th in leaf order.
     std::vector<std::uint32_t> order;
-    int depth = 0;  // longest root-to-leaf path, in nodes
+    int depth = 0;  // longest path from the root to a node with only leaves, in nodes
 };
 
 // Binned SAH (16 bins per axis) in O(n log n). At most `max_leaf_size`
-// triangles per leaf; fewer where the SAH says a split does not pay.
+// triangles per leaf (1 to 4: one packet); fewer where the SAH says a split
+// does not pay. Throws std::invalid_argument for no triangles or too many.
 Bvh build_bvh(const std::vector<AABB>& triangle_bounds, int max_leaf_size = 4);
-
-// Reads a packed node's fields.
-std::uint32_t bvh_node_first(const kernel::BvhNode& node);
-std::uint32_t bvh_node_count(const kernel::BvhNode& node);  // 0: interior
 
 }  // namespace trac0r
 

@@ -198,6 +198,7 @@ struct OpenClBackend::State {
     cl_mem shapes = nullptr;
     cl_mem materials = nullptr;
     cl_mem nodes = nullptr;
+    cl_mem packets = nullptr;
     cl_mem lights = nullptr;
     cl_mem accum = nullptr;
     std::size_t pixels = 0;
@@ -217,6 +218,7 @@ OpenClBackend::~OpenClBackend() {
     release(state_->shapes);
     release(state_->materials);
     release(state_->nodes);
+    release(state_->packets);
     release(state_->lights);
     release(state_->accum);
     if (state_->kernel) {
@@ -256,11 +258,13 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
     release(state_->shapes);
     release(state_->materials);
     release(state_->nodes);
+    release(state_->packets);
     release(state_->lights);
     state_->triangles = upload(context, scene.triangles);
     state_->shapes = upload(context, scene.shapes);
     state_->materials = upload(context, scene.materials);
     state_->nodes = upload(context, scene.nodes);
+    state_->packets = upload(context, scene.packets);
     state_->lights = upload(context, scene.lights);
     state_->shape_count = static_cast<cl_uint>(scene.shapes.size());
     state_->light_count = static_cast<cl_uint>(scene.lights.size());
@@ -300,6 +304,7 @@ void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64
     check(clSetKernelArg(k, 9, sizeof depth_arg, &depth_arg), "clSetKernelArg(9)");
     check(clSetKernelArg(k, 10, sizeof(cl_mem), &state_->lights), "clSetKernelArg(10)");
     check(clSetKernelArg(k, 11, sizeof(cl_uint), &state_->light_count), "clSetKernelArg(11)");
+    check(clSetKernelArg(k, 12, sizeof(cl_mem), &state_->packets), "clSetKernelArg(12)");
     const std::size_t group = 64;
     const std::size_t global = (state_->pixels + group - 1) / group * group;
     check(clEnqueueNDRangeKernel(state_->device->queue, k, 1, nullptr, &global, nullptr, 0,

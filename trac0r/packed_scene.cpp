@@ -71,6 +71,7 @@ kernel::SceneView PackedScene::view() const {
     v.shapes = shapes.data();
     v.materials = materials.data();
     v.nodes = nodes.data();
+    v.packets = packets.data();
     v.lights = lights.data();
     v.shape_count = static_cast<std::uint32_t>(shapes.size());
     v.light_count = static_cast<std::uint32_t>(lights.size());
@@ -119,6 +120,23 @@ void pack_bvh(const std::vector<UsableTriangle>& usable, PackedScene& packed) {
     for (std::uint32_t index : bvh.order) {
         const UsableTriangle& u = usable[index];
         packed.triangles.push_back(pack_triangle(*u.triangle, u.material, u.shape));
+    }
+    // Each leaf's triangles side by side; unused lanes stay zero (area 0).
+    packed.packets.assign(bvh.leaves.size(), kernel::TrianglePacket{});
+    for (std::size_t i = 0; i < bvh.leaves.size(); ++i) {
+        kernel::TrianglePacket& p = packed.packets[i];
+        for (std::uint32_t lane = 0; lane < bvh.leaves[i].count; ++lane) {
+            const std::uint32_t index = bvh.leaves[i].first + lane;
+            const kernel::TriangleRecord& t = packed.triangles[index];
+            const glm::vec4* vertices[3] = {&t.v0, &t.v1, &t.v2};
+            for (int k = 0; k < 3; ++k) {
+                for (int axis = 0; axis < 3; ++axis) {
+                    p.vertex[3 * k + axis][lane] = (*vertices[k])[axis];
+                }
+            }
+            p.area[lane] = t.normal.w;
+            p.triangle[lane] = index;
+        }
     }
 }
 

@@ -38,6 +38,7 @@ struct PackedScene {
     std::vector<kernel::TriangleRecord> triangles;  // in BVH leaf order with a BVH
     std::vector<kernel::ShapeRecord> shapes;        // the flat structure (empty with a BVH)
     std::vector<kernel::BvhNode> nodes;             // empty with the flat structure
+    std::vector<kernel::TrianglePacket> packets;    // the BVH's leaves (empty without)
     int bvh_depth = 0;
     std::vector<kernel::MaterialRecord> materials;
     // Every emitting triangle with its power CDF (built for both

@@ -53,14 +53,21 @@ T0_INLINE int lowest_set_bit(int m) { return 31 - (int)clz(m & -m); }
 typedef float4 t0_lanes;
 T0_INLINE t0_lanes lanes_load(__global const float4* p) { return *p; }
 T0_INLINE t0_lanes lanes_splat(float v) { return (float4)(v); }
+T0_INLINE t0_lanes lanes_add(t0_lanes a, t0_lanes b) { return a + b; }
 T0_INLINE t0_lanes lanes_sub(t0_lanes a, t0_lanes b) { return a - b; }
 T0_INLINE t0_lanes lanes_mul(t0_lanes a, t0_lanes b) { return a * b; }
+T0_INLINE t0_lanes lanes_div(t0_lanes a, t0_lanes b) { return a / b; }
+T0_INLINE t0_lanes lanes_abs(t0_lanes a) { return fabs(a); }
 // a < b ? a : b and a > b ? a : b per lane, as SSE's minps and maxps.
 T0_INLINE t0_lanes lanes_min(t0_lanes a, t0_lanes b) { return select(b, a, isless(a, b)); }
 T0_INLINE t0_lanes lanes_max(t0_lanes a, t0_lanes b) { return select(b, a, isgreater(a, b)); }
-// Bit i set where lane i of a <= lane i of b.
+// Bit i set where lane i of a <= (<) lane i of b.
 T0_INLINE int lanes_le_mask(t0_lanes a, t0_lanes b) {
     const int4 m = islessequal(a, b);
+    return (m.x & 1) | (m.y & 2) | (m.z & 4) | (m.w & 8);
+}
+T0_INLINE int lanes_lt_mask(t0_lanes a, t0_lanes b) {
+    const int4 m = isless(a, b);
     return (m.x & 1) | (m.y & 2) | (m.z & 4) | (m.w & 8);
 }
 // Lane i of x where a <= b there, else of y.
@@ -158,11 +165,15 @@ inline int lowest_set_bit(int m) { return __builtin_ctz(static_cast<unsigned>(m)
 typedef __m128 t0_lanes;
 inline t0_lanes lanes_load(const float4* p) { return _mm_loadu_ps(glm::value_ptr(*p)); }
 inline t0_lanes lanes_splat(float v) { return _mm_set1_ps(v); }
+inline t0_lanes lanes_add(t0_lanes a, t0_lanes b) { return _mm_add_ps(a, b); }
 inline t0_lanes lanes_sub(t0_lanes a, t0_lanes b) { return _mm_sub_ps(a, b); }
 inline t0_lanes lanes_mul(t0_lanes a, t0_lanes b) { return _mm_mul_ps(a, b); }
+inline t0_lanes lanes_div(t0_lanes a, t0_lanes b) { return _mm_div_ps(a, b); }
+inline t0_lanes lanes_abs(t0_lanes a) { return _mm_andnot_ps(_mm_set1_ps(-0.0f), a); }
 inline t0_lanes lanes_min(t0_lanes a, t0_lanes b) { return _mm_min_ps(a, b); }
 inline t0_lanes lanes_max(t0_lanes a, t0_lanes b) { return _mm_max_ps(a, b); }
 inline int lanes_le_mask(t0_lanes a, t0_lanes b) { return _mm_movemask_ps(_mm_cmple_ps(a, b)); }
+inline int lanes_lt_mask(t0_lanes a, t0_lanes b) { return _mm_movemask_ps(_mm_cmplt_ps(a, b)); }
 inline t0_lanes lanes_select_le(t0_lanes a, t0_lanes b, t0_lanes x, t0_lanes y) {
     const __m128 m = _mm_cmple_ps(a, b);
     return _mm_or_ps(_mm_and_ps(m, x), _mm_andnot_ps(m, y));
@@ -180,8 +191,11 @@ inline t0_lanes lanes_splat(float v) { return t0_lanes{{v, v, v, v}}; }
         r.v[i] = (expr);             \
     }                                \
     return r
+inline t0_lanes lanes_add(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] + b.v[i]); }
 inline t0_lanes lanes_sub(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] - b.v[i]); }
 inline t0_lanes lanes_mul(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] * b.v[i]); }
+inline t0_lanes lanes_div(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] / b.v[i]); }
+inline t0_lanes lanes_abs(t0_lanes a) { T0_LANEWISE(std::fabs(a.v[i])); }
 inline t0_lanes lanes_min(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] < b.v[i] ? a.v[i] : b.v[i]); }
 inline t0_lanes lanes_max(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] > b.v[i] ? a.v[i] : b.v[i]); }
 inline t0_lanes lanes_select_le(t0_lanes a, t0_lanes b, t0_lanes x, t0_lanes y) {
@@ -192,6 +206,13 @@ inline int lanes_le_mask(t0_lanes a, t0_lanes b) {
     int m = 0;
     for (int i = 0; i < 4; ++i) {
         m |= (a.v[i] <= b.v[i] ? 1 : 0) << i;
+    }
+    return m;
+}
+inline int lanes_lt_mask(t0_lanes a, t0_lanes b) {
+    int m = 0;
+    for (int i = 0; i < 4; ++i) {
+        m |= (a.v[i] < b.v[i] ? 1 : 0) << i;
     }
     return m;
 }

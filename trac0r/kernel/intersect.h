@@ -186,6 +186,57 @@ T0_INLINE float intersect_triangle(T0_GLOBAL const TriangleRecord* tri, Ray ray,
     return t;
 }
 
+// A vertex coordinate of a packet's four triangles in the ray's frame: as
+// vertex_in_ray_frame, lane for lane.
+T0_INLINE t0_lanes packet_coordinate(T0_GLOBAL const TrianglePacket* p, int vertex, int axis) {
+    return lanes_load(&p->vertex[3 * vertex + axis]);
+}
+
+// intersect_triangle for the four triangles of a packet at once, with the
+// same floats lane for lane: bit i of the result is set when triangle i is
+// hit at a distance below t_max, which goes to t[i] with its barycentrics
+// to u[i], v[i].
+T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, Ray ray, float t_max, float* t,
+                               float* u, float* v) {
+    const t0_lanes ox = lanes_splat(ray.permuted_origin.x);
+    const t0_lanes oy = lanes_splat(ray.permuted_origin.y);
+    const t0_lanes oz = lanes_splat(ray.permuted_origin.z);
+    const t0_lanes sx = lanes_splat(ray.shear.x);
+    const t0_lanes sy = lanes_splat(ray.shear.y);
+    const t0_lanes az = lanes_sub(packet_coordinate(p, 0, ray.kz), oz);
+    const t0_lanes bz = lanes_sub(packet_coordinate(p, 1, ray.kz), oz);
+    const t0_lanes cz = lanes_sub(packet_coordinate(p, 2, ray.kz), oz);
+    const t0_lanes ax = lanes_sub(lanes_sub(packet_coordinate(p, 0, ray.kx), ox), lanes_mul(sx, az));
+    const t0_lanes ay = lanes_sub(lanes_sub(packet_coordinate(p, 0, ray.ky), oy), lanes_mul(sy, az));
+    const t0_lanes bx = lanes_sub(lanes_sub(packet_coordinate(p, 1, ray.kx), ox), lanes_mul(sx, bz));
+    const t0_lanes by = lanes_sub(lanes_sub(packet_coordinate(p, 1, ray.ky), oy), lanes_mul(sy, bz));
+    const t0_lanes cx = lanes_sub(lanes_sub(packet_coordinate(p, 2, ray.kx), ox), lanes_mul(sx, cz));
+    const t0_lanes cy = lanes_sub(lanes_sub(packet_coordinate(p, 2, ray.ky), oy), lanes_mul(sy, cz));
+    const t0_lanes weight0 = lanes_sub(lanes_mul(cx, by), lanes_mul(cy, bx));
+    const t0_lanes weight1 = lanes_sub(lanes_mul(ax, cy), lanes_mul(ay, cx));
+    const t0_lanes weight2 = lanes_sub(lanes_mul(bx, ay), lanes_mul(by, ax));
+    const t0_lanes zero = lanes_splat(0.0f);
+    const int negative = lanes_lt_mask(weight0, zero) | lanes_lt_mask(weight1, zero) |
+                         lanes_lt_mask(weight2, zero);
+    const int positive = lanes_lt_mask(zero, weight0) | lanes_lt_mask(zero, weight1) |
+                         lanes_lt_mask(zero, weight2);
+    const t0_lanes det = lanes_add(lanes_add(weight0, weight1), weight2);
+    const t0_lanes area = lanes_load(&p->area);
+    const int upright = lanes_lt_mask(lanes_mul(area, lanes_splat(ray.parallel_det)), lanes_abs(det)) &
+                        lanes_lt_mask(zero, area);
+    const t0_lanes inv_det = lanes_div(lanes_splat(1.0f), det);
+    const t0_lanes distance = lanes_mul(
+        lanes_mul(lanes_add(lanes_add(lanes_mul(weight0, az), lanes_mul(weight1, bz)),
+                            lanes_mul(weight2, cz)),
+                  lanes_splat(ray.shear.z)),
+        inv_det);
+    const int ahead = lanes_lt_mask(zero, distance) & lanes_lt_mask(distance, lanes_splat(t_max));
+    lanes_store(distance, t);
+    lanes_store(lanes_mul(weight1, inv_det), u);
+    lanes_store(lanes_mul(weight2, inv_det), v);
+    return ~(negative & positive) & upright & ahead & 15;
+}
+
 // The thesis' structure: every shape's AABB, then its triangles. Nearest
 // hit below t_max; with any_hit, the first one found (shadow rays).
 T0_INLINE Hit traverse_flat(const SceneView* scene, Ray ray, float t_max, int any_hit) {
@@ -304,18 +355,24 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, Ray ray, float t_max, int any
     float stack_entry[T0_BVH_STACK_SIZE];
     int top = 0;
     t0_u32 child = 0u;  // what is visited: node 0, the root,
-    t0_u32 count = 0u;  // or with count > 0 a leaf's triangles from child
+    t0_u32 count = 0u;  // or with count > 0 the leaf of packet child
     for (;;) {
         if (count > 0u) {
-            for (t0_u32 i = child; i < child + count; ++i) {
-                float u = 0.0f;
-                float v = 0.0f;
-                const float t = intersect_triangle(&scene->triangles[i], ray, &u, &v);
-                if (t < hit.t) {
-                    hit.t = t;
-                    hit.u = u;
-                    hit.v = v;
-                    hit.triangle = (int)i;
+            // A leaf: its packet's triangles in order, as the flat list
+            // tests them (ties go to the first).
+            T0_GLOBAL const TrianglePacket* p = &scene->packets[child];
+            float t[4];
+            float u[4];
+            float v[4];
+            int hits = intersect_packet(p, ray, hit.t, t, u, v);
+            while (hits != 0) {
+                const int i = lowest_set_bit(hits);
+                hits &= hits - 1;
+                if (t[i] < hit.t) {
+                    hit.t = t[i];
+                    hit.u = u[i];
+                    hit.v = v[i];
+                    hit.triangle = (int)buffer_uint_component(&p->triangle, i);
                     if (any_hit) {
                         return hit;
                     }

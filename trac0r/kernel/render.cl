@@ -9,7 +9,7 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
                            __global const BvhNode* nodes, uint shape_count,
                            CameraRecord camera, __global AccumPixel* accum, ulong seed, uint frame,
                            int max_depth, __global const LightRecord* lights,
-                           uint light_count) {
+                           uint light_count, __global const TrianglePacket* packets) {
     const uint pixel = (uint)get_global_id(0);
     if (pixel >= camera.size.x * camera.size.y) {
         return;
@@ -19,6 +19,7 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
     scene.shapes = shapes;
     scene.materials = materials;
     scene.nodes = nodes;
+    scene.packets = packets;
     scene.shape_count = shape_count;
     scene.lights = lights;
     scene.light_count = light_count;

@@ -61,15 +61,25 @@ typedef struct T0_ALIGN16 ShapeRecord {
 } ShapeRecord;
 
 // A node of the 4-wide BVH (trac0r/bvh.h): the boxes of its (up to) four
-// children side by side, lane i of each vector for child i, so that one
+// children (nodes, or leaves of one TrianglePacket each) side by side, lane i of each vector for child i, so that one
 // vector operation per plane tests all four boxes. bounds[2 axis] holds the
 // minima on an axis, bounds[2 axis + 1] the maxima. An unused lane has the
 // empty box min = +FLT_MAX, max = -FLT_MAX, which no ray enters.
 typedef struct T0_ALIGN16 BvhNode {
     float4 bounds[6];  // min x, max x, min y, max y, min z, max z
-    uint4 child;       // per lane: a node index (count 0) or the first triangle
+    uint4 child;       // per lane: a node index (count 0) or a packet index
     uint4 count;       // per lane: the leaf's triangle count; 0: a node (or unused)
 } BvhNode;
+
+// The triangles of one BVH leaf (up to four) side by side for the
+// watertight test, lane i of each vector for triangle i, so that one vector
+// operation works on all four: the same vertex floats as their
+// TriangleRecords. An unused lane has area 0, which is never hit.
+typedef struct T0_ALIGN16 TrianglePacket {
+    float4 vertex[9];  // vertex[3 k + axis]: coordinate axis of vertex k (v0, v1, v2)
+    float4 area;       // twice the area, TriangleRecord.normal.w
+    uint4 triangle;    // the index into the triangle records
+} TrianglePacket;
 
 typedef struct T0_ALIGN16 MaterialRecord {
     float4 color;   // xyz: colour (albedo, or emitted colour), w: unused
@@ -104,6 +114,7 @@ typedef struct SceneView {
     T0_GLOBAL const ShapeRecord* shapes;
     T0_GLOBAL const MaterialRecord* materials;
     T0_GLOBAL const BvhNode* nodes;
+    T0_GLOBAL const TrianglePacket* packets;
     T0_GLOBAL const LightRecord* lights;
     t0_u32 shape_count;
     t0_u32 light_count;
@@ -124,6 +135,7 @@ T0_STATIC_ASSERT_SIZE(TriangleRecord, 80);
 T0_STATIC_ASSERT_SIZE(ShapeRecord, 48);
 T0_STATIC_ASSERT_SIZE(MaterialRecord, 48);
 T0_STATIC_ASSERT_SIZE(BvhNode, 128);
+T0_STATIC_ASSERT_SIZE(TrianglePacket, 176);
 T0_STATIC_ASSERT_SIZE(LightRecord, 32);
 T0_STATIC_ASSERT_SIZE(CameraRecord, 96);
 T0_STATIC_ASSERT_SIZE(AccumPixel, 48);
