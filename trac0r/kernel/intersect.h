@@ -186,6 +186,38 @@ T0_INLINE float intersect_triangle(T0_GLOBAL const TriangleRecord* tri, Ray ray,
     return t;
 }
 
+// The numbers of a ray that the BVH's vector tests use, each in all four
+// lanes: made once per traversal, not once per node.
+typedef struct RayLanes {
+    t0_lanes origin[3];
+    t0_lanes inv_direction[3];
+    t0_lanes permuted_origin[3];
+    t0_lanes shear[3];
+    t0_lanes parallel_det;
+    int negative[3];  // 1 where the direction component is negative
+} RayLanes;
+
+T0_INLINE RayLanes make_ray_lanes(Ray ray) {
+    RayLanes l;
+    l.origin[0] = lanes_splat(ray.origin.x);
+    l.origin[1] = lanes_splat(ray.origin.y);
+    l.origin[2] = lanes_splat(ray.origin.z);
+    l.inv_direction[0] = lanes_splat(ray.inv_direction.x);
+    l.inv_direction[1] = lanes_splat(ray.inv_direction.y);
+    l.inv_direction[2] = lanes_splat(ray.inv_direction.z);
+    l.permuted_origin[0] = lanes_splat(ray.permuted_origin.x);
+    l.permuted_origin[1] = lanes_splat(ray.permuted_origin.y);
+    l.permuted_origin[2] = lanes_splat(ray.permuted_origin.z);
+    l.shear[0] = lanes_splat(ray.shear.x);
+    l.shear[1] = lanes_splat(ray.shear.y);
+    l.shear[2] = lanes_splat(ray.shear.z);
+    l.parallel_det = lanes_splat(ray.parallel_det);
+    l.negative[0] = ray.inv_direction.x < 0.0f ? 1 : 0;
+    l.negative[1] = ray.inv_direction.y < 0.0f ? 1 : 0;
+    l.negative[2] = ray.inv_direction.z < 0.0f ? 1 : 0;
+    return l;
+}
+
 // A vertex coordinate of a packet's four triangles in the ray's frame: as
 // vertex_in_ray_frame, lane for lane.
 T0_INLINE t0_lanes packet_coordinate(T0_GLOBAL const TrianglePacket* p, int vertex, int axis) {
@@ -196,22 +228,22 @@ T0_INLINE t0_lanes packet_coordinate(T0_GLOBAL const TrianglePacket* p, int vert
 // same floats lane for lane: bit i of the result is set when triangle i is
 // hit at a distance below t_max, which goes to t[i] with its barycentrics
 // to u[i], v[i].
-T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, Ray ray, float t_max, float* t,
-                               float* u, float* v) {
-    const t0_lanes ox = lanes_splat(ray.permuted_origin.x);
-    const t0_lanes oy = lanes_splat(ray.permuted_origin.y);
-    const t0_lanes oz = lanes_splat(ray.permuted_origin.z);
-    const t0_lanes sx = lanes_splat(ray.shear.x);
-    const t0_lanes sy = lanes_splat(ray.shear.y);
-    const t0_lanes az = lanes_sub(packet_coordinate(p, 0, ray.kz), oz);
-    const t0_lanes bz = lanes_sub(packet_coordinate(p, 1, ray.kz), oz);
-    const t0_lanes cz = lanes_sub(packet_coordinate(p, 2, ray.kz), oz);
-    const t0_lanes ax = lanes_sub(lanes_sub(packet_coordinate(p, 0, ray.kx), ox), lanes_mul(sx, az));
-    const t0_lanes ay = lanes_sub(lanes_sub(packet_coordinate(p, 0, ray.ky), oy), lanes_mul(sy, az));
-    const t0_lanes bx = lanes_sub(lanes_sub(packet_coordinate(p, 1, ray.kx), ox), lanes_mul(sx, bz));
-    const t0_lanes by = lanes_sub(lanes_sub(packet_coordinate(p, 1, ray.ky), oy), lanes_mul(sy, bz));
-    const t0_lanes cx = lanes_sub(lanes_sub(packet_coordinate(p, 2, ray.kx), ox), lanes_mul(sx, cz));
-    const t0_lanes cy = lanes_sub(lanes_sub(packet_coordinate(p, 2, ray.ky), oy), lanes_mul(sy, cz));
+T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray,
+                               const RayLanes* l, float t_max, float* t, float* u, float* v) {
+    const t0_lanes ox = l->permuted_origin[0];
+    const t0_lanes oy = l->permuted_origin[1];
+    const t0_lanes oz = l->permuted_origin[2];
+    const t0_lanes sx = l->shear[0];
+    const t0_lanes sy = l->shear[1];
+    const t0_lanes az = lanes_sub(packet_coordinate(p, 0, ray->kz), oz);
+    const t0_lanes bz = lanes_sub(packet_coordinate(p, 1, ray->kz), oz);
+    const t0_lanes cz = lanes_sub(packet_coordinate(p, 2, ray->kz), oz);
+    const t0_lanes ax = lanes_sub(lanes_sub(packet_coordinate(p, 0, ray->kx), ox), lanes_mul(sx, az));
+    const t0_lanes ay = lanes_sub(lanes_sub(packet_coordinate(p, 0, ray->ky), oy), lanes_mul(sy, az));
+    const t0_lanes bx = lanes_sub(lanes_sub(packet_coordinate(p, 1, ray->kx), ox), lanes_mul(sx, bz));
+    const t0_lanes by = lanes_sub(lanes_sub(packet_coordinate(p, 1, ray->ky), oy), lanes_mul(sy, bz));
+    const t0_lanes cx = lanes_sub(lanes_sub(packet_coordinate(p, 2, ray->kx), ox), lanes_mul(sx, cz));
+    const t0_lanes cy = lanes_sub(lanes_sub(packet_coordinate(p, 2, ray->ky), oy), lanes_mul(sy, cz));
     const t0_lanes weight0 = lanes_sub(lanes_mul(cx, by), lanes_mul(cy, bx));
     const t0_lanes weight1 = lanes_sub(lanes_mul(ax, cy), lanes_mul(ay, cx));
     const t0_lanes weight2 = lanes_sub(lanes_mul(bx, ay), lanes_mul(by, ax));
@@ -222,13 +254,13 @@ T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, Ray ray, float
                          lanes_lt_mask(zero, weight2);
     const t0_lanes det = lanes_add(lanes_add(weight0, weight1), weight2);
     const t0_lanes area = lanes_load(&p->area);
-    const int upright = lanes_lt_mask(lanes_mul(area, lanes_splat(ray.parallel_det)), lanes_abs(det)) &
+    const int upright = lanes_lt_mask(lanes_mul(area, l->parallel_det), lanes_abs(det)) &
                         lanes_lt_mask(zero, area);
     const t0_lanes inv_det = lanes_div(lanes_splat(1.0f), det);
     const t0_lanes distance = lanes_mul(
         lanes_mul(lanes_add(lanes_add(lanes_mul(weight0, az), lanes_mul(weight1, bz)),
                             lanes_mul(weight2, cz)),
-                  lanes_splat(ray.shear.z)),
+                  l->shear[2]),
         inv_det);
     const int ahead = lanes_lt_mask(zero, distance) & lanes_lt_mask(distance, lanes_splat(t_max));
     lanes_store(distance, t);
@@ -279,8 +311,9 @@ T0_INLINE Hit traverse_flat(const SceneView* scene, Ray ray, float t_max, int an
 // i of the result is set when it enters child i's box, at entry[i] (the
 // others get infinity, beyond every entry). Lane for lane the floats of
 // aabb_entry, four boxes per operation.
-T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, Ray ray, float t_max, float* entry) {
-    if (ray.any_parallel) {
+T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const RayLanes* l,
+                            float t_max, float* entry) {
+    if (ray->any_parallel) {
         // aabb_entry's slow path, one lane at a time; unused lanes (their
         // box is inverted) are skipped.
         int mask = 0;
@@ -291,7 +324,7 @@ T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, Ray ray, float t_max, fl
             const float3 hi = make_float3(buffer_component(&n->bounds[1], i),
                                           buffer_component(&n->bounds[3], i),
                                           buffer_component(&n->bounds[5], i));
-            const float t = lo.x <= hi.x ? aabb_entry(lo, hi, ray, t_max) : T0_NO_HIT;
+            const float t = lo.x <= hi.x ? aabb_entry(lo, hi, *ray, t_max) : T0_NO_HIT;
             entry[i] = t < T0_NO_HIT ? t : T0_INFINITY;
             mask |= (t < T0_NO_HIT ? 1 : 0) << i;
         }
@@ -301,21 +334,21 @@ T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, Ray ray, float t_max, fl
     // and the maximum for a negative one: for a box, the same floats as the
     // min and max of aabb_entry (rounding is monotonic), and for an unused
     // lane's inverted box an entry beyond the exit.
-    const int sx = ray.inv_direction.x < 0.0f ? 1 : 0;
-    const int sy = ray.inv_direction.y < 0.0f ? 1 : 0;
-    const int sz = ray.inv_direction.z < 0.0f ? 1 : 0;
-    const t0_lanes ox = lanes_splat(ray.origin.x);
-    const t0_lanes oy = lanes_splat(ray.origin.y);
-    const t0_lanes oz = lanes_splat(ray.origin.z);
-    const t0_lanes ix = lanes_splat(ray.inv_direction.x);
-    const t0_lanes iy = lanes_splat(ray.inv_direction.y);
-    const t0_lanes iz = lanes_splat(ray.inv_direction.z);
-    const t0_lanes near_x = lanes_mul(lanes_sub(lanes_load(&n->bounds[sx]), ox), ix);
-    const t0_lanes far_x = lanes_mul(lanes_sub(lanes_load(&n->bounds[1 - sx]), ox), ix);
-    const t0_lanes near_y = lanes_mul(lanes_sub(lanes_load(&n->bounds[2 + sy]), oy), iy);
-    const t0_lanes far_y = lanes_mul(lanes_sub(lanes_load(&n->bounds[3 - sy]), oy), iy);
-    const t0_lanes near_z = lanes_mul(lanes_sub(lanes_load(&n->bounds[4 + sz]), oz), iz);
-    const t0_lanes far_z = lanes_mul(lanes_sub(lanes_load(&n->bounds[5 - sz]), oz), iz);
+    const int sx = l->negative[0];
+    const int sy = l->negative[1];
+    const int sz = l->negative[2];
+    const t0_lanes near_x =
+        lanes_mul(lanes_sub(lanes_load(&n->bounds[sx]), l->origin[0]), l->inv_direction[0]);
+    const t0_lanes far_x =
+        lanes_mul(lanes_sub(lanes_load(&n->bounds[1 - sx]), l->origin[0]), l->inv_direction[0]);
+    const t0_lanes near_y =
+        lanes_mul(lanes_sub(lanes_load(&n->bounds[2 + sy]), l->origin[1]), l->inv_direction[1]);
+    const t0_lanes far_y =
+        lanes_mul(lanes_sub(lanes_load(&n->bounds[3 - sy]), l->origin[1]), l->inv_direction[1]);
+    const t0_lanes near_z =
+        lanes_mul(lanes_sub(lanes_load(&n->bounds[4 + sz]), l->origin[2]), l->inv_direction[2]);
+    const t0_lanes far_z =
+        lanes_mul(lanes_sub(lanes_load(&n->bounds[5 - sz]), l->origin[2]), l->inv_direction[2]);
     const t0_lanes t_near =
         lanes_max(lanes_max(near_x, near_y), lanes_max(near_z, lanes_splat(0.0f)));
     const t0_lanes t_far = lanes_mul(lanes_min(lanes_min(far_x, far_y), far_z),
@@ -354,6 +387,7 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, Ray ray, float t_max, int any
     t0_u32 stack_count[T0_BVH_STACK_SIZE];
     float stack_entry[T0_BVH_STACK_SIZE];
     int top = 0;
+    const RayLanes lanes = make_ray_lanes(ray);
     t0_u32 child = 0u;  // what is visited: node 0, the root,
     t0_u32 count = 0u;  // or with count > 0 the leaf of packet child
     for (;;) {
@@ -364,7 +398,7 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, Ray ray, float t_max, int any
             float t[4];
             float u[4];
             float v[4];
-            int hits = intersect_packet(p, ray, hit.t, t, u, v);
+            int hits = intersect_packet(p, &ray, &lanes, hit.t, t, u, v);
             while (hits != 0) {
                 const int i = lowest_set_bit(hits);
                 hits &= hits - 1;
@@ -381,7 +415,7 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, Ray ray, float t_max, int any
         } else {
             T0_GLOBAL const BvhNode* n = &scene->nodes[child];
             float entry[4];
-            const int mask = child_entries(n, ray, hit.t, entry);
+            const int mask = child_entries(n, &ray, &lanes, hit.t, entry);
             const int entered = (mask & 1) + ((mask >> 1) & 1) + ((mask >> 2) & 1) + (mask >> 3);
             // One or two children entered (most nodes): no sort.
             if (entered == 1) {
