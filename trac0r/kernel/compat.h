@@ -120,6 +120,7 @@ using std::copysign;
 using std::cos;
 using std::fabs;
 using std::sin;
+using std::floor;
 using std::sqrt;
 
 // fmax and fmin with their C99 meaning (a NaN argument gives the other),
