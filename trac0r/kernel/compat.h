@@ -15,7 +15,7 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 #define T0_GLOBAL __global
-#define T0_INLINE inline
+#define T0_INLINE inline __attribute__((always_inline))
 #define T0_ALIGN16
 #define T0_NAMESPACE_BEGIN
 #define T0_NAMESPACE_END
