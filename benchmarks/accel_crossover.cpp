@@ -1,6 +1,7 @@
 // Where the BVH starts to pay: paths per second of the flat list and the
 // BVH, side by side, on scenes of growing triangle count (the Cornell box's
-// walls and lamp plus a grid of small boxes), CPU backend.
+// walls and lamp plus a grid of small boxes), on the CPU backend and, in a
+// build with OpenCL, on OpenCL device 0.
 //
 //   build/benchmarks/bench_accel_crossover [--frames N] [--size W H]
 //
@@ -11,10 +12,15 @@
 
 #include "trac0r/cpu_backend.h"
 #include "trac0r/scene_loader.h"
+#ifdef TRAC0R_HAVE_OPENCL
+#include "trac0r/opencl_backend.h"
+#endif
 
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
+#include <vector>
 
 using namespace trac0r;
 
@@ -63,12 +69,27 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "bench_accel_crossover: --frames and --size must be positive\n");
         return 2;
     }
-    CpuBackend cpu;
-    std::printf("%d x %d, %d timed frames, %s; paths per second on %d free cores, from CPU "
-                "time\n\n",
-                width, height, frames, cpu.device().c_str(), trac0r_bench::machine_cores());
-    std::printf("| triangles | flat Mpaths/s | BVH Mpaths/s | BVH / flat |\n");
-    std::printf("| --- | --- | --- | --- |\n");
+    std::vector<std::unique_ptr<Backend>> backends;
+    backends.emplace_back(new CpuBackend());
+#ifdef TRAC0R_HAVE_OPENCL
+    backends.emplace_back(new OpenClBackend(0));  // throws when there is no device
+#endif
+    std::printf("%d x %d, %d timed frames after one warm-up; paths per second on %d free cores, "
+                "from CPU time",
+                width, height, frames, trac0r_bench::machine_cores());
+    for (const auto& b : backends) {
+        std::printf("; %s: %s", b->name().c_str(), b->device().c_str());
+    }
+    std::printf("\n\n| triangles |");
+    for (const auto& b : backends) {
+        std::printf(" %s flat Mpaths/s | %s BVH Mpaths/s | %s BVH / flat |", b->name().c_str(),
+                    b->name().c_str(), b->name().c_str());
+    }
+    std::printf("\n| ---: |");
+    for (std::size_t i = 0; i < backends.size(); ++i) {
+        std::printf(" ---: | ---: | ---: |");
+    }
+    std::printf("\n");
     for (int boxes : {0, 1, 2, 3, 4, 5, 6, 8, 12, 20}) {
         Scene scene = box_grid(boxes);
         scene.render.width = width;
@@ -80,12 +101,15 @@ int main(int argc, char** argv) {
         const PackedScene flat_packed = pack_scene(scene, flat);
         const PackedScene bvh_packed = pack_scene(scene, bvh);
         const double pixels = static_cast<double>(width) * height;
-        const double f =
-            pixels / trac0r_bench::measure(cpu, flat_packed, scene, frames).free_frame_seconds();
-        const double b =
-            pixels / trac0r_bench::measure(cpu, bvh_packed, scene, frames).free_frame_seconds();
-        std::printf("| %zu | %.3f | %.3f | %.2f |\n", flat_packed.triangles.size(), f * 1e-6,
-                    b * 1e-6, b / f);
+        std::printf("| %zu |", flat_packed.triangles.size());
+        for (const auto& backend : backends) {
+            const double f = pixels / trac0r_bench::measure(*backend, flat_packed, scene, frames)
+                                          .free_frame_seconds();
+            const double b = pixels / trac0r_bench::measure(*backend, bvh_packed, scene, frames)
+                                          .free_frame_seconds();
+            std::printf(" %.3f | %.3f | %.2f |", f * 1e-6, b * 1e-6, b / f);
+        }
+        std::printf("\n");
         std::fflush(stdout);
     }
     return 0;
