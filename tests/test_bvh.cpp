@@ -211,3 +211,20 @@ TEST_CASE("--accel auto keeps the flat list for tiny scenes", "[bvh]") {
     const PackedScene big = pack_scene(triangle_soup(5000, 1));
     REQUIRE(big.features & T0_FEATURE_BVH);
 }
+
+TEST_CASE("--accel auto uses the renderer's backend's threshold", "[bvh]") {
+    // 60 triangles: the BVH on the CPU backend (as fast from 12), the flat
+    // list where no backend is known (PoCL's crossover, about 120).
+    Scene scene = triangle_soup(60, 2);
+    scene.render.width = 8;
+    scene.render.height = 6;
+    REQUIRE(pack_scene(scene).features & T0_FEATURE_FLAT);
+    const Renderer cpu(scene, std::make_unique<CpuBackend>(), 1, PackOptions());
+    REQUIRE(cpu.packed().features & T0_FEATURE_BVH);
+    REQUIRE(CpuBackend().auto_bvh_min_triangles() == cpu_auto_bvh_min_triangles);
+    Scene few = triangle_soup(static_cast<int>(cpu_auto_bvh_min_triangles) - 1, 2);
+    few.render.width = 8;
+    few.render.height = 6;
+    const Renderer tiny(few, std::make_unique<CpuBackend>(), 1, PackOptions());
+    REQUIRE(tiny.packed().features & T0_FEATURE_FLAT);
+}

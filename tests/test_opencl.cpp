@@ -40,6 +40,12 @@ TEST_CASE("the kernel builds as OpenCL C for every scene's feature mask, warning
     }
 }
 
+TEST_CASE("--accel auto on OpenCL keeps the flat list up to PoCL's crossover", "[opencl]") {
+    // README, "Performance": on PoCL the flat list is faster up to about
+    // 120 triangles, so OpenCL keeps the default threshold.
+    REQUIRE(OpenClBackend(0).auto_bvh_min_triangles() == auto_bvh_min_triangles);
+}
+
 TEST_CASE("a program is built once per feature mask and then reused", "[opencl]") {
     const PackedScene packed = pack_scene(load_test_scene("cornell_diffuse.json", 8, 8));
     OpenClBackend first(0);

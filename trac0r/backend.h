@@ -5,6 +5,7 @@
 #include "trac0r/kernel/types.h"
 #include "trac0r/packed_scene.h"
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,6 +17,9 @@ class Backend {
     virtual ~Backend() = default;
     virtual std::string name() const = 0;    // "cpu", "opencl"
     virtual std::string device() const = 0;  // what it runs on, for people
+    // From how many triangles Accel::automatic builds a BVH on this backend
+    // (packed_scene.h).
+    virtual std::size_t auto_bvh_min_triangles() const { return trac0r::auto_bvh_min_triangles; }
     // Called once per scene change.
     virtual void set_scene(const PackedScene& scene) = 0;
     // Clears the accumulator (new size, camera or settings).

@@ -196,7 +196,7 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
     const bool use_bvh =
         !usable.empty() && (options.accel == Accel::bvh ||
                             (options.accel == Accel::automatic &&
-                             usable.size() >= auto_bvh_min_triangles));
+                             usable.size() >= options.auto_bvh_min_triangles));
     if (use_bvh) {
         packed.features |= T0_FEATURE_BVH;
         pack_bvh(usable, packed);

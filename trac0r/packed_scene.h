@@ -18,10 +18,14 @@ enum class Accel {
     automatic,  // the flat list for tiny scenes, else the BVH
 };
 
-// Below this many triangles `automatic` keeps the flat list: measured by
-// benchmarks/accel_crossover.cpp (README, "Performance"), the BVH is no
-// faster up to about 120 triangles and pulls ahead from about 200.
+// Below how many triangles `automatic` keeps the flat list, where it is
+// faster: measured by benchmarks/accel_crossover.cpp (README,
+// "Performance"). On PoCL the flat list is faster up to about 120
+// triangles; on the CPU backend the BVH is as fast from the smallest scene
+// measured (12 triangles) on. Backend::auto_bvh_min_triangles gives each
+// backend's; a packer that knows no backend uses the larger.
 const std::size_t auto_bvh_min_triangles = 128;
+const std::size_t cpu_auto_bvh_min_triangles = 12;
 
 enum class Integrator {
     naive,  // the thesis' algorithm: emission is found by scattering alone
@@ -31,6 +35,7 @@ enum class Integrator {
 
 struct PackOptions {
     Accel accel = Accel::automatic;
+    std::size_t auto_bvh_min_triangles = trac0r::auto_bvh_min_triangles;  // for automatic
     Integrator integrator = Integrator::naive;
 };
 

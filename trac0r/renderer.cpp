@@ -4,10 +4,20 @@
 
 namespace trac0r {
 
+namespace {
+
+// Accel::automatic with the backend's own threshold.
+PackOptions for_backend(PackOptions options, const Backend& backend) {
+    options.auto_bvh_min_triangles = backend.auto_bvh_min_triangles();
+    return options;
+}
+
+}  // namespace
+
 Renderer::Renderer(const Scene& scene, std::unique_ptr<Backend> backend, std::uint64_t seed,
                    const PackOptions& pack_options)
     : scene_(scene),
-      packed_(pack_scene(scene, pack_options)),
+      packed_(pack_scene(scene, for_backend(pack_options, *backend))),
       backend_(std::move(backend)),
       seed_(seed),
       camera_record_(make_camera_record(scene.camera, scene.render.width, scene.render.height)) {
