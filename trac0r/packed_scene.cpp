@@ -107,7 +107,9 @@ void pack_flat(const std::vector<UsableTriangle>& usable, PackedScene& packed) {
     }
 }
 
-void pack_bvh(const std::vector<UsableTriangle>& usable, PackedScene& packed) {
+// Returns, for each packed triangle, its index in `usable`.
+std::vector<std::uint32_t> pack_bvh(const std::vector<UsableTriangle>& usable,
+                                    PackedScene& packed) {
     std::vector<AABB> bounds;
     bounds.reserve(usable.size());
     for (const UsableTriangle& u : usable) {
@@ -138,6 +140,7 @@ void pack_bvh(const std::vector<UsableTriangle>& usable, PackedScene& packed) {
             p.triangle[lane] = index;
         }
     }
+    return bvh.order;
 }
 
 // The light list: every triangle that emits, picked in proportion to its
@@ -145,17 +148,20 @@ void pack_bvh(const std::vector<UsableTriangle>& usable, PackedScene& packed) {
 // the triangle, and pi and the two sides are common factors). The CDF is
 // summed in double and stored in float; each probability is the difference
 // of the stored floats, so it is exactly what the inverse-CDF pick gives.
-void pack_lights(PackedScene& packed) {
+// The lights are listed in the scene's order (packed_index maps it to the
+// packed triangles), not the structure's, so that a light sample picks the
+// same triangle with the flat list and with any BVH.
+void pack_lights(PackedScene& packed, const std::vector<std::uint32_t>& packed_index) {
     std::vector<double> power;
     std::vector<std::uint32_t> emitting;
     double total = 0.0;
-    for (std::size_t i = 0; i < packed.triangles.size(); ++i) {
+    for (std::uint32_t i : packed_index) {
         const kernel::TriangleRecord& t = packed.triangles[i];
         const kernel::MaterialRecord& m = packed.materials[t.ids.x];
         const double p = static_cast<double>(m.params.x) *
                          kernel::luminance(glm::vec3(m.color)) * 0.5 * t.normal.w;
         if (p > 0.0 && std::isfinite(p)) {
-            emitting.push_back(static_cast<std::uint32_t>(i));
+            emitting.push_back(i);
             power.push_back(p);
             total += p;
         }
@@ -196,13 +202,24 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
     const bool use_bvh =
         !usable.empty() && (options.accel == Accel::bvh ||
                             (options.accel == Accel::automatic &&
-                             usable.size() >= options.auto_bvh_min_triangles));
+                             usable.size() >= (options.auto_bvh_min_triangles > 0
+                                                   ? options.auto_bvh_min_triangles
+                                                   : auto_bvh_min_triangles)));
+    // packed_index[u]: where usable triangle u went (the flat list keeps
+    // their order).
+    std::vector<std::uint32_t> packed_index(usable.size());
     if (use_bvh) {
         packed.features |= T0_FEATURE_BVH;
-        pack_bvh(usable, packed);
+        const std::vector<std::uint32_t> order = pack_bvh(usable, packed);
+        for (std::size_t i = 0; i < order.size(); ++i) {
+            packed_index[order[i]] = static_cast<std::uint32_t>(i);
+        }
     } else {
         packed.features |= T0_FEATURE_FLAT;
         pack_flat(usable, packed);
+        for (std::size_t u = 0; u < usable.size(); ++u) {
+            packed_index[u] = static_cast<std::uint32_t>(u);
+        }
     }
     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& material = scene.materials[m];
@@ -215,7 +232,7 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
             packed.features |= T0_FEATURE_EMITTANCE;
         }
     }
-    pack_lights(packed);
+    pack_lights(packed, packed_index);
     if (options.integrator == Integrator::nee && !packed.lights.empty()) {
         packed.features |= T0_FEATURE_NEE;
     }

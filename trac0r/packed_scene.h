@@ -35,7 +35,9 @@ enum class Integrator {
 
 struct PackOptions {
     Accel accel = Accel::automatic;
-    std::size_t auto_bvh_min_triangles = trac0r::auto_bvh_min_triangles;  // for automatic
+    // For automatic: from how many triangles a BVH is built; 0 for
+    // auto_bvh_min_triangles, or with a Renderer its backend's.
+    std::size_t auto_bvh_min_triangles = 0;
     Integrator integrator = Integrator::naive;
 };
 

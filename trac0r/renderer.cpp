@@ -6,9 +6,12 @@ namespace trac0r {
 
 namespace {
 
-// Accel::automatic with the backend's own threshold.
+// Accel::automatic with the backend's own threshold, unless the caller
+// chose one.
 PackOptions for_backend(PackOptions options, const Backend& backend) {
-    options.auto_bvh_min_triangles = backend.auto_bvh_min_triangles();
+    if (options.auto_bvh_min_triangles == 0) {
+        options.auto_bvh_min_triangles = backend.auto_bvh_min_triangles();
+    }
     return options;
 }
 

@@ -42,10 +42,12 @@ T0_INLINE float3 frame_to_world(Frame f, float3 local_dir) {
 }
 
 // The cosine and sine of the angle 2 pi u, u in [0, 1): u is taken to the
-// nearest quarter turn k, exactly (4u is exact, and so is 4u - k by
-// Sterbenz), the rest, an angle of at most pi/4, goes through Cephes'
-// sinf/cosf polynomials (error about 1 ulp there), and the result is
-// rotated by k quarter turns. The same operations on both backends, so the
+// nearest quarter turn k (4u is exact, and for rng_float's multiples of
+// 2^-24 so is 4u - k, by Sterbenz; for a u within 2^-27 below 1/8,
+// 4u + 0.5 rounds up to k = 1 and 4u - k rounds once, a 5e-8 error), the
+// rest, an angle of at most pi/4, goes through Cephes' sinf/cosf
+// polynomials (error about 1 ulp there), and the result is rotated by k
+// quarter turns. The same operations on both backends, so the
 // same floats; and no library sin/cos, which PoCL runs through a slow
 // argument reduction for every angle (16 % of a path's time on
 // cornell.json; glibc's sincosf about 3 %).
