@@ -197,20 +197,19 @@ typedef struct RayLanes {
     int negative[3];  // 1 where the direction component is negative
 } RayLanes;
 
+// Each component of v in all four lanes: out[0..2].
+T0_INLINE void splat3(float3 v, t0_lanes* out) {
+    out[0] = lanes_splat(v.x);
+    out[1] = lanes_splat(v.y);
+    out[2] = lanes_splat(v.z);
+}
+
 T0_INLINE RayLanes make_ray_lanes(Ray ray) {
     RayLanes l;
-    l.origin[0] = lanes_splat(ray.origin.x);
-    l.origin[1] = lanes_splat(ray.origin.y);
-    l.origin[2] = lanes_splat(ray.origin.z);
-    l.inv_direction[0] = lanes_splat(ray.inv_direction.x);
-    l.inv_direction[1] = lanes_splat(ray.inv_direction.y);
-    l.inv_direction[2] = lanes_splat(ray.inv_direction.z);
-    l.permuted_origin[0] = lanes_splat(ray.permuted_origin.x);
-    l.permuted_origin[1] = lanes_splat(ray.permuted_origin.y);
-    l.permuted_origin[2] = lanes_splat(ray.permuted_origin.z);
-    l.shear[0] = lanes_splat(ray.shear.x);
-    l.shear[1] = lanes_splat(ray.shear.y);
-    l.shear[2] = lanes_splat(ray.shear.z);
+    splat3(ray.origin, l.origin);
+    splat3(ray.inv_direction, l.inv_direction);
+    splat3(ray.permuted_origin, l.permuted_origin);
+    splat3(ray.shear, l.shear);
     l.parallel_det = lanes_splat(ray.parallel_det);
     l.negative[0] = ray.inv_direction.x < 0.0f ? 1 : 0;
     l.negative[1] = ray.inv_direction.y < 0.0f ? 1 : 0;
