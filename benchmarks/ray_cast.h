@@ -124,7 +124,7 @@ inline CastResult cast_cpu(const trac0r::PackedScene& packed, const RaySet& rays
 #ifdef TRAC0R_HAVE_OPENCL
 
 // The cast kernel, appended to the embedded kernel source: the same
-// make_ray and intersect_scene the renderer runs.
+// scene_view, make_ray and intersect_scene the renderer runs.
 const char* const cast_kernel_source = R"(
 __kernel void cast_rays(__global const TriangleRecord* triangles,
                         __global const ShapeRecord* shapes, __global const BvhNode* nodes,
@@ -135,13 +135,7 @@ __kernel void cast_rays(__global const TriangleRecord* triangles,
     if (i >= count) {
         return;
     }
-    SceneView scene;
-    scene.triangles = triangles;
-    scene.shapes = shapes;
-    scene.nodes = nodes;
-    scene.packets = packets;
-    scene.shape_count = shape_count;
-    scene.features = T0_FEATURES;
+    const SceneView scene = scene_view(triangles, shapes, 0, nodes, packets, 0, shape_count, 0u);
     const Ray ray = make_ray(origins[i].xyz, directions[i].xyz);
     hit[i] = intersect_scene(&scene, ray).triangle >= 0;
 }
