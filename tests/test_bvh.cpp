@@ -10,6 +10,7 @@
 #include "trac0r/scene_loader.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <random>
 
@@ -73,13 +74,13 @@ int check_subtree(const PackedScene& p, std::uint32_t node, std::vector<int>& se
         if (n.count[i] > 0) {
             // A leaf: packet child[i], whose first count[i] lanes are
             // triangles (the same floats as their records) and the rest
-            // unused (area 0, never hit).
+            // unused (infinite area, never hit).
             REQUIRE(n.count[i] <= 4);
             REQUIRE(n.child[i] < p.packets.size());
             const kernel::TrianglePacket& packet = p.packets[n.child[i]];
             for (std::uint32_t lane = 0; lane < 4; ++lane) {
                 if (lane >= n.count[i]) {
-                    REQUIRE(packet.area[lane] == 0.0f);
+                    REQUIRE(std::isinf(packet.area[lane]));
                     continue;
                 }
                 const std::uint32_t t = packet.triangle[lane];
@@ -172,8 +173,8 @@ TEST_CASE("BVH traversal finds the same nearest hit as testing every triangle", 
             direction = glm::normalize(direction);
         }
         const kernel::Ray ray = kernel::make_ray(origin, direction);
-        const kernel::Hit a = kernel::traverse_bvh(&bvh_view, ray, T0_NO_HIT, 0);
-        const kernel::Hit b = kernel::traverse_flat(&flat_view, ray, T0_NO_HIT, 0);
+        const kernel::Hit a = kernel::traverse_bvh(&bvh_view, &ray, T0_NO_HIT, 0);
+        const kernel::Hit b = kernel::traverse_flat(&flat_view, &ray, T0_NO_HIT, 0);
         REQUIRE((a.triangle >= 0) == (b.triangle >= 0));
         if (a.triangle >= 0) {
             ++hits;

@@ -4,6 +4,7 @@
 #include "trac0r/kernel/accumulate.h"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace trac0r {
@@ -123,10 +124,12 @@ std::vector<std::uint32_t> pack_bvh(const std::vector<UsableTriangle>& usable,
         const UsableTriangle& u = usable[index];
         packed.triangles.push_back(pack_triangle(*u.triangle, u.material, u.shape));
     }
-    // Each leaf's triangles side by side; unused lanes stay zero (area 0).
+    // Each leaf's triangles side by side; unused lanes have zero vertices
+    // and an infinite area, which no ray is ever upright enough to hit.
     packed.packets.assign(bvh.leaves.size(), kernel::TrianglePacket{});
     for (std::size_t i = 0; i < bvh.leaves.size(); ++i) {
         kernel::TrianglePacket& p = packed.packets[i];
+        p.area = glm::vec4(std::numeric_limits<float>::infinity());
         for (std::uint32_t lane = 0; lane < bvh.leaves[i].count; ++lane) {
             const std::uint32_t index = bvh.leaves[i].first + lane;
             const kernel::TriangleRecord& t = packed.triangles[index];

@@ -75,6 +75,7 @@ T0_INLINE t0_lanes lanes_select_le(t0_lanes a, t0_lanes b, t0_lanes x, t0_lanes 
     return select(y, x, islessequal(a, b));
 }
 T0_INLINE void lanes_store(t0_lanes v, float* out) { vstore4(v, 0, out); }
+T0_INLINE float lanes_first(t0_lanes v) { return v.x; }
 
 #else  // C++
 
@@ -180,6 +181,7 @@ inline t0_lanes lanes_select_le(t0_lanes a, t0_lanes b, t0_lanes x, t0_lanes y) 
     return _mm_or_ps(_mm_and_ps(m, x), _mm_andnot_ps(m, y));
 }
 inline void lanes_store(t0_lanes v, float* out) { _mm_storeu_ps(out, v); }
+inline float lanes_first(t0_lanes v) { return _mm_cvtss_f32(v); }
 #else
 struct t0_lanes {
     float v[4];
@@ -218,6 +220,7 @@ inline int lanes_lt_mask(t0_lanes a, t0_lanes b) {
     return m;
 }
 inline void lanes_store(t0_lanes v, float* out) { std::memcpy(out, v.v, sizeof v.v); }
+inline float lanes_first(t0_lanes v) { return v.v[0]; }
 #endif
 
 T0_NAMESPACE_END

@@ -225,10 +225,10 @@ T0_INLINE t0_lanes packet_coordinate(T0_GLOBAL const TrianglePacket* p, int vert
 
 // intersect_triangle for the four triangles of a packet at once, with the
 // same floats lane for lane: bit i of the result is set when triangle i is
-// hit at a distance below t_max, which goes to t[i] with its barycentrics
-// to u[i], v[i].
+// hit at a distance below t_max (in every lane), which then goes to t[i]
+// with its barycentrics to u[i], v[i].
 T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray,
-                               const RayLanes* l, float t_max, float* t, float* u, float* v) {
+                               const RayLanes* l, t0_lanes t_max, float* t, float* u, float* v) {
     const t0_lanes ox = l->permuted_origin[0];
     const t0_lanes oy = l->permuted_origin[1];
     const t0_lanes oz = l->permuted_origin[2];
@@ -247,30 +247,35 @@ T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray
     const t0_lanes weight1 = lanes_sub(lanes_mul(ax, cy), lanes_mul(ay, cx));
     const t0_lanes weight2 = lanes_sub(lanes_mul(bx, ay), lanes_mul(by, ax));
     const t0_lanes zero = lanes_splat(0.0f);
-    const int negative = lanes_lt_mask(weight0, zero) | lanes_lt_mask(weight1, zero) |
-                         lanes_lt_mask(weight2, zero);
-    const int positive = lanes_lt_mask(zero, weight0) | lanes_lt_mask(zero, weight1) |
-                         lanes_lt_mask(zero, weight2);
+    // Outside where one weight is negative and another positive: where the
+    // smallest is negative and the largest positive. (A NaN weight may be
+    // passed over here; it makes det NaN, which fails the next test.)
+    const int outside =
+        lanes_lt_mask(lanes_min(lanes_min(weight0, weight1), weight2), zero) &
+        lanes_lt_mask(zero, lanes_max(lanes_max(weight0, weight1), weight2));
     const t0_lanes det = lanes_add(lanes_add(weight0, weight1), weight2);
-    const t0_lanes area = lanes_load(&p->area);
-    const int upright = lanes_lt_mask(lanes_mul(area, l->parallel_det), lanes_abs(det)) &
-                        lanes_lt_mask(zero, area);
+    // An unused lane's area is infinite: never below |det|.
+    const int upright =
+        lanes_lt_mask(lanes_mul(lanes_load(&p->area), l->parallel_det), lanes_abs(det));
     const t0_lanes inv_det = lanes_div(lanes_splat(1.0f), det);
     const t0_lanes distance = lanes_mul(
         lanes_mul(lanes_add(lanes_add(lanes_mul(weight0, az), lanes_mul(weight1, bz)),
                             lanes_mul(weight2, cz)),
                   l->shear[2]),
         inv_det);
-    const int ahead = lanes_lt_mask(zero, distance) & lanes_lt_mask(distance, lanes_splat(t_max));
-    lanes_store(distance, t);
-    lanes_store(lanes_mul(weight1, inv_det), u);
-    lanes_store(lanes_mul(weight2, inv_det), v);
-    return ~(negative & positive) & upright & ahead & 15;
+    const int ahead = lanes_lt_mask(zero, distance) & lanes_lt_mask(distance, t_max);
+    const int hits = ~outside & upright & ahead & 15;
+    if (hits != 0) {
+        lanes_store(distance, t);
+        lanes_store(lanes_mul(weight1, inv_det), u);
+        lanes_store(lanes_mul(weight2, inv_det), v);
+    }
+    return hits;
 }
 
 // The thesis' structure: every shape's AABB, then its triangles. Nearest
 // hit below t_max; with any_hit, the first one found (shadow rays).
-T0_INLINE Hit traverse_flat(const SceneView* scene, Ray ray, float t_max, int any_hit) {
+T0_INLINE Hit traverse_flat(const SceneView* scene, const Ray* ray, float t_max, int any_hit) {
     Hit hit;
     hit.t = t_max;
     hit.u = 0.0f;
@@ -278,14 +283,14 @@ T0_INLINE Hit traverse_flat(const SceneView* scene, Ray ray, float t_max, int an
     hit.triangle = -1;
     for (t0_u32 s = 0; s < scene->shape_count; ++s) {
         T0_GLOBAL const ShapeRecord* shape = &scene->shapes[s];
-        if (!intersect_aabb(xyz(shape->aabb_min), xyz(shape->aabb_max), ray, hit.t)) {
+        if (!intersect_aabb(xyz(shape->aabb_min), xyz(shape->aabb_max), *ray, hit.t)) {
             continue;
         }
         const t0_u32 end = shape->range.x + shape->range.y;
         for (t0_u32 i = shape->range.x; i < end; ++i) {
             float u = 0.0f;
             float v = 0.0f;
-            const float t = intersect_triangle(&scene->triangles[i], ray, &u, &v);
+            const float t = intersect_triangle(&scene->triangles[i], *ray, &u, &v);
             if (t < hit.t) {
                 hit.t = t;
                 hit.u = u;
@@ -306,12 +311,13 @@ T0_INLINE Hit traverse_flat(const SceneView* scene, Ray ray, float t_max, int an
 // binary levels per 4-wide node).
 #define T0_BVH_STACK_SIZE 96
 
-// The ray against the boxes of node n's four children over [0, t_max]: bit
+// The ray against the boxes of node n's four children over [0, t_max] (in
+// every lane): bit
 // i of the result is set when it enters child i's box, at entry[i] (the
 // others get infinity, beyond every entry). Lane for lane the floats of
 // aabb_entry, four boxes per operation.
 T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const RayLanes* l,
-                            float t_max, float* entry) {
+                            t0_lanes t_max, float* entry) {
     if (ray->any_parallel) {
         // aabb_entry's slow path, one lane at a time; unused lanes (their
         // box is inverted) are skipped.
@@ -323,7 +329,7 @@ T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const Ra
             const float3 hi = make_float3(buffer_component(&n->bounds[1], i),
                                           buffer_component(&n->bounds[3], i),
                                           buffer_component(&n->bounds[5], i));
-            const float t = lo.x <= hi.x ? aabb_entry(lo, hi, *ray, t_max) : T0_NO_HIT;
+            const float t = lo.x <= hi.x ? aabb_entry(lo, hi, *ray, lanes_first(t_max)) : T0_NO_HIT;
             entry[i] = t < T0_NO_HIT ? t : T0_INFINITY;
             mask |= (t < T0_NO_HIT ? 1 : 0) << i;
         }
@@ -352,7 +358,7 @@ T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const Ra
         lanes_max(lanes_max(near_x, near_y), lanes_max(near_z, lanes_splat(0.0f)));
     const t0_lanes t_far = lanes_mul(lanes_min(lanes_min(far_x, far_y), far_z),
                                      lanes_splat(1.0f + 2.0f * T0_GAMMA3));
-    const t0_lanes limit = lanes_min(t_far, lanes_splat(t_max));
+    const t0_lanes limit = lanes_min(t_far, t_max);
     lanes_store(lanes_select_le(t_near, limit, t_near, lanes_splat(T0_INFINITY)), entry);
     return lanes_le_mask(t_near, limit);
 }
@@ -376,7 +382,7 @@ T0_INLINE void order_lanes(float* entry, int* lane, int i, int j) {
 // the nearest is visited next and the others wait on the stack with their
 // entry distances, farthest at the bottom; one is skipped if a hit has come
 // closer since.
-T0_INLINE Hit traverse_bvh(const SceneView* scene, Ray ray, float t_max, int any_hit) {
+T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, int any_hit) {
     Hit hit;
     hit.t = t_max;
     hit.u = 0.0f;
@@ -386,7 +392,8 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, Ray ray, float t_max, int any
     t0_u32 stack_count[T0_BVH_STACK_SIZE];
     float stack_entry[T0_BVH_STACK_SIZE];
     int top = 0;
-    const RayLanes lanes = make_ray_lanes(ray);
+    const RayLanes lanes = make_ray_lanes(*ray);
+    t0_lanes limit = lanes_splat(t_max);  // hit.t in every lane
     t0_u32 child = 0u;  // what is visited: node 0, the root,
     t0_u32 count = 0u;  // or with count > 0 the leaf of packet child
     for (;;) {
@@ -397,55 +404,59 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, Ray ray, float t_max, int any
             float t[4];
             float u[4];
             float v[4];
-            int hits = intersect_packet(p, &ray, &lanes, hit.t, t, u, v);
-            while (hits != 0) {
-                const int i = lowest_set_bit(hits);
-                hits &= hits - 1;
-                if (t[i] < hit.t) {
-                    hit.t = t[i];
-                    hit.u = u[i];
-                    hit.v = v[i];
-                    hit.triangle = (int)buffer_uint_component(&p->triangle, i);
-                    if (any_hit) {
-                        return hit;
+            int hits = intersect_packet(p, ray, &lanes, limit, t, u, v);
+            if (hits != 0) {
+                do {
+                    const int i = lowest_set_bit(hits);
+                    hits &= hits - 1;
+                    if (t[i] < hit.t) {
+                        hit.t = t[i];
+                        hit.u = u[i];
+                        hit.v = v[i];
+                        hit.triangle = (int)buffer_uint_component(&p->triangle, i);
                     }
+                } while (hits != 0);
+                if (any_hit) {
+                    return hit;
                 }
+                limit = lanes_splat(hit.t);
             }
         } else {
             T0_GLOBAL const BvhNode* n = &scene->nodes[child];
             float entry[4];
-            const int mask = child_entries(n, &ray, &lanes, hit.t, entry);
-            const int entered = (mask & 1) + ((mask >> 1) & 1) + ((mask >> 2) & 1) + (mask >> 3);
-            // One or two children entered (most nodes): no sort.
-            if (entered == 1) {
-                const int only = lowest_set_bit(mask);
-                child = buffer_uint_component(&n->child, only);
-                count = buffer_uint_component(&n->count, only);
-                continue;
-            }
-            if (entered == 2) {
-                const int a = lowest_set_bit(mask);
-                const int b = lowest_set_bit(mask & (mask - 1));
-                const int a_first = entry[a] <= entry[b];
-                const int near = a_first ? a : b;
-                const int far = a_first ? b : a;
-                stack_child[top] = buffer_uint_component(&n->child, far);
-                stack_count[top] = buffer_uint_component(&n->count, far);
-                stack_entry[top] = entry[far];
-                ++top;
-                child = buffer_uint_component(&n->child, near);
-                count = buffer_uint_component(&n->count, near);
-                continue;
-            }
-            if (entered > 2) {
-                // A sorting network: the entered children nearest first,
-                // then the others (infinity).
+            const int mask = child_entries(n, ray, &lanes, limit, entry);
+            if (mask != 0) {
+                const int first = lowest_set_bit(mask);
+                const int rest = mask & (mask - 1);
+                if (rest == 0) {
+                    // One child entered (most nodes): no sort.
+                    child = buffer_uint_component(&n->child, first);
+                    count = buffer_uint_component(&n->count, first);
+                    continue;
+                }
+                if ((rest & (rest - 1)) == 0) {
+                    // Two: the farther waits.
+                    const int second = lowest_set_bit(rest);
+                    const int first_nearer = entry[first] <= entry[second];
+                    const int near = first_nearer ? first : second;
+                    const int far = first_nearer ? second : first;
+                    stack_child[top] = buffer_uint_component(&n->child, far);
+                    stack_count[top] = buffer_uint_component(&n->count, far);
+                    stack_entry[top] = entry[far];
+                    ++top;
+                    child = buffer_uint_component(&n->child, near);
+                    count = buffer_uint_component(&n->count, near);
+                    continue;
+                }
+                // Three or four: a sorting network puts the entered
+                // children nearest first, then the others (infinity).
                 int lane[4] = {0, 1, 2, 3};
                 order_lanes(entry, lane, 0, 1);
                 order_lanes(entry, lane, 2, 3);
                 order_lanes(entry, lane, 0, 2);
                 order_lanes(entry, lane, 1, 3);
                 order_lanes(entry, lane, 1, 2);
+                const int entered = mask == 15 ? 4 : 3;
                 for (int i = entered - 1; i > 0; --i) {
                     stack_child[top] = buffer_uint_component(&n->child, lane[i]);
                     stack_count[top] = buffer_uint_component(&n->count, lane[i]);
@@ -474,17 +485,17 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, Ray ray, float t_max, int any
 
 T0_INLINE Hit intersect_scene(const SceneView* scene, Ray ray) {
     if (T0_HAS_FEATURE(scene, T0_FEATURE_BVH)) {
-        return traverse_bvh(scene, ray, T0_NO_HIT, 0);
+        return traverse_bvh(scene, &ray, T0_NO_HIT, 0);
     }
-    return traverse_flat(scene, ray, T0_NO_HIT, 0);
+    return traverse_flat(scene, &ray, T0_NO_HIT, 0);
 }
 
 // Whether anything lies on the ray before t_max.
 T0_INLINE int occluded(const SceneView* scene, Ray ray, float t_max) {
     if (T0_HAS_FEATURE(scene, T0_FEATURE_BVH)) {
-        return traverse_bvh(scene, ray, t_max, 1).triangle >= 0;
+        return traverse_bvh(scene, &ray, t_max, 1).triangle >= 0;
     }
-    return traverse_flat(scene, ray, t_max, 1).triangle >= 0;
+    return traverse_flat(scene, &ray, t_max, 1).triangle >= 0;
 }
 
 // How far a new ray's origin moves off its surface, per unit of the hit's

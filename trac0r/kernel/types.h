@@ -74,7 +74,8 @@ typedef struct T0_ALIGN16 BvhNode {
 // The triangles of one BVH leaf (up to four) side by side for the
 // watertight test, lane i of each vector for triangle i, so that one vector
 // operation works on all four: the same vertex floats as their
-// TriangleRecords. An unused lane has area 0, which is never hit.
+// TriangleRecords. An unused lane has zero vertices and an infinite area,
+// which is never hit (intersect_packet).
 typedef struct T0_ALIGN16 TrianglePacket {
     float4 vertex[9];  // vertex[3 k + axis]: coordinate axis of vertex k (v0, v1, v2)
     float4 area;       // twice the area, TriangleRecord.normal.w
