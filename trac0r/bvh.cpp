@@ -16,12 +16,14 @@ const int bin_count = 16;
 // inputs) they halve the list, so no path is longer than about this plus
 // log2(n) nodes and the kernel's fixed traversal stack always suffices.
 const int sah_depth_limit = 32;
-// Relative costs, for the SAH, of visiting a node and of testing a packet
-// of up to four triangles (the kernel tests one with about twice a box
-// test's vector operations). On cornell.json, costs 1 : 1 per packet, 1 : 2
-// and 1 : 3 gave 213, 211 and 214 ms a frame (CPU, 800 x 600, trac0r_viewer
-// --benchmark 4), against 227 ms for 1 : 1 per triangle.
-const float traversal_cost = 1.0f;
+// Relative costs, for the SAH, of a binary node and of testing a packet of
+// up to four triangles. A binary node is half a 4-wide node, whose four box
+// tests take one vector operation per plane; a packet test takes about as
+// many instructions as two wide nodes (callgrind). So 1 : 4. On
+// cornell.json, against 1 : 2, it splits pairs of walls that shared a
+// room-sized leaf box: 0.7 fewer packet tests per ray for 0.4 more nodes,
+// and 7 % fewer instructions a ray (README, "Performance").
+const float traversal_cost = 0.5f;
 const float intersection_cost = 2.0f;
 
 float surface_area(const AABB& b) {
@@ -203,12 +205,16 @@ class Builder {
     int max_leaf_;
 };
 
-// Collapses the binary tree into 4-wide nodes: a wide node's lanes are the
-// grandchildren of a binary node (or a child, where that is a leaf), so
-// each wide level takes two binary levels and the depth halves.
+// Collapses the binary tree into 4-wide nodes. Greedy: a wide node starts
+// from its binary node and opens the interior lane of largest surface area
+// (the one most rays enter) into its two children until it has four lanes
+// or only leaves. Or by levels: a wide node's lanes are the grandchildren of
+// a binary node (or a child, where that is a leaf), so each wide level takes
+// two binary levels and the depth halves, which bounds it on any input.
 class Collapser {
   public:
-    explicit Collapser(const std::vector<BinaryNode>& binary) : binary_(binary) {}
+    Collapser(const std::vector<BinaryNode>& binary, bool greedy)
+        : binary_(binary), greedy_(greedy) {}
 
     void collapse(Bvh& bvh) {
         wide_.emplace_back();
@@ -218,23 +224,50 @@ class Collapser {
     }
 
   private:
+    // The lanes of the wide node made from binary node b: lanes[0..count).
+    int choose_lanes(std::uint32_t b, std::uint32_t* lanes) const {
+        int lane_count = 0;
+        if (greedy_) {
+            lanes[lane_count++] = b;
+            while (lane_count < 4) {
+                int widest = -1;
+                float widest_area = -1.0f;
+                for (int i = 0; i < lane_count; ++i) {
+                    const BinaryNode& n = binary_[lanes[i]];
+                    if (n.count == 0 && surface_area(n.bounds) > widest_area) {
+                        widest = i;
+                        widest_area = surface_area(n.bounds);
+                    }
+                }
+                if (widest < 0) {
+                    break;  // only leaves
+                }
+                const std::uint32_t first = binary_[lanes[widest]].first;
+                lanes[widest] = first;
+                lanes[lane_count++] = first + 1;
+            }
+            return lane_count;
+        }
+        if (binary_[b].count > 0) {
+            lanes[lane_count++] = b;  // a tree that is one leaf
+            return lane_count;
+        }
+        for (std::uint32_t c = binary_[b].first; c < binary_[b].first + 2; ++c) {
+            if (binary_[c].count > 0) {
+                lanes[lane_count++] = c;
+            } else {
+                lanes[lane_count++] = binary_[c].first;
+                lanes[lane_count++] = binary_[c].first + 1;
+            }
+        }
+        return lane_count;
+    }
+
     // Fills wide node `wide` from binary node `b`; returns the depth of the
     // wide subtree, in nodes.
     int fill(std::size_t wide, std::uint32_t b) {
         std::uint32_t lanes[4];
-        int lane_count = 0;
-        if (binary_[b].count > 0) {
-            lanes[lane_count++] = b;  // a tree that is one leaf
-        } else {
-            for (std::uint32_t c = binary_[b].first; c < binary_[b].first + 2; ++c) {
-                if (binary_[c].count > 0) {
-                    lanes[lane_count++] = c;
-                } else {
-                    lanes[lane_count++] = binary_[c].first;
-                    lanes[lane_count++] = binary_[c].first + 1;
-                }
-            }
-        }
+        const int lane_count = choose_lanes(b, lanes);
         kernel::BvhNode node;
         for (int axis = 0; axis < 3; ++axis) {
             node.bounds[2 * axis] = glm::vec4(std::numeric_limits<float>::max());
@@ -270,6 +303,7 @@ class Collapser {
     }
 
     const std::vector<BinaryNode>& binary_;
+    bool greedy_;
     std::vector<kernel::BvhNode> wide_;
     std::vector<BvhLeaf> leaves_;
 };
@@ -292,8 +326,13 @@ Bvh build_bvh(const std::vector<AABB>& triangle_bounds, int max_leaf_size) {
     Bvh bvh;
     const int leaf_size = std::min(std::max(1, max_leaf_size), 4);  // one packet
     const std::vector<BinaryNode> binary = Builder(std::move(items), leaf_size).build(bvh.order);
-    Collapser(binary).collapse(bvh);
-    // The traversal stack holds at most three entries per level.
+    // The traversal stack holds at most three entries per level. A greedy
+    // tree may be as deep as the binary one; where that is too deep, the
+    // collapse by levels halves the depth.
+    Collapser(binary, true).collapse(bvh);
+    if (3 * bvh.depth > T0_BVH_STACK_SIZE) {
+        Collapser(binary, false).collapse(bvh);
+    }
     if (3 * bvh.depth > T0_BVH_STACK_SIZE) {
         throw std::runtime_error("build_bvh: tree too deep for the traversal stack");
     }
