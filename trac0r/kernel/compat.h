@@ -70,10 +70,6 @@ T0_INLINE int lanes_lt_mask(t0_lanes a, t0_lanes b) {
     const int4 m = isless(a, b);
     return (m.x & 1) | (m.y & 2) | (m.z & 4) | (m.w & 8);
 }
-// Lane i of x where a <= b there, else of y.
-T0_INLINE t0_lanes lanes_select_le(t0_lanes a, t0_lanes b, t0_lanes x, t0_lanes y) {
-    return select(y, x, islessequal(a, b));
-}
 T0_INLINE void lanes_store(t0_lanes v, float* out) { vstore4(v, 0, out); }
 T0_INLINE float lanes_first(t0_lanes v) { return v.x; }
 
@@ -176,10 +172,6 @@ inline t0_lanes lanes_min(t0_lanes a, t0_lanes b) { return _mm_min_ps(a, b); }
 inline t0_lanes lanes_max(t0_lanes a, t0_lanes b) { return _mm_max_ps(a, b); }
 inline int lanes_le_mask(t0_lanes a, t0_lanes b) { return _mm_movemask_ps(_mm_cmple_ps(a, b)); }
 inline int lanes_lt_mask(t0_lanes a, t0_lanes b) { return _mm_movemask_ps(_mm_cmplt_ps(a, b)); }
-inline t0_lanes lanes_select_le(t0_lanes a, t0_lanes b, t0_lanes x, t0_lanes y) {
-    const __m128 m = _mm_cmple_ps(a, b);
-    return _mm_or_ps(_mm_and_ps(m, x), _mm_andnot_ps(m, y));
-}
 inline void lanes_store(t0_lanes v, float* out) { _mm_storeu_ps(out, v); }
 inline float lanes_first(t0_lanes v) { return _mm_cvtss_f32(v); }
 #else
@@ -201,9 +193,6 @@ inline t0_lanes lanes_div(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] / b.v[i])
 inline t0_lanes lanes_abs(t0_lanes a) { T0_LANEWISE(std::fabs(a.v[i])); }
 inline t0_lanes lanes_min(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] < b.v[i] ? a.v[i] : b.v[i]); }
 inline t0_lanes lanes_max(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] > b.v[i] ? a.v[i] : b.v[i]); }
-inline t0_lanes lanes_select_le(t0_lanes a, t0_lanes b, t0_lanes x, t0_lanes y) {
-    T0_LANEWISE(a.v[i] <= b.v[i] ? x.v[i] : y.v[i]);
-}
 #undef T0_LANEWISE
 inline int lanes_le_mask(t0_lanes a, t0_lanes b) {
     int m = 0;

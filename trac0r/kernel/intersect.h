@@ -191,10 +191,13 @@ T0_INLINE float intersect_triangle(T0_GLOBAL const TriangleRecord* tri, Ray ray,
 typedef struct RayLanes {
     t0_lanes origin[3];
     t0_lanes inv_direction[3];
-    t0_lanes permuted_origin[3];
     t0_lanes shear[3];
     t0_lanes parallel_det;
-    int negative[3];  // 1 where the direction component is negative
+    // Per axis, which of a node's bounds vectors holds the planes the ray
+    // enters (near) and leaves (far) through: the minima for a positive
+    // direction component, the maxima for a negative one.
+    int near[3];
+    int far[3];
 } RayLanes;
 
 // Each component of v in all four lanes: out[0..2].
@@ -208,12 +211,14 @@ T0_INLINE RayLanes make_ray_lanes(Ray ray) {
     RayLanes l;
     splat3(ray.origin, l.origin);
     splat3(ray.inv_direction, l.inv_direction);
-    splat3(ray.permuted_origin, l.permuted_origin);
     splat3(ray.shear, l.shear);
     l.parallel_det = lanes_splat(ray.parallel_det);
-    l.negative[0] = ray.inv_direction.x < 0.0f ? 1 : 0;
-    l.negative[1] = ray.inv_direction.y < 0.0f ? 1 : 0;
-    l.negative[2] = ray.inv_direction.z < 0.0f ? 1 : 0;
+    l.near[0] = ray.inv_direction.x < 0.0f ? 1 : 0;
+    l.near[1] = ray.inv_direction.y < 0.0f ? 3 : 2;
+    l.near[2] = ray.inv_direction.z < 0.0f ? 5 : 4;
+    l.far[0] = 1 - l.near[0];
+    l.far[1] = 5 - l.near[1];
+    l.far[2] = 9 - l.near[2];
     return l;
 }
 
@@ -229,9 +234,9 @@ T0_INLINE t0_lanes packet_coordinate(T0_GLOBAL const TrianglePacket* p, int vert
 // with its barycentrics to u[i], v[i].
 T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray,
                                const RayLanes* l, t0_lanes t_max, float* t, float* u, float* v) {
-    const t0_lanes ox = l->permuted_origin[0];
-    const t0_lanes oy = l->permuted_origin[1];
-    const t0_lanes oz = l->permuted_origin[2];
+    const t0_lanes ox = l->origin[ray->kx];
+    const t0_lanes oy = l->origin[ray->ky];
+    const t0_lanes oz = l->origin[ray->kz];
     const t0_lanes sx = l->shear[0];
     const t0_lanes sy = l->shear[1];
     const t0_lanes az = lanes_sub(packet_coordinate(p, 0, ray->kz), oz);
@@ -312,9 +317,8 @@ T0_INLINE Hit traverse_flat(const SceneView* scene, const Ray* ray, float t_max,
 #define T0_BVH_STACK_SIZE 96
 
 // The ray against the boxes of node n's four children over [0, t_max] (in
-// every lane): bit
-// i of the result is set when it enters child i's box, at entry[i] (the
-// others get infinity, beyond every entry). Lane for lane the floats of
+// every lane): bit i of the result is set when it enters child i's box, at
+// entry[i] (the others' entries mean nothing). Lane for lane the floats of
 // aabb_entry, four boxes per operation.
 T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const RayLanes* l,
                             t0_lanes t_max, float* entry) {
@@ -330,7 +334,7 @@ T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const Ra
                                           buffer_component(&n->bounds[3], i),
                                           buffer_component(&n->bounds[5], i));
             const float t = lo.x <= hi.x ? aabb_entry(lo, hi, *ray, lanes_first(t_max)) : T0_NO_HIT;
-            entry[i] = t < T0_NO_HIT ? t : T0_INFINITY;
+            entry[i] = t;
             mask |= (t < T0_NO_HIT ? 1 : 0) << i;
         }
         return mask;
@@ -339,27 +343,24 @@ T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const Ra
     // and the maximum for a negative one: for a box, the same floats as the
     // min and max of aabb_entry (rounding is monotonic), and for an unused
     // lane's inverted box an entry beyond the exit.
-    const int sx = l->negative[0];
-    const int sy = l->negative[1];
-    const int sz = l->negative[2];
     const t0_lanes near_x =
-        lanes_mul(lanes_sub(lanes_load(&n->bounds[sx]), l->origin[0]), l->inv_direction[0]);
+        lanes_mul(lanes_sub(lanes_load(&n->bounds[l->near[0]]), l->origin[0]), l->inv_direction[0]);
     const t0_lanes far_x =
-        lanes_mul(lanes_sub(lanes_load(&n->bounds[1 - sx]), l->origin[0]), l->inv_direction[0]);
+        lanes_mul(lanes_sub(lanes_load(&n->bounds[l->far[0]]), l->origin[0]), l->inv_direction[0]);
     const t0_lanes near_y =
-        lanes_mul(lanes_sub(lanes_load(&n->bounds[2 + sy]), l->origin[1]), l->inv_direction[1]);
+        lanes_mul(lanes_sub(lanes_load(&n->bounds[l->near[1]]), l->origin[1]), l->inv_direction[1]);
     const t0_lanes far_y =
-        lanes_mul(lanes_sub(lanes_load(&n->bounds[3 - sy]), l->origin[1]), l->inv_direction[1]);
+        lanes_mul(lanes_sub(lanes_load(&n->bounds[l->far[1]]), l->origin[1]), l->inv_direction[1]);
     const t0_lanes near_z =
-        lanes_mul(lanes_sub(lanes_load(&n->bounds[4 + sz]), l->origin[2]), l->inv_direction[2]);
+        lanes_mul(lanes_sub(lanes_load(&n->bounds[l->near[2]]), l->origin[2]), l->inv_direction[2]);
     const t0_lanes far_z =
-        lanes_mul(lanes_sub(lanes_load(&n->bounds[5 - sz]), l->origin[2]), l->inv_direction[2]);
+        lanes_mul(lanes_sub(lanes_load(&n->bounds[l->far[2]]), l->origin[2]), l->inv_direction[2]);
     const t0_lanes t_near =
         lanes_max(lanes_max(near_x, near_y), lanes_max(near_z, lanes_splat(0.0f)));
     const t0_lanes t_far = lanes_mul(lanes_min(lanes_min(far_x, far_y), far_z),
                                      lanes_splat(1.0f + 2.0f * T0_GAMMA3));
     const t0_lanes limit = lanes_min(t_far, t_max);
-    lanes_store(lanes_select_le(t_near, limit, t_near, lanes_splat(T0_INFINITY)), entry);
+    lanes_store(t_near, entry);
     return lanes_le_mask(t_near, limit);
 }
 
@@ -449,7 +450,11 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
                     continue;
                 }
                 // Three or four: a sorting network puts the entered
-                // children nearest first, then the others (infinity).
+                // children nearest first, then the one left out (at
+                // infinity).
+                if (mask != 15) {
+                    entry[lowest_set_bit(~mask & 15)] = T0_INFINITY;
+                }
                 int lane[4] = {0, 1, 2, 3};
                 order_lanes(entry, lane, 0, 1);
                 order_lanes(entry, lane, 2, 3);
