@@ -216,7 +216,6 @@ int main(int argc, char** argv) {
             Scene scene = load_scene_file(path);
             scene.render.width = config.width;
             scene.render.height = config.height;
-            double paths[2][3] = {};  // [cpu, opencl][Accel] with the scene's mask
             for (Accel accel : config.accels) {
                 PackOptions options;
                 options.accel = accel;
@@ -246,22 +245,59 @@ int main(int argc, char** argv) {
                                 1e3 * t.frame_seconds, 1e3 * t.cpu_frame_seconds, 1.0 / free,
                                 pixels / free * 1e-6);
                     std::fflush(stdout);
-                    if (row.packed == &packed) {
-                        paths[row.backend == &cpu ? 0 : 1][static_cast<int>(accel)] = pixels / free;
-                    }
                 }
             }
-            const int flat = static_cast<int>(Accel::flat);
-            const int bvh = static_cast<int>(Accel::bvh);
-            if (paths[0][flat] > 0.0 && paths[0][bvh] > 0.0) {
-                char line[256];
-                std::snprintf(line, sizeof line, "- %s: CPU %.2f, OpenCL %.2f\n", path.c_str(),
-                              paths[0][bvh] / paths[0][flat], paths[1][bvh] / paths[1][flat]);
-                ratios += line;
+            const bool both = std::find(config.accels.begin(), config.accels.end(), Accel::flat) !=
+                                  config.accels.end() &&
+                              std::find(config.accels.begin(), config.accels.end(), Accel::bvh) !=
+                                  config.accels.end();
+            if (both) {
+                // The ratio from frames alternated, flat then BVH, with
+                // backends of their own: robust to the machine's load
+                // changing between the rows above.
+                PackOptions flat_options;
+                flat_options.accel = Accel::flat;
+                PackOptions bvh_options;
+                bvh_options.accel = Accel::bvh;
+                const PackedScene flat_packed = pack_scene(scene, flat_options);
+                const PackedScene bvh_packed = pack_scene(scene, bvh_options);
+                std::string cells;
+                for (int b = 0; b < 2; ++b) {
+                    std::unique_ptr<Backend> flat_backend;
+                    std::unique_ptr<Backend> bvh_backend;
+                    if (b == 0) {
+                        flat_backend.reset(new CpuBackend());
+                        bvh_backend.reset(new CpuBackend());
+                    } else {
+                        flat_backend.reset(new OpenClBackend(0));
+                        bvh_backend.reset(new OpenClBackend(0));
+                    }
+                    const trac0r_bench::Alternated t = trac0r_bench::measure_alternated(
+                        *flat_backend, flat_packed, *bvh_backend, bvh_packed, scene,
+                        config.frames);
+                    std::vector<double> ratios_per_round;
+                    for (std::size_t i = 0; i < t.a.size(); ++i) {
+                        ratios_per_round.push_back(t.a[i] / t.b[i]);
+                    }
+                    const auto range =
+                        std::minmax_element(ratios_per_round.begin(), ratios_per_round.end());
+                    char cell[160];
+                    std::snprintf(cell, sizeof cell, "%s %.2f (%.2f to %.2f; %.0f and %.0f ms)",
+                                  b == 0 ? "CPU" : "OpenCL",
+                                  trac0r_bench::median(ratios_per_round), *range.first,
+                                  *range.second, 1e3 * trac0r_bench::median(t.a),
+                                  1e3 * trac0r_bench::median(t.b));
+                    cells += (b == 0 ? "" : ", ") + std::string(cell);
+                }
+                ratios += "- " + path + ": " + cells + "\n";
             }
         }
         if (!ratios.empty()) {
-            std::printf("\nBVH / flat list, paths per second:\n\n%s", ratios.c_str());
+            std::printf("\nBVH / flat list, paths per second: the median over %d rounds of a "
+                        "flat-list frame then a BVH frame, each backend twice (one per "
+                        "structure), of the ratio of their CPU times (the range; the median "
+                        "CPU ms of a flat and of a BVH frame):\n\n%s",
+                        config.frames, ratios.c_str());
         }
         print_ray_table(config);
         std::printf("\nOpenCL program build time, to the end of the first (8 x 8) launch, "

@@ -61,7 +61,7 @@ inline RaySets make_ray_sets(const trac0r::PackedScene& packed,
                                    static_cast<float>(pixel / camera.size.x), jitter_x, jitter_y);
         sets.primary.origins[pixel] = glm::vec4(ray.origin, 0.0f);
         sets.primary.directions[pixel] = glm::vec4(ray.direction, 0.0f);
-        const Hit hit = intersect_scene(&scene, ray);
+        const Hit hit = intersect_scene(&scene, &ray);
         if (hit.triangle < 0) {
             continue;
         }
@@ -111,7 +111,7 @@ inline CastResult cast_cpu(const trac0r::PackedScene& packed, const RaySet& rays
 #pragma omp parallel for schedule(dynamic, 64)
         for (long i = 0; i < n; ++i) {
             const Ray ray = make_ray(xyz(rays.origins[i]), xyz(rays.directions[i]));
-            hit[i] = intersect_scene(&scene, ray).triangle >= 0;
+            hit[i] = intersect_scene(&scene, &ray).triangle >= 0;
         }
     }
     result.seconds = (process_cpu_seconds() - cpu_start) / passes / machine_cores();
@@ -137,7 +137,7 @@ __kernel void cast_rays(__global const TriangleRecord* triangles,
     }
     const SceneView scene = scene_view(triangles, shapes, 0, nodes, packets, 0, shape_count, 0u);
     const Ray ray = make_ray(origins[i].xyz, directions[i].xyz);
-    hit[i] = intersect_scene(&scene, ray).triangle >= 0;
+    hit[i] = intersect_scene(&scene, &ray).triangle >= 0;
 }
 )";
 

@@ -19,7 +19,9 @@
 #include <omp.h>
 #include <time.h>
 
+#include <algorithm>
 #include <chrono>
+#include <vector>
 
 namespace trac0r_bench {
 
@@ -59,6 +61,44 @@ inline Timing measure(trac0r::Backend& backend, const trac0r::PackedScene& packe
     const double cpu = process_cpu_seconds() - cpu_start;
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     return {build, seconds / frames, cpu / frames};
+}
+
+// Frames of two set-ups alternated (a, b, a, b, ...), after one warm-up
+// frame of each, so that a change in the machine's load falls on both
+// alike: each frame's CPU seconds (all threads).
+struct Alternated {
+    std::vector<double> a;
+    std::vector<double> b;
+};
+
+inline Alternated measure_alternated(trac0r::Backend& a, const trac0r::PackedScene& packed_a,
+                                     trac0r::Backend& b, const trac0r::PackedScene& packed_b,
+                                     const trac0r::Scene& scene, int rounds) {
+    const trac0r::kernel::CameraRecord camera =
+        trac0r::make_camera_record(scene.camera, scene.render.width, scene.render.height);
+    trac0r::Backend* backends[2] = {&a, &b};
+    const trac0r::PackedScene* packed[2] = {&packed_a, &packed_b};
+    for (int k = 0; k < 2; ++k) {
+        backends[k]->set_scene(*packed[k]);
+        backends[k]->reset(scene.render.width, scene.render.height);
+        backends[k]->render_frame(camera, 1, 0, scene.render.max_depth);
+    }
+    Alternated out;
+    for (int i = 1; i <= rounds; ++i) {
+        for (int k = 0; k < 2; ++k) {
+            const double start = process_cpu_seconds();
+            backends[k]->render_frame(camera, 1, static_cast<std::uint32_t>(i),
+                                      scene.render.max_depth);
+            (k == 0 ? out.a : out.b).push_back(process_cpu_seconds() - start);
+        }
+    }
+    return out;
+}
+
+inline double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 }  // namespace trac0r_bench

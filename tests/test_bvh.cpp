@@ -191,8 +191,9 @@ TEST_CASE("BVH traversal finds the same nearest hit as testing every triangle", 
         }
         // Shadow rays: any hit below a limit, the same answer both ways.
         const float limit = 0.5f;
-        REQUIRE(kernel::occluded(&bvh_view, ray, limit) == kernel::occluded(&flat_view, ray, limit));
-        REQUIRE(kernel::occluded(&bvh_view, ray, limit) == (b.triangle >= 0 && b.t < limit));
+        REQUIRE(kernel::occluded(&bvh_view, &ray, limit) ==
+                kernel::occluded(&flat_view, &ray, limit));
+        REQUIRE(kernel::occluded(&bvh_view, &ray, limit) == (b.triangle >= 0 && b.t < limit));
     }
     REQUIRE(hits > 1000);  // the rays do meet the soup
 }

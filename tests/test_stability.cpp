@@ -23,6 +23,12 @@ using namespace trac0r;
 
 namespace {
 
+// The kernel's nearest hit, for a ray made in place (the kernel takes it
+// by pointer).
+kernel::Hit nearest_hit(const kernel::SceneView* view, kernel::Ray ray) {
+    return kernel::intersect_scene(view, &ray);
+}
+
 // ---- Scenes -----------------------------------------------------------------
 
 Material make_material(MaterialType type, glm::vec3 color, float emittance = 0.0f,
@@ -252,7 +258,7 @@ TEST_CASE("a closed mesh seen from inside has no cracks: every ray through an ed
                                              : corners[k] + u(rng) * (corners[(k + 1) % 3] -
                                                                       corners[k]);
             const kernel::Ray ray = kernel::make_ray(origin, glm::normalize(aim - origin));
-            leaks += kernel::intersect_scene(&view, ray).triangle < 0;
+            leaks += nearest_hit(&view, ray).triangle < 0;
         }
         REQUIRE(leaks == 0);
     }
@@ -320,7 +326,7 @@ TEST_CASE("a ray in the plane of a face misses it and hits the perpendicular fac
         for (float x : starts) {
             CAPTURE(x);
             const kernel::Hit hit =
-                kernel::intersect_scene(&view, kernel::make_ray(glm::vec3(x, -1.0f, 0.125f),
+                nearest_hit(&view, kernel::make_ray(glm::vec3(x, -1.0f, 0.125f),
                                                                 glm::vec3(1.0f, 0.0f, 0.0f)));
             REQUIRE(hit.triangle >= 0);
             const kernel::TriangleRecord& t =
@@ -329,7 +335,7 @@ TEST_CASE("a ray in the plane of a face misses it and hits the perpendicular fac
             CHECK(hit.t == 1.0f - x);
         }
         // Along the floor's diagonal, through the corner at (1, -1, 1).
-        const kernel::Hit diagonal = kernel::intersect_scene(
+        const kernel::Hit diagonal = nearest_hit(
             &view, kernel::make_ray(glm::vec3(-0.5f, -1.0f, -0.5f),
                                     glm::normalize(glm::vec3(1.0f, 0.0f, 1.0f))));
         REQUIRE(diagonal.triangle >= 0);
@@ -536,7 +542,7 @@ TEST_CASE("at 1e5 from the origin, offset rays leave the surface and do not re-h
         const kernel::Ray primary =
             kernel::camera_ray(cam, static_cast<float>(pixel % 32), static_cast<float>(pixel / 32),
                                kernel::rng_float(&rng), kernel::rng_float(&rng));
-        const kernel::Hit hit = kernel::intersect_scene(&view, primary);
+        const kernel::Hit hit = nearest_hit(&view, primary);
         REQUIRE(hit.triangle >= 0);
         const kernel::TriangleRecord* tri =
             &packed.triangles[static_cast<std::size_t>(hit.triangle)];
@@ -549,7 +555,7 @@ TEST_CASE("at 1e5 from the origin, offset rays leave the surface and do not re-h
             const float u1 = kernel::rng_float(&rng);
             const float u2 = kernel::rng_float(&rng);
             const glm::vec3 d = kernel::sample_cosine_hemisphere(facing, u1, u2).direction;
-            const kernel::Hit next = kernel::intersect_scene(&view, kernel::make_ray(origin, d));
+            const kernel::Hit next = nearest_hit(&view, kernel::make_ray(origin, d));
             ++tested;
             if (next.triangle < 0) {
                 ++escapes;  // the room is closed: only a jump through a wall escapes
@@ -643,7 +649,7 @@ TEST_CASE("grazing rays leave tilted surfaces at every scale and distance: no se
                         frame, glm::vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi),
                                          cos_theta)));
                     const kernel::Hit next =
-                        kernel::intersect_scene(&view, kernel::make_ray(origin, d));
+                        nearest_hit(&view, kernel::make_ray(origin, d));
                     self_hits += next.triangle == hit.triangle;
                     leaks += inward && next.triangle < 0;
                 }
@@ -1142,7 +1148,7 @@ TEST_CASE("a lamp of infinite emittance: every non-finite sample is counted and 
             kernel::rng_seed_pixel(&rng, seed, pixel, frame);
             const float jx = kernel::rng_float(&rng);
             const float jy = kernel::rng_float(&rng);
-            const kernel::Hit hit = kernel::intersect_scene(
+            const kernel::Hit hit = nearest_hit(
                 &view, kernel::camera_ray(cam, static_cast<float>(pixel % 16),
                                           static_cast<float>(pixel / 16), jx, jy));
             lamp_hits += hit.triangle >= 0 &&

@@ -488,19 +488,19 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
     }
 }
 
-T0_INLINE Hit intersect_scene(const SceneView* scene, Ray ray) {
+T0_INLINE Hit intersect_scene(const SceneView* scene, const Ray* ray) {
     if (T0_HAS_FEATURE(scene, T0_FEATURE_BVH)) {
-        return traverse_bvh(scene, &ray, T0_NO_HIT, 0);
+        return traverse_bvh(scene, ray, T0_NO_HIT, 0);
     }
-    return traverse_flat(scene, &ray, T0_NO_HIT, 0);
+    return traverse_flat(scene, ray, T0_NO_HIT, 0);
 }
 
 // Whether anything lies on the ray before t_max.
-T0_INLINE int occluded(const SceneView* scene, Ray ray, float t_max) {
+T0_INLINE int occluded(const SceneView* scene, const Ray* ray, float t_max) {
     if (T0_HAS_FEATURE(scene, T0_FEATURE_BVH)) {
-        return traverse_bvh(scene, &ray, t_max, 1).triangle >= 0;
+        return traverse_bvh(scene, ray, t_max, 1).triangle >= 0;
     }
-    return traverse_flat(scene, &ray, t_max, 1).triangle >= 0;
+    return traverse_flat(scene, ray, t_max, 1).triangle >= 0;
 }
 
 // How far a new ray's origin moves off its surface, per unit of the hit's

@@ -128,8 +128,11 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     const float3 origin = offset_ray_origin(position, facing_normal, magnitude);
     const float3 shadow = target - origin;
     const float shadow_length = length(shadow);
-    if (!(shadow_length > 0.0f) || occluded(scene, make_ray(origin, shadow / shadow_length),
-                                            shadow_length)) {
+    if (!(shadow_length > 0.0f)) {
+        return float3_splat(0.0f);
+    }
+    const Ray shadow_ray = make_ray(origin, shadow / shadow_length);
+    if (occluded(scene, &shadow_ray, shadow_length)) {
         return float3_splat(0.0f);
     }
     const float light_pdf = area_to_solid_angle(light->cdf.z, distance2, cos_light);
@@ -149,7 +152,7 @@ T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng*
     float scatter_pdf = 0.0f;  // the density with which that vertex picked this ray
     for (int depth = 0; depth < max_depth; ++depth) {
         // Intersect: the nearest triangle, or the black background.
-        const Hit hit = intersect_scene(scene, ray);
+        const Hit hit = intersect_scene(scene, &ray);
         if (hit.triangle < 0) {
             break;
         }
