@@ -61,14 +61,26 @@ T0_INLINE t0_lanes lanes_abs(t0_lanes a) { return fabs(a); }
 // a < b ? a : b and a > b ? a : b per lane, as SSE's minps and maxps.
 T0_INLINE t0_lanes lanes_min(t0_lanes a, t0_lanes b) { return select(b, a, isless(a, b)); }
 T0_INLINE t0_lanes lanes_max(t0_lanes a, t0_lanes b) { return select(b, a, isgreater(a, b)); }
-// Bit i set where lane i of a <= (<) lane i of b.
-T0_INLINE int lanes_le_mask(t0_lanes a, t0_lanes b) {
-    const int4 m = islessequal(a, b);
+// Comparisons lane by lane: all bits set in a lane where it holds.
+typedef int4 t0_mask;
+T0_INLINE t0_mask lanes_lt(t0_lanes a, t0_lanes b) { return isless(a, b); }
+T0_INLINE t0_mask lanes_le(t0_lanes a, t0_lanes b) { return islessequal(a, b); }
+T0_INLINE t0_mask mask_and(t0_mask a, t0_mask b) { return a & b; }
+T0_INLINE t0_mask mask_and_not(t0_mask a, t0_mask b) { return a & ~b; }
+// Bit i set where lane i of m is: one movmskps where the compiler targets
+// x86 (PoCL on a CPU), else lane by lane (LLVM makes that six
+// instructions on x86).
+#if defined(__SSE__) && defined(__has_builtin)
+#if __has_builtin(__builtin_ia32_movmskps)
+#define T0_HAVE_MOVMSKPS 1
+#endif
+#endif
+T0_INLINE int mask_bits(t0_mask m) {
+#ifdef T0_HAVE_MOVMSKPS
+    return __builtin_ia32_movmskps(as_float4(m));
+#else
     return (m.x & 1) | (m.y & 2) | (m.z & 4) | (m.w & 8);
-}
-T0_INLINE int lanes_lt_mask(t0_lanes a, t0_lanes b) {
-    const int4 m = isless(a, b);
-    return (m.x & 1) | (m.y & 2) | (m.z & 4) | (m.w & 8);
+#endif
 }
 T0_INLINE void lanes_store(t0_lanes v, float* out) { vstore4(v, 0, out); }
 T0_INLINE float lanes_first(t0_lanes v) { return v.x; }
@@ -170,8 +182,12 @@ inline t0_lanes lanes_div(t0_lanes a, t0_lanes b) { return _mm_div_ps(a, b); }
 inline t0_lanes lanes_abs(t0_lanes a) { return _mm_andnot_ps(_mm_set1_ps(-0.0f), a); }
 inline t0_lanes lanes_min(t0_lanes a, t0_lanes b) { return _mm_min_ps(a, b); }
 inline t0_lanes lanes_max(t0_lanes a, t0_lanes b) { return _mm_max_ps(a, b); }
-inline int lanes_le_mask(t0_lanes a, t0_lanes b) { return _mm_movemask_ps(_mm_cmple_ps(a, b)); }
-inline int lanes_lt_mask(t0_lanes a, t0_lanes b) { return _mm_movemask_ps(_mm_cmplt_ps(a, b)); }
+typedef __m128 t0_mask;
+inline t0_mask lanes_lt(t0_lanes a, t0_lanes b) { return _mm_cmplt_ps(a, b); }
+inline t0_mask lanes_le(t0_lanes a, t0_lanes b) { return _mm_cmple_ps(a, b); }
+inline t0_mask mask_and(t0_mask a, t0_mask b) { return _mm_and_ps(a, b); }
+inline t0_mask mask_and_not(t0_mask a, t0_mask b) { return _mm_andnot_ps(b, a); }
+inline int mask_bits(t0_mask m) { return _mm_movemask_ps(m); }
 inline void lanes_store(t0_lanes v, float* out) { _mm_storeu_ps(out, v); }
 inline float lanes_first(t0_lanes v) { return _mm_cvtss_f32(v); }
 #else
@@ -194,19 +210,22 @@ inline t0_lanes lanes_abs(t0_lanes a) { T0_LANEWISE(std::fabs(a.v[i])); }
 inline t0_lanes lanes_min(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] < b.v[i] ? a.v[i] : b.v[i]); }
 inline t0_lanes lanes_max(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] > b.v[i] ? a.v[i] : b.v[i]); }
 #undef T0_LANEWISE
-inline int lanes_le_mask(t0_lanes a, t0_lanes b) {
-    int m = 0;
-    for (int i = 0; i < 4; ++i) {
-        m |= (a.v[i] <= b.v[i] ? 1 : 0) << i;
-    }
-    return m;
-}
-inline int lanes_lt_mask(t0_lanes a, t0_lanes b) {
-    int m = 0;
-    for (int i = 0; i < 4; ++i) {
-        m |= (a.v[i] < b.v[i] ? 1 : 0) << i;
-    }
-    return m;
+struct t0_mask {
+    int v[4];
+};
+#define T0_MASKWISE(expr)            \
+    t0_mask r;                       \
+    for (int i = 0; i < 4; ++i) {    \
+        r.v[i] = (expr);             \
+    }                                \
+    return r
+inline t0_mask lanes_lt(t0_lanes a, t0_lanes b) { T0_MASKWISE(a.v[i] < b.v[i] ? -1 : 0); }
+inline t0_mask lanes_le(t0_lanes a, t0_lanes b) { T0_MASKWISE(a.v[i] <= b.v[i] ? -1 : 0); }
+inline t0_mask mask_and(t0_mask a, t0_mask b) { T0_MASKWISE(a.v[i] & b.v[i]); }
+inline t0_mask mask_and_not(t0_mask a, t0_mask b) { T0_MASKWISE(a.v[i] & ~b.v[i]); }
+#undef T0_MASKWISE
+inline int mask_bits(t0_mask m) {
+    return (m.v[0] & 1) | (m.v[1] & 2) | (m.v[2] & 4) | (m.v[3] & 8);
 }
 inline void lanes_store(t0_lanes v, float* out) { std::memcpy(out, v.v, sizeof v.v); }
 inline float lanes_first(t0_lanes v) { return v.v[0]; }

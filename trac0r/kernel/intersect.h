@@ -255,21 +255,21 @@ T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray
     // Outside where one weight is negative and another positive: where the
     // smallest is negative and the largest positive. (A NaN weight may be
     // passed over here; it makes det NaN, which fails the next test.)
-    const int outside =
-        lanes_lt_mask(lanes_min(lanes_min(weight0, weight1), weight2), zero) &
-        lanes_lt_mask(zero, lanes_max(lanes_max(weight0, weight1), weight2));
+    const t0_mask outside =
+        mask_and(lanes_lt(lanes_min(lanes_min(weight0, weight1), weight2), zero),
+                 lanes_lt(zero, lanes_max(lanes_max(weight0, weight1), weight2)));
     const t0_lanes det = lanes_add(lanes_add(weight0, weight1), weight2);
     // An unused lane's area is infinite: never below |det|.
-    const int upright =
-        lanes_lt_mask(lanes_mul(lanes_load(&p->area), l->parallel_det), lanes_abs(det));
+    const t0_mask upright =
+        lanes_lt(lanes_mul(lanes_load(&p->area), l->parallel_det), lanes_abs(det));
     const t0_lanes inv_det = lanes_div(lanes_splat(1.0f), det);
     const t0_lanes distance = lanes_mul(
         lanes_mul(lanes_add(lanes_add(lanes_mul(weight0, az), lanes_mul(weight1, bz)),
                             lanes_mul(weight2, cz)),
                   l->shear[2]),
         inv_det);
-    const int ahead = lanes_lt_mask(zero, distance) & lanes_lt_mask(distance, t_max);
-    const int hits = ~outside & upright & ahead & 15;
+    const t0_mask ahead = mask_and(lanes_lt(zero, distance), lanes_lt(distance, t_max));
+    const int hits = mask_bits(mask_and_not(mask_and(upright, ahead), outside));
     if (hits != 0) {
         lanes_store(distance, t);
         lanes_store(lanes_mul(weight1, inv_det), u);
@@ -361,7 +361,7 @@ T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const Ra
                                      lanes_splat(1.0f + 2.0f * T0_GAMMA3));
     const t0_lanes limit = lanes_min(t_far, t_max);
     lanes_store(t_near, entry);
-    return lanes_le_mask(t_near, limit);
+    return mask_bits(lanes_le(t_near, limit));
 }
 
 // Puts positions i and j of a node's (entry, lane) list in order of entry;
