@@ -940,6 +940,7 @@ kernel::Rng rigged_rng(const std::vector<float>& uniforms) {
     REQUIRE(uniforms.size() <= 15);
     kernel::Rng rng = {};
     rng.p = 0;
+    rng.filled = 16;
     const std::uint64_t inverse = inverse_of_odd(xorshift1024_multiplier);
     std::uint64_t previous = 0;  // s[0], the first step's s0
     for (std::size_t j = 0; j < uniforms.size(); ++j) {

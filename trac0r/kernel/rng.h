@@ -13,6 +13,13 @@ T0_NAMESPACE_BEGIN
 typedef struct Rng {
     t0_u64 s[16];
     int p;
+    // Seeding is lazy: s[0, filled) hold their words; xorshift1024* reads
+    // the rest in order, s[k] first at the k-th output, so each is made
+    // from seed_state then (the same words as filling all sixteen at once,
+    // without the ones a short path never reads). A state set by hand
+    // sets filled to 16.
+    int filled;
+    t0_u64 seed_state;
 } Rng;
 
 // xorshift64* (Vigna, "An experimental exploration of Marsaglia's xorshift
@@ -30,6 +37,10 @@ T0_INLINE t0_u64 xorshift64star_next(t0_u64* state) {
 T0_INLINE t0_u64 xorshift1024star_next(Rng* rng) {
     const t0_u64 s0 = rng->s[rng->p];
     rng->p = (rng->p + 1) & 15;
+    if (rng->p == rng->filled) {
+        rng->s[rng->p] = xorshift64star_next(&rng->seed_state);
+        ++rng->filled;
+    }
     t0_u64 s1 = rng->s[rng->p];
     s1 ^= s1 << 31;
     rng->s[rng->p] = s1 ^ s0 ^ (s1 >> 11) ^ (s0 >> 30);
@@ -37,13 +48,13 @@ T0_INLINE t0_u64 xorshift1024star_next(Rng* rng) {
 }
 
 // Fills the 1024-bit state from a 64-bit seed with xorshift64*, as the
-// xorshift authors recommend. A zero seed is mapped to a fixed non-zero one
+// xorshift authors recommend: its first word now, the others as they are
+// first read (Rng.filled). A zero seed is mapped to a fixed non-zero one
 // (xorshift64* must not start at zero).
 T0_INLINE void rng_seed(Rng* rng, t0_u64 seed) {
-    t0_u64 x = seed != 0UL ? seed : 0x9E3779B97F4A7C15UL;
-    for (int i = 0; i < 16; ++i) {
-        rng->s[i] = xorshift64star_next(&x);
-    }
+    rng->seed_state = seed != 0UL ? seed : 0x9E3779B97F4A7C15UL;
+    rng->s[0] = xorshift64star_next(&rng->seed_state);
+    rng->filled = 1;
     rng->p = 0;
 }
 
