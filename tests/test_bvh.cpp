@@ -230,9 +230,10 @@ TEST_CASE("--accel auto keeps the flat list for tiny scenes", "[bvh]") {
 }
 
 TEST_CASE("--accel auto uses the renderer's backend's threshold", "[bvh]") {
-    // 60 triangles: the BVH on the CPU backend (as fast from 12), the flat
-    // list where no backend is known (PoCL's crossover, about 120).
-    Scene scene = triangle_soup(60, 2);
+    // Between the two thresholds: the BVH on the CPU backend (as fast from
+    // 12), the flat list where no backend is known (PoCL's crossover).
+    static_assert(cpu_auto_bvh_min_triangles + 1 < auto_bvh_min_triangles, "two thresholds");
+    Scene scene = triangle_soup(static_cast<int>(auto_bvh_min_triangles) - 1, 2);
     scene.render.width = 8;
     scene.render.height = 6;
     REQUIRE(pack_scene(scene).features & T0_FEATURE_FLAT);

@@ -20,11 +20,11 @@ enum class Accel {
 
 // Below how many triangles `automatic` keeps the flat list, where it is
 // faster: measured by benchmarks/accel_crossover.cpp (README,
-// "Performance"). On PoCL the flat list is faster up to about 120
+// "Performance"). On PoCL the flat list is faster up to between 24 and 60
 // triangles; on the CPU backend the BVH is as fast from the smallest scene
 // measured (12 triangles) on. Backend::auto_bvh_min_triangles gives each
 // backend's; a packer that knows no backend uses the larger.
-const std::size_t auto_bvh_min_triangles = 128;
+const std::size_t auto_bvh_min_triangles = 60;
 const std::size_t cpu_auto_bvh_min_triangles = 12;
 
 enum class Integrator {
