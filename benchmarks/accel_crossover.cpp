@@ -94,12 +94,8 @@ int main(int argc, char** argv) {
         Scene scene = box_grid(boxes);
         scene.render.width = width;
         scene.render.height = height;
-        PackOptions flat;
-        flat.accel = Accel::flat;
-        PackOptions bvh;
-        bvh.accel = Accel::bvh;
-        const PackedScene flat_packed = pack_scene(scene, flat);
-        const PackedScene bvh_packed = pack_scene(scene, bvh);
+        const PackedScene flat_packed = trac0r_bench::pack_with(scene, Accel::flat);
+        const PackedScene bvh_packed = trac0r_bench::pack_with(scene, Accel::bvh);
         const double pixels = static_cast<double>(width) * height;
         std::printf("| %zu |", flat_packed.triangles.size());
         for (const auto& backend : backends) {

@@ -255,12 +255,8 @@ int main(int argc, char** argv) {
                 // The ratio from frames alternated, flat then BVH, with
                 // backends of their own: robust to the machine's load
                 // changing between the rows above.
-                PackOptions flat_options;
-                flat_options.accel = Accel::flat;
-                PackOptions bvh_options;
-                bvh_options.accel = Accel::bvh;
-                const PackedScene flat_packed = pack_scene(scene, flat_options);
-                const PackedScene bvh_packed = pack_scene(scene, bvh_options);
+                const PackedScene flat_packed = trac0r_bench::pack_with(scene, Accel::flat);
+                const PackedScene bvh_packed = trac0r_bench::pack_with(scene, Accel::bvh);
                 std::string cells;
                 for (int b = 0; b < 2; ++b) {
                     std::unique_ptr<Backend> flat_backend;

@@ -95,6 +95,13 @@ inline Alternated measure_alternated(trac0r::Backend& a, const trac0r::PackedSce
     return out;
 }
 
+// The scene packed with the given structure.
+inline trac0r::PackedScene pack_with(const trac0r::Scene& scene, trac0r::Accel accel) {
+    trac0r::PackOptions options;
+    options.accel = accel;
+    return trac0r::pack_scene(scene, options);
+}
+
 inline double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const std::size_t n = v.size();
