@@ -43,16 +43,30 @@ struct Timing {
     double free_frame_seconds() const { return cpu_frame_seconds / machine_cores(); }
 };
 
-inline Timing measure(trac0r::Backend& backend, const trac0r::PackedScene& packed,
-                      const trac0r::Scene& scene, int frames) {
+// The camera of the scene at its resolution.
+inline trac0r::kernel::CameraRecord scene_camera(const trac0r::Scene& scene) {
+    return trac0r::make_camera_record(scene.camera, scene.render.width, scene.render.height);
+}
+
+// Gives the backend the packed scene, clears its accumulator and renders
+// one warm-up frame (frame 0); returns the seconds set_scene took (the
+// upload, and the OpenCL program build).
+inline double prepare(trac0r::Backend& backend, const trac0r::PackedScene& packed,
+                      const trac0r::Scene& scene) {
     using Clock = std::chrono::steady_clock;
     const Clock::time_point build_start = Clock::now();
     backend.set_scene(packed);
     const double build = std::chrono::duration<double>(Clock::now() - build_start).count();
     backend.reset(scene.render.width, scene.render.height);
-    const trac0r::kernel::CameraRecord camera =
-        trac0r::make_camera_record(scene.camera, scene.render.width, scene.render.height);
-    backend.render_frame(camera, 1, 0, scene.render.max_depth);
+    backend.render_frame(scene_camera(scene), 1, 0, scene.render.max_depth);
+    return build;
+}
+
+inline Timing measure(trac0r::Backend& backend, const trac0r::PackedScene& packed,
+                      const trac0r::Scene& scene, int frames) {
+    using Clock = std::chrono::steady_clock;
+    const double build = prepare(backend, packed, scene);
+    const trac0r::kernel::CameraRecord camera = scene_camera(scene);
     const Clock::time_point start = Clock::now();
     const double cpu_start = process_cpu_seconds();
     for (int i = 1; i <= frames; ++i) {
@@ -74,15 +88,10 @@ struct Alternated {
 inline Alternated measure_alternated(trac0r::Backend& a, const trac0r::PackedScene& packed_a,
                                      trac0r::Backend& b, const trac0r::PackedScene& packed_b,
                                      const trac0r::Scene& scene, int rounds) {
-    const trac0r::kernel::CameraRecord camera =
-        trac0r::make_camera_record(scene.camera, scene.render.width, scene.render.height);
+    const trac0r::kernel::CameraRecord camera = scene_camera(scene);
     trac0r::Backend* backends[2] = {&a, &b};
-    const trac0r::PackedScene* packed[2] = {&packed_a, &packed_b};
-    for (int k = 0; k < 2; ++k) {
-        backends[k]->set_scene(*packed[k]);
-        backends[k]->reset(scene.render.width, scene.render.height);
-        backends[k]->render_frame(camera, 1, 0, scene.render.max_depth);
-    }
+    prepare(a, packed_a, scene);
+    prepare(b, packed_b, scene);
     Alternated out;
     for (int i = 1; i <= rounds; ++i) {
         for (int k = 0; k < 2; ++k) {

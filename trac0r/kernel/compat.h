@@ -196,34 +196,28 @@ struct t0_lanes {
 };
 inline t0_lanes lanes_load(const float4* p) { return t0_lanes{{p->x, p->y, p->z, p->w}}; }
 inline t0_lanes lanes_splat(float v) { return t0_lanes{{v, v, v, v}}; }
-#define T0_LANEWISE(expr)            \
-    t0_lanes r;                      \
+// Returns a `type` (t0_lanes or t0_mask) whose lane i is expr.
+#define T0_LANEWISE(type, expr)      \
+    type r;                          \
     for (int i = 0; i < 4; ++i) {    \
         r.v[i] = (expr);             \
     }                                \
     return r
-inline t0_lanes lanes_add(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] + b.v[i]); }
-inline t0_lanes lanes_sub(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] - b.v[i]); }
-inline t0_lanes lanes_mul(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] * b.v[i]); }
-inline t0_lanes lanes_div(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] / b.v[i]); }
-inline t0_lanes lanes_abs(t0_lanes a) { T0_LANEWISE(std::fabs(a.v[i])); }
-inline t0_lanes lanes_min(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] < b.v[i] ? a.v[i] : b.v[i]); }
-inline t0_lanes lanes_max(t0_lanes a, t0_lanes b) { T0_LANEWISE(a.v[i] > b.v[i] ? a.v[i] : b.v[i]); }
-#undef T0_LANEWISE
+inline t0_lanes lanes_add(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_lanes, a.v[i] + b.v[i]); }
+inline t0_lanes lanes_sub(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_lanes, a.v[i] - b.v[i]); }
+inline t0_lanes lanes_mul(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_lanes, a.v[i] * b.v[i]); }
+inline t0_lanes lanes_div(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_lanes, a.v[i] / b.v[i]); }
+inline t0_lanes lanes_abs(t0_lanes a) { T0_LANEWISE(t0_lanes, std::fabs(a.v[i])); }
+inline t0_lanes lanes_min(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_lanes, a.v[i] < b.v[i] ? a.v[i] : b.v[i]); }
+inline t0_lanes lanes_max(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_lanes, a.v[i] > b.v[i] ? a.v[i] : b.v[i]); }
 struct t0_mask {
     int v[4];
 };
-#define T0_MASKWISE(expr)            \
-    t0_mask r;                       \
-    for (int i = 0; i < 4; ++i) {    \
-        r.v[i] = (expr);             \
-    }                                \
-    return r
-inline t0_mask lanes_lt(t0_lanes a, t0_lanes b) { T0_MASKWISE(a.v[i] < b.v[i] ? -1 : 0); }
-inline t0_mask lanes_le(t0_lanes a, t0_lanes b) { T0_MASKWISE(a.v[i] <= b.v[i] ? -1 : 0); }
-inline t0_mask mask_and(t0_mask a, t0_mask b) { T0_MASKWISE(a.v[i] & b.v[i]); }
-inline t0_mask mask_and_not(t0_mask a, t0_mask b) { T0_MASKWISE(a.v[i] & ~b.v[i]); }
-#undef T0_MASKWISE
+inline t0_mask lanes_lt(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_mask, a.v[i] < b.v[i] ? -1 : 0); }
+inline t0_mask lanes_le(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_mask, a.v[i] <= b.v[i] ? -1 : 0); }
+inline t0_mask mask_and(t0_mask a, t0_mask b) { T0_LANEWISE(t0_mask, a.v[i] & b.v[i]); }
+inline t0_mask mask_and_not(t0_mask a, t0_mask b) { T0_LANEWISE(t0_mask, a.v[i] & ~b.v[i]); }
+#undef T0_LANEWISE
 inline int mask_bits(t0_mask m) {
     return (m.v[0] & 1) | (m.v[1] & 2) | (m.v[2] & 4) | (m.v[3] & 8);
 }

@@ -316,6 +316,14 @@ T0_INLINE Hit traverse_flat(const SceneView* scene, const Ray* ray, float t_max,
 // binary levels per 4-wide node).
 #define T0_BVH_STACK_SIZE 96
 
+// The distances along the ray to the planes in n->bounds[bounds] (four
+// children's planes across `axis`), as aabb_entry computes them.
+T0_INLINE t0_lanes plane_distances(T0_GLOBAL const BvhNode* n, int bounds, const RayLanes* l,
+                                   int axis) {
+    return lanes_mul(lanes_sub(lanes_load(&n->bounds[bounds]), l->origin[axis]),
+                     l->inv_direction[axis]);
+}
+
 // The ray against the boxes of node n's four children over [0, t_max] (in
 // every lane): bit i of the result is set when it enters child i's box, at
 // entry[i] (the others' entries mean nothing). Lane for lane the floats of
@@ -343,18 +351,12 @@ T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const Ra
     // and the maximum for a negative one: for a box, the same floats as the
     // min and max of aabb_entry (rounding is monotonic), and for an unused
     // lane's inverted box an entry beyond the exit.
-    const t0_lanes near_x =
-        lanes_mul(lanes_sub(lanes_load(&n->bounds[l->near[0]]), l->origin[0]), l->inv_direction[0]);
-    const t0_lanes far_x =
-        lanes_mul(lanes_sub(lanes_load(&n->bounds[l->far[0]]), l->origin[0]), l->inv_direction[0]);
-    const t0_lanes near_y =
-        lanes_mul(lanes_sub(lanes_load(&n->bounds[l->near[1]]), l->origin[1]), l->inv_direction[1]);
-    const t0_lanes far_y =
-        lanes_mul(lanes_sub(lanes_load(&n->bounds[l->far[1]]), l->origin[1]), l->inv_direction[1]);
-    const t0_lanes near_z =
-        lanes_mul(lanes_sub(lanes_load(&n->bounds[l->near[2]]), l->origin[2]), l->inv_direction[2]);
-    const t0_lanes far_z =
-        lanes_mul(lanes_sub(lanes_load(&n->bounds[l->far[2]]), l->origin[2]), l->inv_direction[2]);
+    const t0_lanes near_x = plane_distances(n, l->near[0], l, 0);
+    const t0_lanes far_x = plane_distances(n, l->far[0], l, 0);
+    const t0_lanes near_y = plane_distances(n, l->near[1], l, 1);
+    const t0_lanes far_y = plane_distances(n, l->far[1], l, 1);
+    const t0_lanes near_z = plane_distances(n, l->near[2], l, 2);
+    const t0_lanes far_z = plane_distances(n, l->far[2], l, 2);
     const t0_lanes t_near =
         lanes_max(lanes_max(near_x, near_y), lanes_max(near_z, lanes_splat(0.0f)));
     const t0_lanes t_far = lanes_mul(lanes_min(lanes_min(far_x, far_y), far_z),
