@@ -12,13 +12,7 @@ namespace {
 
 TriangleRecord make_triangle(float3 v0, float3 v1, float3 v2) {
     const float3 n = cross(v1 - v0, v2 - v0);
-    TriangleRecord tri = {};
-    tri.v0 = make_float4(v0.x, v0.y, v0.z, 0.0f);
-    tri.v1 = make_float4(v1.x, v1.y, v1.z, 0.0f);
-    tri.v2 = make_float4(v2.x, v2.y, v2.z, 0.0f);
-    const float3 unit = normalize(n);
-    tri.normal = make_float4(unit.x, unit.y, unit.z, length(n));
-    return tri;
+    return make_triangle_record(v0, v1, v2, normalize(n), length(n), 0u, 0u);
 }
 
 struct TriangleHit {

@@ -207,12 +207,7 @@ void require_mean(Renderer& r, double expected, double resolution) {
 // ---- Kernel-level helpers ----------------------------------------------------
 
 kernel::TriangleRecord pack(const Triangle& t) {
-    kernel::TriangleRecord r = {};
-    r.v0 = glm::vec4(t.v0, 1.0f);
-    r.v1 = glm::vec4(t.v1, 1.0f);
-    r.v2 = glm::vec4(t.v2, 1.0f);
-    r.normal = glm::vec4(t.normal, 2.0f * t.area);
-    return r;
+    return kernel::make_triangle_record(t.v0, t.v1, t.v2, t.normal, 2.0f * t.area, 0u, 0u);
 }
 
 }  // namespace

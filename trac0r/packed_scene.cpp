@@ -2,6 +2,7 @@
 
 #include "trac0r/bvh.h"
 #include "trac0r/kernel/accumulate.h"
+#include "trac0r/kernel/intersect.h"
 
 #include <cmath>
 #include <limits>
@@ -24,13 +25,7 @@ kernel::TriangleRecord pack_triangle(const Triangle& t, unsigned material, unsig
     // The vertices themselves, not v0 and edges: v0 + (v1 - v0) need not
     // round back to v1, and the watertight test needs every triangle that
     // shares a vertex to see the same floats.
-    kernel::TriangleRecord r;
-    r.v0 = glm::vec4(t.v0, 1.0f);
-    r.v1 = glm::vec4(t.v1, 1.0f);
-    r.v2 = glm::vec4(t.v2, 1.0f);
-    r.normal = glm::vec4(t.normal, 2.0f * t.area);
-    r.ids = glm::uvec4(material, shape, T0_NO_LIGHT, 0u);
-    return r;
+    return kernel::make_triangle_record(t.v0, t.v1, t.v2, t.normal, 2.0f * t.area, material, shape);
 }
 
 kernel::MaterialRecord pack_material(const Material& m) {

@@ -53,6 +53,7 @@ T0_INLINE int lowest_set_bit(int m) { return 31 - (int)clz(m & -m); }
 typedef float4 t0_lanes;
 T0_INLINE t0_lanes lanes_load(__global const float4* p) { return *p; }
 T0_INLINE t0_lanes lanes_splat(float v) { return (float4)(v); }
+T0_INLINE t0_lanes lanes_make(float a, float b, float c, float d) { return (float4)(a, b, c, d); }
 T0_INLINE t0_lanes lanes_add(t0_lanes a, t0_lanes b) { return a + b; }
 T0_INLINE t0_lanes lanes_sub(t0_lanes a, t0_lanes b) { return a - b; }
 T0_INLINE t0_lanes lanes_mul(t0_lanes a, t0_lanes b) { return a * b; }
@@ -175,6 +176,7 @@ inline int lowest_set_bit(int m) { return __builtin_ctz(static_cast<unsigned>(m)
 typedef __m128 t0_lanes;
 inline t0_lanes lanes_load(const float4* p) { return _mm_loadu_ps(glm::value_ptr(*p)); }
 inline t0_lanes lanes_splat(float v) { return _mm_set1_ps(v); }
+inline t0_lanes lanes_make(float a, float b, float c, float d) { return _mm_setr_ps(a, b, c, d); }
 inline t0_lanes lanes_add(t0_lanes a, t0_lanes b) { return _mm_add_ps(a, b); }
 inline t0_lanes lanes_sub(t0_lanes a, t0_lanes b) { return _mm_sub_ps(a, b); }
 inline t0_lanes lanes_mul(t0_lanes a, t0_lanes b) { return _mm_mul_ps(a, b); }
@@ -196,6 +198,7 @@ struct t0_lanes {
 };
 inline t0_lanes lanes_load(const float4* p) { return t0_lanes{{p->x, p->y, p->z, p->w}}; }
 inline t0_lanes lanes_splat(float v) { return t0_lanes{{v, v, v, v}}; }
+inline t0_lanes lanes_make(float a, float b, float c, float d) { return t0_lanes{{a, b, c, d}}; }
 // Returns a `type` (t0_lanes or t0_mask) whose lane i is expr.
 #define T0_LANEWISE(type, expr)      \
     type r;                          \

@@ -42,9 +42,8 @@ typedef struct Hit {
 
 T0_INLINE int is_parallel_component(float d) { return !(fabs(d) > 1e-30f); }
 
-T0_INLINE float safe_inverse(float d) {
-    return 1.0f / (is_parallel_component(d) ? copysign(1e-30f, d) : d);
-}
+// d, or +-1e-30 where d is (nearly) zero: the divisor for 1 / d.
+T0_INLINE float nudged_divisor(float d) { return is_parallel_component(d) ? copysign(1e-30f, d) : d; }
 
 // Component k (0, 1, 2) of a vector that is not in a buffer.
 T0_INLINE float component3(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
@@ -53,18 +52,25 @@ T0_INLINE Ray make_ray(float3 origin, float3 direction) {
     Ray r;
     r.origin = origin;
     r.direction = direction;
-    r.inv_direction = make_float3(safe_inverse(direction.x), safe_inverse(direction.y),
-                                  safe_inverse(direction.z));
+    // The three inverses in one four-lane division (a division costs as
+    // much as four).
+    float inv[4];
+    lanes_store(lanes_div(lanes_splat(1.0f),
+                          lanes_make(nudged_divisor(direction.x), nudged_divisor(direction.y),
+                                     nudged_divisor(direction.z), 1.0f)),
+                inv);
+    r.inv_direction = make_float3(inv[0], inv[1], inv[2]);
     const float3 a = vabs3(direction);
     r.kz = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
     r.kx = r.kz == 2 ? 0 : r.kz + 1;
     r.ky = r.kx == 2 ? 0 : r.kx + 1;
-    const float dz = component3(direction, r.kz);
-    r.shear = make_float3(component3(direction, r.kx) / dz, component3(direction, r.ky) / dz,
-                          1.0f / dz);
+    // d[kz] is the largest component, never nudged: inv[kz] = 1 / d[kz].
+    const float inv_dz = inv[r.kz];
+    r.shear = make_float3(component3(direction, r.kx) * inv_dz, component3(direction, r.ky) * inv_dz,
+                          inv_dz);
     r.permuted_origin = make_float3(component3(origin, r.kx), component3(origin, r.ky),
                                     component3(origin, r.kz));
-    r.parallel_det = T0_PARALLEL_COSINE * fabs(r.shear.z);
+    r.parallel_det = T0_PARALLEL_COSINE * fabs(inv_dz);
     r.any_parallel = is_parallel_component(direction.x) || is_parallel_component(direction.y) ||
                      is_parallel_component(direction.z);
     return r;
@@ -525,9 +531,12 @@ T0_INLINE float max_abs3(float3 a) {
 }
 
 // The size of the numbers a point of the triangle is computed from.
+T0_INLINE float vertices_magnitude(float3 v0, float3 v1, float3 v2) {
+    return max_abs3(v0) + max_abs3(v1 - v0) + max_abs3(v2 - v0);
+}
+
 T0_INLINE float triangle_magnitude(T0_GLOBAL const TriangleRecord* tri) {
-    const float3 v0 = xyz(tri->v0);
-    return max_abs3(v0) + max_abs3(xyz(tri->v1) - v0) + max_abs3(xyz(tri->v2) - v0);
+    return vertices_magnitude(xyz(tri->v0), xyz(tri->v1), xyz(tri->v2));
 }
 
 // The hit point from the barycentrics (more accurate than origin + t dir),
@@ -540,24 +549,43 @@ T0_INLINE float triangle_magnitude(T0_GLOBAL const TriangleRecord* tri) {
 // away from every edge, and moves only points that were nearer (a tiny
 // triangle's go to its centroid). Moving all points, say towards the
 // centroid, would make paths drift (+9 % light in a room at 1e5). The point
-// is still v0 + e1 b1 + e2 b2, as close to the plane as before. Hits have
-// area > 0 (intersect_triangle rejects the rest).
-T0_INLINE float3 hit_position(T0_GLOBAL const TriangleRecord* tri, Hit hit) {
-    const float3 v0 = xyz(tri->v0);
-    const float3 v1 = xyz(tri->v1);
-    const float3 v2 = xyz(tri->v2);
-    const float3 e1 = v1 - v0;
-    const float3 e2 = v2 - v0;
+// is still v0 + e1 b1 + e2 b2, as close to the plane as before.
+//
+// The three weights' lower bounds depend on the triangle alone: computed
+// once, when it is packed (make_triangle_record), and kept in the vertices'
+// w. For vertex k, the edge opposite it.
+T0_INLINE float3 triangle_edge_pulls(float3 v0, float3 v1, float3 v2, float twice_area) {
     const float pull_per_area =
-        T0_RAY_OFFSET_PER_MAGNITUDE * triangle_magnitude(tri) / tri->normal.w;
+        T0_RAY_OFFSET_PER_MAGNITUDE * vertices_magnitude(v0, v1, v2) / twice_area;
     if (!(pull_per_area < 1e30f)) {
         // An area so small that a device flushing denormals takes it for 0
-        // (inf pull, then inf / inf): the centroid, which is inside.
-        return (v0 + v1 + v2) * (1.0f / 3.0f);
+        // (inf pull, then inf / inf), or none: equal weights, the centroid.
+        return float3_splat(1.0f);
     }
-    const float w0 = fmax(1.0f - hit.u - hit.v, length(v2 - v1) * pull_per_area);
-    const float w1 = fmax(hit.u, length(e2) * pull_per_area);
-    const float w2 = fmax(hit.v, length(e1) * pull_per_area);
+    return make_float3(length(v2 - v1) * pull_per_area, length(v2 - v0) * pull_per_area,
+                       length(v1 - v0) * pull_per_area);
+}
+
+// A triangle as the kernels read it: normal is unit, twice_area |e1 x e2|.
+T0_INLINE TriangleRecord make_triangle_record(float3 v0, float3 v1, float3 v2, float3 normal,
+                                              float twice_area, t0_u32 material, t0_u32 shape) {
+    const float3 pull = triangle_edge_pulls(v0, v1, v2, twice_area);
+    TriangleRecord r;
+    r.v0 = make_float4(v0.x, v0.y, v0.z, pull.x);
+    r.v1 = make_float4(v1.x, v1.y, v1.z, pull.y);
+    r.v2 = make_float4(v2.x, v2.y, v2.z, pull.z);
+    r.normal = make_float4(normal.x, normal.y, normal.z, twice_area);
+    r.ids = make_uint4(material, shape, T0_NO_LIGHT, 0u);
+    return r;
+}
+
+T0_INLINE float3 hit_position(T0_GLOBAL const TriangleRecord* tri, Hit hit) {
+    const float3 v0 = xyz(tri->v0);
+    const float3 e1 = xyz(tri->v1) - v0;
+    const float3 e2 = xyz(tri->v2) - v0;
+    const float w0 = fmax(1.0f - hit.u - hit.v, tri->v0.w);
+    const float w1 = fmax(hit.u, tri->v1.w);
+    const float w2 = fmax(hit.v, tri->v2.w);
     const float sum = w0 + w1 + w2;
     return v0 + e1 * (w1 / sum) + e2 * (w2 / sum);
 }
