@@ -199,11 +199,12 @@ typedef struct RayLanes {
     t0_lanes inv_direction[3];
     t0_lanes shear[3];
     t0_lanes parallel_det;
-    // Per axis, which of a node's bounds vectors holds the planes the ray
-    // enters (near) and leaves (far) through: the minima for a positive
-    // direction component, the maxima for a negative one.
-    int near[3];
-    int far[3];
+    // Per axis, where in a node the bounds vector is that holds the planes
+    // the ray enters (near) and leaves (far) through, as a byte offset (an
+    // address, not an index, to compute per node): the minima for a
+    // positive direction component, the maxima for a negative one.
+    size_t near[3];
+    size_t far[3];
 } RayLanes;
 
 // Each component of v in all four lanes: out[0..2].
@@ -219,12 +220,13 @@ T0_INLINE RayLanes make_ray_lanes(Ray ray) {
     splat3(ray.inv_direction, l.inv_direction);
     splat3(ray.shear, l.shear);
     l.parallel_det = lanes_splat(ray.parallel_det);
-    l.near[0] = ray.inv_direction.x < 0.0f ? 1 : 0;
-    l.near[1] = ray.inv_direction.y < 0.0f ? 3 : 2;
-    l.near[2] = ray.inv_direction.z < 0.0f ? 5 : 4;
-    l.far[0] = 1 - l.near[0];
-    l.far[1] = 5 - l.near[1];
-    l.far[2] = 9 - l.near[2];
+    const size_t plane = sizeof(float4);  // bounds[2 axis] min, bounds[2 axis + 1] max
+    l.near[0] = ray.inv_direction.x < 0.0f ? 1 * plane : 0 * plane;
+    l.near[1] = ray.inv_direction.y < 0.0f ? 3 * plane : 2 * plane;
+    l.near[2] = ray.inv_direction.z < 0.0f ? 5 * plane : 4 * plane;
+    l.far[0] = 1 * plane - l.near[0];
+    l.far[1] = 5 * plane - l.near[1];
+    l.far[2] = 9 * plane - l.near[2];
     return l;
 }
 
@@ -322,12 +324,14 @@ T0_INLINE Hit traverse_flat(const SceneView* scene, const Ray* ray, float t_max,
 // binary levels per 4-wide node).
 #define T0_BVH_STACK_SIZE 96
 
-// The distances along the ray to the planes in n->bounds[bounds] (four
-// children's planes across `axis`), as aabb_entry computes them.
-T0_INLINE t0_lanes plane_distances(T0_GLOBAL const BvhNode* n, int bounds, const RayLanes* l,
+// The distances along the ray to the planes of the bounds vector `offset`
+// bytes into n->bounds (four children's planes across `axis`), as
+// aabb_entry computes them.
+T0_INLINE t0_lanes plane_distances(T0_GLOBAL const BvhNode* n, size_t offset, const RayLanes* l,
                                    int axis) {
-    return lanes_mul(lanes_sub(lanes_load(&n->bounds[bounds]), l->origin[axis]),
-                     l->inv_direction[axis]);
+    T0_GLOBAL const float4* planes =
+        (T0_GLOBAL const float4*)((T0_GLOBAL const char*)n->bounds + offset);
+    return lanes_mul(lanes_sub(lanes_load(planes), l->origin[axis]), l->inv_direction[axis]);
 }
 
 // The ray against the boxes of node n's four children over [0, t_max] (in
