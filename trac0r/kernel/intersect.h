@@ -13,6 +13,7 @@
 // gamma(n) = n eps / (1 - n eps), eps = 2^-24: the bound on the relative
 // rounding error of n float operations (pbrt-v4, section 6.8.1).
 #define T0_GAMMA3 (3.0f * 5.9604645e-8f / (1.0f - 3.0f * 5.9604645e-8f))
+#define T0_GAMMA4 (4.0f * 5.9604645e-8f / (1.0f - 4.0f * 5.9604645e-8f))
 
 T0_NAMESPACE_BEGIN
 
@@ -197,6 +198,9 @@ T0_INLINE float intersect_triangle(T0_GLOBAL const TriangleRecord* tri, Ray ray,
 typedef struct RayLanes {
     t0_lanes origin[3];
     t0_lanes inv_direction[3];
+    // inv_direction widened by 2 gamma(4), for the far planes (see
+    // child_entries).
+    t0_lanes inv_direction_far[3];
     t0_lanes shear[3];
     t0_lanes parallel_det;
     // Per axis, where in a node the bounds vector is that holds the planes
@@ -218,6 +222,7 @@ T0_INLINE RayLanes make_ray_lanes(Ray ray) {
     RayLanes l;
     splat3(ray.origin, l.origin);
     splat3(ray.inv_direction, l.inv_direction);
+    splat3(ray.inv_direction * (1.0f + 2.0f * T0_GAMMA4), l.inv_direction_far);
     splat3(ray.shear, l.shear);
     l.parallel_det = lanes_splat(ray.parallel_det);
     const size_t plane = sizeof(float4);  // bounds[2 axis] min, bounds[2 axis + 1] max
@@ -325,19 +330,25 @@ T0_INLINE Hit traverse_flat(const SceneView* scene, const Ray* ray, float t_max,
 #define T0_BVH_STACK_SIZE 96
 
 // The distances along the ray to the planes of the bounds vector `offset`
-// bytes into n->bounds (four children's planes across `axis`), as
-// aabb_entry computes them.
+// bytes into n->bounds (four children's planes across `axis`), with inv
+// as the ray's inverse direction there.
 T0_INLINE t0_lanes plane_distances(T0_GLOBAL const BvhNode* n, size_t offset, const RayLanes* l,
-                                   int axis) {
+                                   int axis, t0_lanes inv) {
     T0_GLOBAL const float4* planes =
         (T0_GLOBAL const float4*)((T0_GLOBAL const char*)n->bounds + offset);
-    return lanes_mul(lanes_sub(lanes_load(planes), l->origin[axis]), l->inv_direction[axis]);
+    return lanes_mul(lanes_sub(lanes_load(planes), l->origin[axis]), inv);
 }
 
 // The ray against the boxes of node n's four children over [0, t_max] (in
 // every lane): bit i of the result is set when it enters child i's box, at
-// entry[i] (the others' entries mean nothing). Lane for lane the floats of
-// aabb_entry, four boxes per operation.
+// entry[i] (the others' entries mean nothing). aabb_entry, four boxes per
+// operation, with one difference: the exits are widened by taking them with
+// inv_direction (1 + 2 gamma(4)), made once per ray, not by multiplying
+// each one by 1 + 2 gamma(3), which is one operation less in the chain
+// from a node's load to the choice of the next. The factor's own rounding
+// makes four in an exit, three in an entry: (1 + u)^3 / (1 - u)^4 < 1 + 8u
+// = 1 + 2 gamma(4) rounded, so an exit is still never below an entry that
+// rounding has moved out (pbrt-v4, Bounds3::IntersectP).
 T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const RayLanes* l,
                             t0_lanes t_max, float* entry) {
     if (ray->any_parallel) {
@@ -361,16 +372,15 @@ T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const Ra
     // and the maximum for a negative one: for a box, the same floats as the
     // min and max of aabb_entry (rounding is monotonic), and for an unused
     // lane's inverted box an entry beyond the exit.
-    const t0_lanes near_x = plane_distances(n, l->near[0], l, 0);
-    const t0_lanes far_x = plane_distances(n, l->far[0], l, 0);
-    const t0_lanes near_y = plane_distances(n, l->near[1], l, 1);
-    const t0_lanes far_y = plane_distances(n, l->far[1], l, 1);
-    const t0_lanes near_z = plane_distances(n, l->near[2], l, 2);
-    const t0_lanes far_z = plane_distances(n, l->far[2], l, 2);
+    const t0_lanes near_x = plane_distances(n, l->near[0], l, 0, l->inv_direction[0]);
+    const t0_lanes far_x = plane_distances(n, l->far[0], l, 0, l->inv_direction_far[0]);
+    const t0_lanes near_y = plane_distances(n, l->near[1], l, 1, l->inv_direction[1]);
+    const t0_lanes far_y = plane_distances(n, l->far[1], l, 1, l->inv_direction_far[1]);
+    const t0_lanes near_z = plane_distances(n, l->near[2], l, 2, l->inv_direction[2]);
+    const t0_lanes far_z = plane_distances(n, l->far[2], l, 2, l->inv_direction_far[2]);
     const t0_lanes t_near =
         lanes_max(lanes_max(near_x, near_y), lanes_max(near_z, lanes_splat(0.0f)));
-    const t0_lanes t_far = lanes_mul(lanes_min(lanes_min(far_x, far_y), far_z),
-                                     lanes_splat(1.0f + 2.0f * T0_GAMMA3));
+    const t0_lanes t_far = lanes_min(lanes_min(far_x, far_y), far_z);
     const t0_lanes limit = lanes_min(t_far, t_max);
     lanes_store(t_near, entry);
     return mask_bits(lanes_le(t_near, limit));
