@@ -549,8 +549,9 @@ T0_INLINE float vertices_magnitude(float3 v0, float3 v1, float3 v2) {
     return max_abs3(v0) + max_abs3(v1 - v0) + max_abs3(v2 - v0);
 }
 
+// The same, computed when the record was made.
 T0_INLINE float triangle_magnitude(T0_GLOBAL const TriangleRecord* tri) {
-    return vertices_magnitude(xyz(tri->v0), xyz(tri->v1), xyz(tri->v2));
+    return bits_float((int)tri->ids.w);
 }
 
 // The hit point from the barycentrics (more accurate than origin + t dir),
@@ -568,9 +569,9 @@ T0_INLINE float triangle_magnitude(T0_GLOBAL const TriangleRecord* tri) {
 // The three weights' lower bounds depend on the triangle alone: computed
 // once, when it is packed (make_triangle_record), and kept in the vertices'
 // w. For vertex k, the edge opposite it.
-T0_INLINE float3 triangle_edge_pulls(float3 v0, float3 v1, float3 v2, float twice_area) {
-    const float pull_per_area =
-        T0_RAY_OFFSET_PER_MAGNITUDE * vertices_magnitude(v0, v1, v2) / twice_area;
+T0_INLINE float3 triangle_edge_pulls(float3 v0, float3 v1, float3 v2, float twice_area,
+                                     float magnitude) {
+    const float pull_per_area = T0_RAY_OFFSET_PER_MAGNITUDE * magnitude / twice_area;
     if (!(pull_per_area < 1e30f)) {
         // An area so small that a device flushing denormals takes it for 0
         // (inf pull, then inf / inf), or none: equal weights, the centroid.
@@ -583,13 +584,14 @@ T0_INLINE float3 triangle_edge_pulls(float3 v0, float3 v1, float3 v2, float twic
 // A triangle as the kernels read it: normal is unit, twice_area |e1 x e2|.
 T0_INLINE TriangleRecord make_triangle_record(float3 v0, float3 v1, float3 v2, float3 normal,
                                               float twice_area, t0_u32 material, t0_u32 shape) {
-    const float3 pull = triangle_edge_pulls(v0, v1, v2, twice_area);
+    const float magnitude = vertices_magnitude(v0, v1, v2);
+    const float3 pull = triangle_edge_pulls(v0, v1, v2, twice_area, magnitude);
     TriangleRecord r;
     r.v0 = make_float4(v0.x, v0.y, v0.z, pull.x);
     r.v1 = make_float4(v1.x, v1.y, v1.z, pull.y);
     r.v2 = make_float4(v2.x, v2.y, v2.z, pull.z);
     r.normal = make_float4(normal.x, normal.y, normal.z, twice_area);
-    r.ids = make_uint4(material, shape, T0_NO_LIGHT, 0u);
+    r.ids = make_uint4(material, shape, T0_NO_LIGHT, (t0_u32)float_bits(magnitude));
     return r;
 }
 

@@ -31,13 +31,16 @@ T0_NAMESPACE_BEGIN
 // One triangle for the watertight test (kernel/intersect.h): its three
 // vertices exactly as the scene has them, so triangles sharing an edge or a
 // vertex share its floats bit for bit; the unit geometric normal (w: twice
-// the area, |e1 x e2| with e1 = v1 - v0, e2 = v2 - v0) and indices.
+// the area, |e1 x e2| with e1 = v1 - v0, e2 = v2 - v0) and indices; and
+// numbers of the hit point's computation that depend on the triangle alone
+// (kernel/intersect.h, make_triangle_record, which fills a record).
 typedef struct T0_ALIGN16 TriangleRecord {
-    float4 v0;      // xyz: first vertex
-    float4 v1;      // xyz: second vertex
-    float4 v2;      // xyz: third vertex
+    float4 v0;      // xyz: first vertex, w: hit_position's lower bound for its weight
+    float4 v1;      // xyz: second vertex, w: the same for v1
+    float4 v2;      // xyz: third vertex, w: the same for v2
     float4 normal;  // xyz: normalize(e1 x e2), w: |e1 x e2|
-    uint4 ids;      // x: material index, y: shape index, z: light index (T0_NO_LIGHT: none)
+    uint4 ids;      // x: material index, y: shape index, z: light index (T0_NO_LIGHT: none),
+                    // w: the float bits of vertices_magnitude (hit_magnitude)
 } TriangleRecord;
 
 // TriangleRecord.ids.z of a triangle that emits no light.
