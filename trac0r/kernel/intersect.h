@@ -599,16 +599,18 @@ T0_INLINE float3 hit_position(T0_GLOBAL const TriangleRecord* tri, Hit hit) {
     const float3 v0 = xyz(tri->v0);
     const float3 e1 = xyz(tri->v1) - v0;
     const float3 e2 = xyz(tri->v2) - v0;
-    const float w0 = fmax(1.0f - hit.u - hit.v, tri->v0.w);
-    const float w1 = fmax(hit.u, tri->v1.w);
-    const float w2 = fmax(hit.v, tri->v2.w);
+    // max_f(bound, weight): as fmax, the bound where a weight is NaN (a
+    // bound never is), in one instruction.
+    const float w0 = max_f(tri->v0.w, 1.0f - hit.u - hit.v);
+    const float w1 = max_f(tri->v1.w, hit.u);
+    const float w2 = max_f(tri->v2.w, hit.v);
     const float sum = w0 + w1 + w2;
     return v0 + e1 * (w1 / sum) + e2 * (w2 / sum);
 }
 
 // The magnitude of the numbers the hit point was computed from.
 T0_INLINE float hit_magnitude(T0_GLOBAL const TriangleRecord* tri, float3 position) {
-    return fmax(max_abs3(position), triangle_magnitude(tri));
+    return max_f(triangle_magnitude(tri), max_abs3(position));  // as fmax (see hit_position)
 }
 
 // The next float after x in the direction of the sign of towards (nonzero).
