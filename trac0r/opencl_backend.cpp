@@ -325,6 +325,8 @@ void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64
     check(clSetKernelArg(k, 10, sizeof(cl_mem), &state_->lights), "clSetKernelArg(10)");
     check(clSetKernelArg(k, 11, sizeof(cl_uint), &state_->light_count), "clSetKernelArg(11)");
     check(clSetKernelArg(k, 12, sizeof(cl_mem), &state_->packets), "clSetKernelArg(12)");
+    // The global size a multiple of 64 either way, which a driver choosing
+    // the groups itself can split evenly.
     const std::size_t group = state_->group > 0 ? state_->group : 64;
     const std::size_t global = (state_->pixels + group - 1) / group * group;
     check(clEnqueueNDRangeKernel(state_->device->queue, k, 1, nullptr, &global,

@@ -22,8 +22,9 @@ enum class Accel {
 // faster: measured by benchmarks/accel_crossover.cpp (README,
 // "Performance"). On PoCL the two are level between 12 and 24 triangles
 // (0.97 to 1.04) and the BVH is faster from 24; on the CPU backend it is
-// faster from the smallest scene measured (12 triangles) on. Backend::auto_bvh_min_triangles gives each
-// backend's; a packer that knows no backend uses the larger.
+// faster from the smallest scene measured (12 triangles) on.
+// Backend::auto_bvh_min_triangles gives each backend's; a packer that
+// knows no backend uses the larger.
 const std::size_t auto_bvh_min_triangles = 24;
 const std::size_t cpu_auto_bvh_min_triangles = 12;
 

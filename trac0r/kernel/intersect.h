@@ -554,21 +554,10 @@ T0_INLINE float triangle_magnitude(T0_GLOBAL const TriangleRecord* tri) {
     return bits_float((int)tri->ids.w);
 }
 
-// The hit point from the barycentrics (more accurate than origin + t dir),
-// kept at least the offset distance inside each edge. Rounding can put the
-// computed point on an edge, which on a closed mesh is the plane of the
-// neighbouring face (a box's edge); a new ray from there through that face
-// finds it at t = 0, no hit, and slips out. A barycentric weight is the
-// distance from the opposite edge over the height onto it (2 area / edge
-// length), so raising each to pull |edge| / (2 area) keeps the point pull
-// away from every edge, and moves only points that were nearer (a tiny
-// triangle's go to its centroid). Moving all points, say towards the
-// centroid, would make paths drift (+9 % light in a room at 1e5). The point
-// is still v0 + e1 b1 + e2 b2, as close to the plane as before.
-//
-// The three weights' lower bounds depend on the triangle alone: computed
-// once, when it is packed (make_triangle_record), and kept in the vertices'
-// w. For vertex k, the edge opposite it.
+// The lower bounds of hit_position's barycentric weights (below) for the
+// triangle v0 v1 v2: for vertex k, the edge opposite it. They depend on the
+// triangle alone, so they are computed once, when it is packed
+// (make_triangle_record), and kept in the vertices' w.
 T0_INLINE float3 triangle_edge_pulls(float3 v0, float3 v1, float3 v2, float twice_area,
                                      float magnitude) {
     const float pull_per_area = T0_RAY_OFFSET_PER_MAGNITUDE * magnitude / twice_area;
@@ -595,6 +584,18 @@ T0_INLINE TriangleRecord make_triangle_record(float3 v0, float3 v1, float3 v2, f
     return r;
 }
 
+// The hit point from the barycentrics (more accurate than origin + t dir),
+// kept at least the offset distance inside each edge. Rounding can put the
+// computed point on an edge, which on a closed mesh is the plane of the
+// neighbouring face (a box's edge); a new ray from there through that face
+// finds it at t = 0, no hit, and slips out. A barycentric weight is the
+// distance from the opposite edge over the height onto it (2 area / edge
+// length), so raising each to pull |edge| / (2 area) keeps the point pull
+// away from every edge, and moves only points that were nearer (a tiny
+// triangle's go to its centroid). Moving all points, say towards the
+// centroid, would make paths drift (+9 % light in a room at 1e5). The point
+// is still v0 + e1 b1 + e2 b2, as close to the plane as before. The raised
+// weights' bounds are in the vertices' w (triangle_edge_pulls).
 T0_INLINE float3 hit_position(T0_GLOBAL const TriangleRecord* tri, Hit hit) {
     const float3 v0 = xyz(tri->v0);
     const float3 e1 = xyz(tri->v1) - v0;

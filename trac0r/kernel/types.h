@@ -64,8 +64,9 @@ typedef struct T0_ALIGN16 ShapeRecord {
 } ShapeRecord;
 
 // A node of the 4-wide BVH (trac0r/bvh.h): the boxes of its (up to) four
-// children (nodes, or leaves of one TrianglePacket each) side by side, lane i of each vector for child i, so that one
-// vector operation per plane tests all four boxes. bounds[2 axis] holds the
+// children (nodes, or leaves of one TrianglePacket each) side by side,
+// lane i of each vector for child i, so that one vector operation per
+// plane tests all four boxes. bounds[2 axis] holds the
 // minima on an axis, bounds[2 axis + 1] the maxima. An unused lane has the
 // empty box min = +FLT_MAX, max = -FLT_MAX, which no ray enters.
 typedef struct T0_ALIGN16 BvhNode {
