@@ -17,11 +17,7 @@ const float direction_tolerance = 1e-5f;
 
 MaterialRecord make_material(t0_u32 type, float3 color, float emittance, float roughness,
                              float ior) {
-    MaterialRecord m = {};
-    m.color = make_float4(color.x, color.y, color.z, 0.0f);
-    m.params = make_float4(emittance, roughness, ior, 0.0f);
-    m.type = make_uint4(type, 0u, 0u, 0u);
-    return m;
+    return make_material_record(type, color, emittance, roughness, ior);
 }
 
 // Unpolarised Fresnel reflectance from the angle form of the equations

@@ -277,11 +277,7 @@ using kernel::make_float3;
 using kernel::t0_u32;
 
 kernel::MaterialRecord make_material(t0_u32 type, float roughness) {
-    kernel::MaterialRecord m = {};
-    m.color = kernel::make_float4(0.8f, 0.6f, 0.4f, 0.0f);
-    m.params = kernel::make_float4(0.0f, roughness, 1.5f, 0.0f);
-    m.type = kernel::make_uint4(type, 0u, 0u, 0u);
-    return m;
+    return kernel::make_material_record(type, make_float3(0.8f, 0.6f, 0.4f), 0.0f, roughness, 1.5f);
 }
 
 // A unit direction arriving at angle theta from the normal +z, travelling

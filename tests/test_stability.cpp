@@ -797,10 +797,8 @@ TEST_CASE("roughness 1: the cosine hemisphere around the mirror direction, the p
     // normal: a fraction (1 - cos b) / 2 fails (weight zero), the rest has
     // weight = colour. At normal incidence none fails and E[cos] = 2/3, as
     // for a diffuse surface. Checked within five standard errors.
-    kernel::MaterialRecord m = {};
-    m.color = glm::vec4(0.8f, 0.6f, 0.4f, 0.0f);
-    m.params = glm::vec4(0.0f, 1.0f, 1.5f, 0.0f);
-    m.type = glm::uvec4(T0_MATERIAL_GLOSSY, 0u, 0u, 0u);
+    const kernel::MaterialRecord m = kernel::make_material_record(
+        T0_MATERIAL_GLOSSY, glm::vec3(0.8f, 0.6f, 0.4f), 0.0f, 1.0f, 1.5f);
     const glm::vec3 normal = glm::normalize(glm::vec3(0.2f, 1.0f, -0.3f));
     const glm::vec3 tangent = glm::normalize(glm::cross(normal, glm::vec3(1.0f, 0.0f, 0.0f)));
     kernel::Rng rng;
@@ -983,11 +981,8 @@ TEST_CASE("uniforms of exactly 0 and 1 - 2^-24 give every material finite direct
     const float extremes[] = {0.0f, largest_uniform};
     std::vector<kernel::MaterialRecord> materials;
     auto add = [&materials](unsigned type, float roughness, float ior) {
-        kernel::MaterialRecord m = {};
-        m.color = glm::vec4(0.8f, 0.5f, 0.2f, 0.0f);
-        m.params = glm::vec4(0.0f, roughness, ior, 0.0f);
-        m.type = glm::uvec4(type, 0u, 0u, 0u);
-        materials.push_back(m);
+        materials.push_back(kernel::make_material_record(type, glm::vec3(0.8f, 0.5f, 0.2f), 0.0f,
+                                                         roughness, ior));
     };
     add(T0_MATERIAL_DIFFUSE, 0.0f, 1.5f);
     for (float roughness : {0.0f, 0.5f, 1.0f}) {
@@ -1059,9 +1054,11 @@ TEST_CASE("uniforms of exactly 0 and 1 - 2^-24 into light sampling: a light in t
             CHECK(b1 + b2 <= 1.0f);
         }
     }
-    kernel::MaterialRecord floors[2] = {packed.materials[0], packed.materials[0]};
-    floors[1].type = glm::uvec4(T0_MATERIAL_GLOSSY, 0u, 0u, 0u);
-    floors[1].params.y = 0.5f;  // roughness: a lobe wide enough to sample lights
+    // The second floor glossy, with a lobe wide enough to sample lights.
+    const kernel::MaterialRecord floors[2] = {
+        packed.materials[0],
+        kernel::make_material_record(T0_MATERIAL_GLOSSY, glm::vec3(packed.materials[0].color), 0.0f,
+                                     0.5f, 1.5f)};
     kernel::SceneView glossy_view = view;
     glossy_view.features |= T0_FEATURE_GLOSSY;
     const glm::vec3 position(-0.6f, -1.0f, -0.5f);  // beside the block, under the lamp

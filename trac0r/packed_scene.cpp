@@ -3,6 +3,7 @@
 #include "trac0r/bvh.h"
 #include "trac0r/kernel/accumulate.h"
 #include "trac0r/kernel/intersect.h"
+#include "trac0r/kernel/material.h"
 
 #include <cmath>
 #include <limits>
@@ -29,11 +30,8 @@ kernel::TriangleRecord pack_triangle(const Triangle& t, unsigned material, unsig
 }
 
 kernel::MaterialRecord pack_material(const Material& m) {
-    kernel::MaterialRecord r;
-    r.color = glm::vec4(m.color, 0.0f);
-    r.params = glm::vec4(m.emittance, m.roughness, m.ior, 0.0f);
-    r.type = glm::uvec4(static_cast<unsigned>(m.type), 0u, 0u, 0u);
-    return r;
+    return kernel::make_material_record(static_cast<unsigned>(m.type), m.color, m.emittance,
+                                        m.roughness, m.ior);
 }
 
 std::uint32_t material_feature(MaterialType type) {

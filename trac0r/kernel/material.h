@@ -27,6 +27,21 @@ T0_INLINE ScatterSample scatter_failed(void) {
     return s;
 }
 
+// A material as the kernels read it. Roughness r (0..1) makes the glossy
+// lobe a cone of half-angle r pi/2 about the mirror direction.
+T0_INLINE MaterialRecord make_material_record(t0_u32 type, float3 color, float emittance,
+                                              float roughness, float ior) {
+    MaterialRecord r;
+    r.color = make_float4(color.x, color.y, color.z, 0.0f);
+    r.params = make_float4(emittance, roughness, ior, cone_sin2(roughness * 0.5f * T0_PI));
+    r.type = make_uint4(type, 0u, 0u, 0u);
+    return r;
+}
+
+// sin^2 of the half-angle of a glossy material's cone, made when the
+// record is (make_material_record): not a sine at every glossy bounce.
+T0_INLINE float glossy_cone_sin2(T0_GLOBAL const MaterialRecord* m) { return m->params.w; }
+
 // Emitted radiance: colour x emittance, on both sides (as in the thesis).
 T0_INLINE float3 material_emission(T0_GLOBAL const MaterialRecord* m) {
     return xyz(m->color) * m->params.x;
@@ -88,7 +103,7 @@ T0_INLINE ScatterSample scatter_glossy(T0_GLOBAL const MaterialRecord* m, float3
     const float3 mirror = reflect_direction(incoming, facing_normal);
     const float u1 = rng_float(rng);
     const float u2 = rng_float(rng);
-    const DirectionSample d = sample_cosine_cone(mirror, m->params.y * 0.5f * T0_PI, u1, u2);
+    const DirectionSample d = sample_cosine_cone_sin2(mirror, glossy_cone_sin2(m), u1, u2);
     if (!(dot(d.direction, facing_normal) > 0.0f)) {
         return scatter_failed();
     }
@@ -147,10 +162,6 @@ T0_INLINE MaterialEval eval_failed(void) {
 // the limit of float precision. Their paths rely on scattering alone,
 // which is unbiased for any roughness.
 #define T0_GLOSSY_LIGHT_SAMPLING_MIN_SIN2 1e-4f
-
-T0_INLINE float glossy_cone_sin2(T0_GLOBAL const MaterialRecord* m) {
-    return cone_sin2(m->params.y * 0.5f * T0_PI);
-}
 
 // Lambertian: f cos = colour cos / pi; the density is the cosine's, cos / pi.
 T0_INLINE MaterialEval eval_diffuse(T0_GLOBAL const MaterialRecord* m, float3 facing_normal,

@@ -88,7 +88,7 @@ typedef struct T0_ALIGN16 TrianglePacket {
 
 typedef struct T0_ALIGN16 MaterialRecord {
     float4 color;   // xyz: colour (albedo, or emitted colour), w: unused
-    float4 params;  // x: emittance, y: roughness, z: ior
+    float4 params;  // x: emittance, y: roughness, z: ior, w: glossy_cone_sin2
     uint4 type;     // x: T0_MATERIAL_*
 } MaterialRecord;
 
