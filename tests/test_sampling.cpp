@@ -163,7 +163,7 @@ TEST_CASE("the hemisphere is the cone of half-angle pi/2, float for float", "[ke
     for (float u1 : {0.0f, 0.25f, 0.7f, 0.999f}) {
         for (float u2 : {0.0f, 0.1f, 0.5f, 0.93f}) {
             const DirectionSample h = sample_cosine_hemisphere(axis, u1, u2);
-            const DirectionSample c = sample_cosine_cone(axis, 0.5f * T0_PI, u1, u2);
+            const DirectionSample c = sample_cosine_cone_sin2(axis, cone_sin2(0.5f * T0_PI), u1, u2);
             REQUIRE(h.direction == c.direction);
             REQUIRE(h.pdf == c.pdf);
         }
@@ -199,7 +199,7 @@ TEST_CASE("sample_cosine_hemisphere: inside the hemisphere, pdf cos/pi, E[cos] =
     }
 }
 
-TEST_CASE("sample_cosine_cone: inside the cone, right pdf and moments, chi-square",
+TEST_CASE("sample_cosine_cone_sin2: inside the cone, right pdf and moments, chi-square",
           "[kernel][sampling]") {
     Rng rng;
     rng_seed(&rng, 3003);
@@ -221,7 +221,7 @@ TEST_CASE("sample_cosine_cone: inside the cone, right pdf and moments, chi-squar
         for (int i = 0; i < n; ++i) {
             const float u1 = rng_float(&rng);
             const float u2 = rng_float(&rng);
-            const DirectionSample s = sample_cosine_cone(axis, cone_angle, u1, u2);
+            const DirectionSample s = sample_cosine_cone_sin2(axis, cone_sin2(cone_angle), u1, u2);
             const double cos_theta = dot_d(s.direction, axis);
             bad += !(std::fabs(length(s.direction) - 1.0f) < unit_tolerance);
             // Inside the cone, allowing float rounding of the direction.
@@ -256,9 +256,9 @@ TEST_CASE("sample_cosine_cone: inside the cone, right pdf and moments, chi-squar
     }
 }
 
-TEST_CASE("sample_cosine_cone of zero width is the axis with a delta pdf", "[kernel][sampling]") {
+TEST_CASE("sample_cosine_cone_sin2 of zero width is the axis with a delta pdf", "[kernel][sampling]") {
     const float3 axis = normalize(make_float3(0.2f, 0.3f, -0.9f));
-    const DirectionSample s = sample_cosine_cone(axis, 0.0f, 0.7f, 0.3f);
+    const DirectionSample s = sample_cosine_cone_sin2(axis, cone_sin2(0.0f), 0.7f, 0.3f);
     CHECK(length(s.direction - axis) < unit_tolerance);
     CHECK(s.pdf == 0.0f);
 }
@@ -287,7 +287,7 @@ TEST_CASE("extreme uniforms give finite unit directions and finite densities",
                 check(h);
                 CHECK(dot(h.direction, axis) >= 0.0f);
                 for (float a : cone_angles) {
-                    check(sample_cosine_cone(axis, a, u1, u2));
+                    check(sample_cosine_cone_sin2(axis, cone_sin2(a), u1, u2));
                 }
             }
         }

@@ -100,13 +100,8 @@ T0_INLINE DirectionSample sample_cosine_cone_sin2(float3 axis, float sin2_max, f
     return s;
 }
 
-// The same for a cone of half-angle cone_angle (0..pi/2).
-T0_INLINE DirectionSample sample_cosine_cone(float3 axis, float cone_angle, float u1, float u2) {
-    return sample_cosine_cone_sin2(axis, cone_sin2(cone_angle), u1, u2);
-}
-
-// The density sample_cosine_cone gives unit direction d (zero outside the
-// cone, and for a cone of zero width, whose directions are a delta).
+// The density sample_cosine_cone_sin2 gives unit direction d (zero outside
+// the cone, and for a cone of zero width, whose directions are a delta).
 T0_INLINE float cosine_cone_pdf(float3 axis, float sin2_max, float3 d) {
     const float cos_theta = dot(d, axis);
     const float cos_max = sqrt(fmax(0.0f, 1.0f - sin2_max));
@@ -116,9 +111,8 @@ T0_INLINE float cosine_cone_pdf(float3 axis, float sin2_max, float3 d) {
     return cos_theta / (T0_PI * sin2_max);
 }
 
-// sample_cosine_cone(normal, pi/2, ...) without computing the sine:
-// cone_sin2(pi/2) is exactly 1 (test_sampling checks), so the two give the
-// same floats.
+// The cone of half-angle pi/2 without computing its sine: cone_sin2(pi/2)
+// is exactly 1 (test_sampling checks), so the two give the same floats.
 T0_INLINE DirectionSample sample_cosine_hemisphere(float3 normal, float u1, float u2) {
     return sample_cosine_cone_sin2(normal, 1.0f, u1, u2);
 }
