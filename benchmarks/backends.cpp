@@ -131,8 +131,7 @@ double median_build_seconds(const Scene& scene, const PackedScene& packed,
         seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
     }
     unsetenv("TRAC0R_OPENCL_OPTIONS");
-    std::sort(seconds.begin(), seconds.end());
-    return seconds[1];
+    return trac0r_bench::median(seconds);
 }
 
 // Rays per second of ray casting alone: the same rays (made once from the
