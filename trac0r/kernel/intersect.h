@@ -19,7 +19,7 @@ T0_NAMESPACE_BEGIN
 
 typedef struct Ray {
     float3 origin;
-    float3 direction;      // unit length
+    float3 direction;      // unit length, to a few ulps
     float3 inv_direction;  // finite: zero components are nudged to +-1e-30
     // For the watertight triangle test, computed once per ray (Woop, Benthin
     // and Wald, JCGT 2013): the axes renamed so that kz is the direction's
