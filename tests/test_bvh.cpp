@@ -72,12 +72,14 @@ int check_subtree(const PackedScene& p, std::uint32_t node, std::vector<int>& se
         }
         ++used;
         if (n.count[i] > 0) {
-            // A leaf: packet child[i], whose first count[i] lanes are
+            // A leaf: packet child[i] (less the leaf bit), whose first count[i] lanes are
             // triangles (the same floats as their records) and the rest
             // unused (infinite area, never hit).
             REQUIRE(n.count[i] <= 4);
-            REQUIRE(n.child[i] < p.packets.size());
-            const kernel::TrianglePacket& packet = p.packets[n.child[i]];
+            REQUIRE((n.child[i] & T0_BVH_LEAF) != 0u);
+            const std::uint32_t packet_index = n.child[i] & ~T0_BVH_LEAF;
+            REQUIRE(packet_index < p.packets.size());
+            const kernel::TrianglePacket& packet = p.packets[packet_index];
             for (std::uint32_t lane = 0; lane < 4; ++lane) {
                 if (lane >= n.count[i]) {
                     REQUIRE(std::isinf(packet.area[lane]));
@@ -98,6 +100,7 @@ int check_subtree(const PackedScene& p, std::uint32_t node, std::vector<int>& se
             }
             continue;
         }
+        REQUIRE((n.child[i] & T0_BVH_LEAF) == 0u);
         REQUIRE(n.child[i] > node);  // children come after their parent: no cycle
         REQUIRE(n.child[i] < p.nodes.size());
         const kernel::BvhNode& c = p.nodes[n.child[i]];

@@ -283,7 +283,7 @@ class Collapser {
                 node.bounds[2 * axis + 1][i] = n.bounds.max[axis];
             }
             if (n.count > 0) {
-                node.child[i] = static_cast<std::uint32_t>(leaves_.size());
+                node.child[i] = T0_BVH_LEAF | static_cast<std::uint32_t>(leaves_.size());
                 node.count[i] = n.count;
                 leaves_.push_back(BvhLeaf{n.first, n.count});
             } else {

@@ -412,18 +412,16 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
     hit.v = 0.0f;
     hit.triangle = -1;
     t0_u32 stack_child[T0_BVH_STACK_SIZE];
-    t0_u32 stack_count[T0_BVH_STACK_SIZE];
     float stack_entry[T0_BVH_STACK_SIZE];
     int top = 0;
     const RayLanes lanes = make_ray_lanes(*ray);
     t0_lanes limit = lanes_splat(t_max);  // hit.t in every lane
-    t0_u32 child = 0u;  // what is visited: node 0, the root,
-    t0_u32 count = 0u;  // or with count > 0 the leaf of packet child
+    t0_u32 child = 0u;  // what is visited: node 0, the root, or a leaf (T0_BVH_LEAF)
     for (;;) {
-        if (count > 0u) {
+        if ((child & T0_BVH_LEAF) != 0u) {
             // A leaf: its packet's triangles in order, as the flat list
             // tests them (ties go to the first).
-            T0_GLOBAL const TrianglePacket* p = &scene->packets[child];
+            T0_GLOBAL const TrianglePacket* p = &scene->packets[child & ~T0_BVH_LEAF];
             float t[4];
             float u[4];
             float v[4];
@@ -454,7 +452,6 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
                 if (rest == 0) {
                     // One child entered (most nodes): no sort.
                     child = buffer_uint_component(&n->child, first);
-                    count = buffer_uint_component(&n->count, first);
                     continue;
                 }
                 if ((rest & (rest - 1)) == 0) {
@@ -464,11 +461,9 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
                     const int near = first_nearer ? first : second;
                     const int far = first_nearer ? second : first;
                     stack_child[top] = buffer_uint_component(&n->child, far);
-                    stack_count[top] = buffer_uint_component(&n->count, far);
                     stack_entry[top] = entry[far];
                     ++top;
                     child = buffer_uint_component(&n->child, near);
-                    count = buffer_uint_component(&n->count, near);
                     continue;
                 }
                 // Three or four: a sorting network puts the entered
@@ -486,12 +481,10 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
                 const int entered = mask == 15 ? 4 : 3;
                 for (int i = entered - 1; i > 0; --i) {
                     stack_child[top] = buffer_uint_component(&n->child, lane[i]);
-                    stack_count[top] = buffer_uint_component(&n->count, lane[i]);
                     stack_entry[top] = entry[i];
                     ++top;
                 }
                 child = buffer_uint_component(&n->child, lane[0]);
-                count = buffer_uint_component(&n->count, lane[0]);
                 continue;
             }
         }
@@ -503,7 +496,6 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
             --top;
             if (stack_entry[top] < hit.t) {
                 child = stack_child[top];
-                count = stack_count[top];
                 break;
             }
         }

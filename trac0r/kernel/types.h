@@ -71,9 +71,13 @@ typedef struct T0_ALIGN16 ShapeRecord {
 // empty box min = +FLT_MAX, max = -FLT_MAX, which no ray enters.
 typedef struct T0_ALIGN16 BvhNode {
     float4 bounds[6];  // min x, max x, min y, max y, min z, max z
-    uint4 child;       // per lane: a node index (count 0) or a packet index
+    uint4 child;       // per lane: a node index, or T0_BVH_LEAF | a packet index
     uint4 count;       // per lane: the leaf's triangle count; 0: a node (or unused)
 } BvhNode;
+
+// In BvhNode.child, the lane is a leaf: the traversal reads one word a
+// child (and keeps one on its stack), not the child and its count.
+#define T0_BVH_LEAF 0x80000000u
 
 // The triangles of one BVH leaf (up to four) side by side for the
 // watertight test, lane i of each vector for triangle i, so that one vector
