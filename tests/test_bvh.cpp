@@ -72,9 +72,9 @@ int check_subtree(const PackedScene& p, std::uint32_t node, std::vector<int>& se
         }
         ++used;
         if (n.count[i] > 0) {
-            // A leaf: packet child[i] (less the leaf bit), whose first count[i] lanes are
-            // triangles (the same floats as their records) and the rest
-            // unused (infinite area, never hit).
+            // A leaf: child[i] is T0_BVH_LEAF | a packet, whose first
+            // count[i] lanes are triangles (the same floats as their
+            // records) and the rest unused (infinite area, never hit).
             REQUIRE(n.count[i] <= 4);
             REQUIRE((n.child[i] & T0_BVH_LEAF) != 0u);
             const std::uint32_t packet_index = n.child[i] & ~T0_BVH_LEAF;

@@ -167,7 +167,8 @@ TEST_CASE("the hemisphere is the cone of half-angle pi/2, float for float", "[ke
             REQUIRE(h.direction == c.direction);
             REQUIRE(h.pdf == c.pdf);
             // The renormalised cone differs by the rounding of the length.
-            const DirectionSample r = sample_cosine_cone_sin2(axis, cone_sin2(0.5f * T0_PI), u1, u2);
+            const DirectionSample r =
+                sample_cosine_cone_sin2(axis, cone_sin2(0.5f * T0_PI), u1, u2);
             REQUIRE(length(h.direction - r.direction) < 1e-6f);
             REQUIRE(h.pdf == r.pdf);
         }
@@ -185,11 +186,13 @@ TEST_CASE("cosine_cone_direction is unit length to a few ulps without renormalis
     for (int i = 0; i < 400000; ++i) {
         float3 axis = random_unit_vector(&rng);
         const float e = rng_float(&rng) * 1e-3f;
-        switch (i % 4) {
-            case 1: axis = normalize(make_float3(e, -0.5f * e, -1.0f)); break;
-            case 2: axis = normalize(make_float3(-e, e, 1.0f)); break;
-            case 3: axis = make_float3(i & 4 ? 1.0f : 0.0f, 0.0f, i & 4 ? 0.0f : (i & 8 ? 1.0f : -1.0f)); break;
-            default: break;
+        if (i % 4 == 1) {
+            axis = normalize(make_float3(e, -0.5f * e, -1.0f));
+        } else if (i % 4 == 2) {
+            axis = normalize(make_float3(-e, e, 1.0f));
+        } else if (i % 4 == 3) {
+            const float pole = i & 8 ? 1.0f : -1.0f;
+            axis = i & 4 ? make_float3(1.0f, 0.0f, 0.0f) : make_float3(0.0f, 0.0f, pole);
         }
         const float sin2 = i & 16 ? 1.0f : cone_sin2(rng_float(&rng) * 0.5f * T0_PI);
         const float u1 = rng_float(&rng);

@@ -20,8 +20,8 @@ struct BvhLeaf {
 
 struct Bvh {
     // Node 0 is the root. Each node has up to four children (lanes), each
-    // a node or, with count > 0, leaf `child` of `leaves`: see
-    // kernel::BvhNode. The packer turns leaf i into TrianglePacket i.
+    // a node or, with count > 0, leaf `child & ~T0_BVH_LEAF` of `leaves`:
+    // see kernel::BvhNode. The packer turns leaf i into TrianglePacket i.
     std::vector<kernel::BvhNode> nodes;
     std::vector<BvhLeaf> leaves;
     // order[i]: which input triangle is the i-th in leaf order.

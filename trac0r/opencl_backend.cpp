@@ -256,11 +256,11 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
     // Work-groups of 64 for the BVH's program (or the largest power of two
     // the kernel allows, if less), the driver's choice for the flat list's.
     // PoCL picks groups of thousands of work-items on a CPU and lays their
-    // private arrays out side by side: the BVH's traversal stack (1,152
-    // bytes a work-item) then streams megabytes through the cache. With 64,
-    // BVH frames on cornell.json took 4.5 % less time on PoCL; the flat
-    // list, which has no such array, took 3 % more (bench_backends,
-    // alternated; README, "Performance").
+    // private arrays out side by side: the BVH's traversal stack (768
+    // bytes a work-item; 1,152 when this was measured) then streams
+    // megabytes through the cache. With 64, BVH frames on cornell.json took
+    // 4.5 % less time on PoCL; the flat list, which has no such array, took
+    // 3 % more (bench_backends, alternated; README, "Performance").
     state_->group = 0;
     if ((scene.features & T0_FEATURE_BVH) != 0u) {
         std::size_t most = 0;
