@@ -72,7 +72,9 @@ typedef struct T0_ALIGN16 ShapeRecord {
 typedef struct T0_ALIGN16 BvhNode {
     float4 bounds[6];  // min x, max x, min y, max y, min z, max z
     uint4 child;       // per lane: a node index, or T0_BVH_LEAF | a packet index
-    uint4 count;       // per lane: the leaf's triangle count; 0: a node (or unused)
+    uint4 count;       // per lane: the leaf's triangle count; 0: a node (or unused).
+                       // No kernel reads it (T0_BVH_LEAF says leaf); test_bvh checks
+                       // packets against it, and it keeps a node at two cache lines.
 } BvhNode;
 
 // In BvhNode.child, the lane is a leaf: the traversal reads one word a
