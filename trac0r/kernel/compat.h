@@ -10,8 +10,9 @@
 
 #ifdef __OPENCL_VERSION__
 
-// No silent fused multiply-adds: the C++ build has none either (baseline
-// x86-64), and the compensated sums in accumulate.h rely on exact rounding.
+// No silent fused multiply-adds: the C++ build has none either
+// (-ffp-contract=off, CMakeLists.txt), and the watertight triangle test and
+// the compensated sums in accumulate.h rely on exact rounding.
 #pragma OPENCL FP_CONTRACT OFF
 
 #define T0_GLOBAL __global

@@ -160,7 +160,8 @@ T0_INLINE float3 vertex_in_ray_frame(T0_GLOBAL const float4* vertex, Ray ray) {
 // swapped order, so their values are exact negatives; and rounding is
 // monotonic, so a computed edge function never has the wrong sign, at worst
 // zero (which counts as inside on both sides). Needs exact IEEE products and
-// sums: no fused multiply-add contraction (compat.h turns it off for OpenCL).
+// sums: no fused multiply-add contraction (compat.h turns it off for OpenCL,
+// -ffp-contract=off for C++).
 T0_INLINE float intersect_triangle(T0_GLOBAL const TriangleRecord* tri, Ray ray, float* u,
                                    float* v) {
     const float3 a = vertex_in_ray_frame(&tri->v0, ray);
