@@ -198,6 +198,12 @@ T0_INLINE float intersect_triangle(T0_GLOBAL const TriangleRecord* tri, Ray ray,
 // lanes: made once per traversal, not once per node.
 typedef struct RayLanes {
     t0_lanes origin[3];
+    // The origin in the triangle test's axis order (Ray.permuted_origin),
+    // read by fixed index. Indexed by the ray's axes at run time, LLVM
+    // (PoCL) kept this struct in memory and reached each vector through a
+    // pointer it had to load first: PoCL frames 2.4 % faster this way, the
+    // CPU's the same, for three more splats a ray (README).
+    t0_lanes permuted_origin[3];
     t0_lanes inv_direction[3];
     // inv_direction widened by 2 gamma(4), for the far planes (see
     // child_entries).
@@ -222,6 +228,7 @@ T0_INLINE void splat3(float3 v, t0_lanes* out) {
 T0_INLINE RayLanes make_ray_lanes(Ray ray) {
     RayLanes l;
     splat3(ray.origin, l.origin);
+    splat3(ray.permuted_origin, l.permuted_origin);
     splat3(ray.inv_direction, l.inv_direction);
     splat3(ray.inv_direction * (1.0f + 2.0f * T0_GAMMA4), l.inv_direction_far);
     splat3(ray.shear, l.shear);
@@ -248,9 +255,9 @@ T0_INLINE t0_lanes packet_coordinate(T0_GLOBAL const TrianglePacket* p, int vert
 // with its barycentrics to u[i], v[i].
 T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray,
                                const RayLanes* l, t0_lanes t_max, float* t, float* u, float* v) {
-    const t0_lanes ox = l->origin[ray->kx];
-    const t0_lanes oy = l->origin[ray->ky];
-    const t0_lanes oz = l->origin[ray->kz];
+    const t0_lanes ox = l->permuted_origin[0];
+    const t0_lanes oy = l->permuted_origin[1];
+    const t0_lanes oz = l->permuted_origin[2];
     const t0_lanes sx = l->shear[0];
     const t0_lanes sy = l->shear[1];
     const t0_lanes az = lanes_sub(packet_coordinate(p, 0, ray->kz), oz);
