@@ -38,11 +38,13 @@ Scene triangle_soup(int count, unsigned seed) {
     return scene;
 }
 
-// Lane i of a 4-wide node: its box, empty (inverted) for an unused lane.
+// Lane i of a node: its box, empty (inverted) for an unused lane.
 AABB lane_box(const kernel::BvhNode& n, int i) {
     AABB box;
-    box.min = glm::vec3(n.bounds[0][i], n.bounds[2][i], n.bounds[4][i]);
-    box.max = glm::vec3(n.bounds[1][i], n.bounds[3][i], n.bounds[5][i]);
+    box.min = glm::vec3(kernel::node_plane(&n, 0, i), kernel::node_plane(&n, 2, i),
+                        kernel::node_plane(&n, 4, i));
+    box.max = glm::vec3(kernel::node_plane(&n, 1, i), kernel::node_plane(&n, 3, i),
+                        kernel::node_plane(&n, 5, i));
     return box;
 }
 
@@ -62,26 +64,28 @@ int check_subtree(const PackedScene& p, std::uint32_t node, std::vector<int>& se
     const kernel::BvhNode& n = p.nodes[node];
     int used = 0;
     int depth = 1;
-    for (int i = 0; i < 4; ++i) {
+    for (int i = 0; i < T0_BVH_WIDTH; ++i) {
         const AABB box = lane_box(n, i);
+        const std::uint32_t count = n.count[i / 4][i % 4];
+        const std::uint32_t child = kernel::node_child(&n, i);
         if (box.min.x > box.max.x) {
             // Unused: inverted on every axis, so no ray enters it, and empty.
             REQUIRE(glm::all(glm::greaterThan(box.min, box.max)));
-            REQUIRE(n.count[i] == 0);
+            REQUIRE(count == 0);
             continue;
         }
         ++used;
-        if (n.count[i] > 0) {
-            // A leaf: child[i] is T0_BVH_LEAF | a packet, whose first
-            // count[i] lanes are triangles (the same floats as their
+        if (count > 0) {
+            // A leaf: child is T0_BVH_LEAF | a packet, whose first
+            // count lanes are triangles (the same floats as their
             // records) and the rest unused (infinite area, never hit).
-            REQUIRE(n.count[i] <= 4);
-            REQUIRE((n.child[i] & T0_BVH_LEAF) != 0u);
-            const std::uint32_t packet_index = n.child[i] & ~T0_BVH_LEAF;
+            REQUIRE(count <= 4);
+            REQUIRE((child & T0_BVH_LEAF) != 0u);
+            const std::uint32_t packet_index = child & ~T0_BVH_LEAF;
             REQUIRE(packet_index < p.packets.size());
             const kernel::TrianglePacket& packet = p.packets[packet_index];
             for (std::uint32_t lane = 0; lane < 4; ++lane) {
-                if (lane >= n.count[i]) {
+                if (lane >= count) {
                     REQUIRE(std::isinf(packet.area[lane]));
                     continue;
                 }
@@ -100,18 +104,18 @@ int check_subtree(const PackedScene& p, std::uint32_t node, std::vector<int>& se
             }
             continue;
         }
-        REQUIRE((n.child[i] & T0_BVH_LEAF) == 0u);
-        REQUIRE(n.child[i] > node);  // children come after their parent: no cycle
-        REQUIRE(n.child[i] < p.nodes.size());
-        const kernel::BvhNode& c = p.nodes[n.child[i]];
-        for (int j = 0; j < 4; ++j) {
+        REQUIRE((child & T0_BVH_LEAF) == 0u);
+        REQUIRE(child > node);  // children come after their parent: no cycle
+        REQUIRE(child < p.nodes.size());
+        const kernel::BvhNode& c = p.nodes[child];
+        for (int j = 0; j < T0_BVH_WIDTH; ++j) {
             const AABB inner = lane_box(c, j);
             REQUIRE((inner.min.x > inner.max.x || contains(box, inner)));
         }
-        depth = std::max(depth, 1 + check_subtree(p, n.child[i], seen));
+        depth = std::max(depth, 1 + check_subtree(p, child, seen));
     }
     // Only a tree that is one leaf has a node with a single child.
-    REQUIRE((used >= 2 || (node == 0 && n.count[0] > 0)));
+    REQUIRE((used >= 2 || (node == 0 && n.count[0][0] > 0)));
     return depth;
 }
 

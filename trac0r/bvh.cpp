@@ -17,12 +17,14 @@ const int bin_count = 16;
 // log2(n) nodes and the kernel's fixed traversal stack always suffices.
 const int sah_depth_limit = 32;
 // Relative costs, for the SAH, of a binary node and of testing a packet of
-// up to four triangles. A binary node is half a 4-wide node, whose four box
-// tests take one vector operation per plane; a packet test takes about as
-// many instructions as two wide nodes (callgrind). So 1 : 4. On
+// up to four triangles: 1 : 4, chosen when nodes were 4-wide (a binary node
+// half a wide node, a packet test about two wide nodes' instructions). On
 // cornell.json, against 1 : 2, it splits pairs of walls that shared a
 // room-sized leaf box: 0.7 fewer packet tests per ray for 0.4 more nodes,
-// and 7 % fewer instructions a ray (README, "Performance").
+// and 7 % fewer instructions a ray (README, "Performance"). With 8-wide
+// nodes (a binary node a third of one), 1 : 6 to 1 : 12 give the same
+// packet tests a bounce ray (1.62 to 1.63) and a few more nodes (2.22 to
+// 2.23 against 2.20), 1 : 2 many more packet tests (2.50): 1 : 4 stays.
 const float traversal_cost = 0.5f;
 const float intersection_cost = 2.0f;
 
@@ -35,7 +37,7 @@ float surface_area(const AABB& b) {
 }
 
 // A node of the binary tree the SAH builds, before it is collapsed into
-// 4-wide nodes: an interior node's children are at first and first + 1,
+// 8-wide nodes: an interior node's children are at first and first + 1,
 // a leaf holds count triangles from first.
 struct BinaryNode {
     AABB bounds;
@@ -205,12 +207,17 @@ class Builder {
     int max_leaf_;
 };
 
-// Collapses the binary tree into 4-wide nodes. Greedy: a wide node starts
+// Lane `lane` of plane `plane` of a node (the layout kernel::node_plane reads).
+void set_node_plane(kernel::BvhNode& n, int plane, int lane, float value) {
+    n.bounds[2 * plane + lane / 4][lane % 4] = value;
+}
+
+// Collapses the binary tree into 8-wide nodes. Greedy: a wide node starts
 // from its binary node and opens the interior lane of largest surface area
-// (the one most rays enter) into its two children until it has four lanes
-// or only leaves. Or by levels: a wide node's lanes are the grandchildren of
-// a binary node (or a child, where that is a leaf), so each wide level takes
-// two binary levels and the depth halves, which bounds it on any input.
+// (the one most rays enter) into its two children until it has eight lanes
+// or only leaves. Or by levels: a wide node's lanes are the binary nodes
+// three levels below one (or above, where a leaf comes first), so each wide
+// level takes three binary levels, which bounds the depth on any input.
 class Collapser {
   public:
     Collapser(const std::vector<BinaryNode>& binary, bool greedy)
@@ -227,9 +234,9 @@ class Collapser {
     // The lanes of the wide node made from binary node b: lanes[0..count).
     int choose_lanes(std::uint32_t b, std::uint32_t* lanes) const {
         int lane_count = 0;
+        lanes[lane_count++] = b;
         if (greedy_) {
-            lanes[lane_count++] = b;
-            while (lane_count < 4) {
+            while (lane_count < T0_BVH_WIDTH) {
                 int widest = -1;
                 float widest_area = -1.0f;
                 for (int i = 0; i < lane_count; ++i) {
@@ -248,16 +255,15 @@ class Collapser {
             }
             return lane_count;
         }
-        if (binary_[b].count > 0) {
-            lanes[lane_count++] = b;  // a tree that is one leaf
-            return lane_count;
-        }
-        for (std::uint32_t c = binary_[b].first; c < binary_[b].first + 2; ++c) {
-            if (binary_[c].count > 0) {
-                lanes[lane_count++] = c;
-            } else {
-                lanes[lane_count++] = binary_[c].first;
-                lanes[lane_count++] = binary_[c].first + 1;
+        // 2^3 = T0_BVH_WIDTH: each round opens every interior lane.
+        for (int level = 0; level < 3; ++level) {
+            const int before = lane_count;
+            for (int i = 0; i < before; ++i) {
+                const BinaryNode& n = binary_[lanes[i]];
+                if (n.count == 0) {
+                    lanes[i] = n.first;
+                    lanes[lane_count++] = n.first + 1;
+                }
             }
         }
         return lane_count;
@@ -266,25 +272,28 @@ class Collapser {
     // Fills wide node `wide` from binary node `b`; returns the depth of the
     // wide subtree, in nodes.
     int fill(std::size_t wide, std::uint32_t b) {
-        std::uint32_t lanes[4];
+        std::uint32_t lanes[T0_BVH_WIDTH];
         const int lane_count = choose_lanes(b, lanes);
         kernel::BvhNode node;
-        for (int axis = 0; axis < 3; ++axis) {
-            node.bounds[2 * axis] = glm::vec4(std::numeric_limits<float>::max());
-            node.bounds[2 * axis + 1] = glm::vec4(-std::numeric_limits<float>::max());
+        for (int plane = 0; plane < 6; ++plane) {
+            // Even planes are minima: +FLT_MAX, and maxima -FLT_MAX, unused.
+            const float unused = plane % 2 == 0 ? std::numeric_limits<float>::max()
+                                                : -std::numeric_limits<float>::max();
+            node.bounds[2 * plane] = glm::vec4(unused);
+            node.bounds[2 * plane + 1] = glm::vec4(unused);
         }
-        node.child = glm::uvec4(0u);
-        node.count = glm::uvec4(0u);
+        node.child[0] = node.child[1] = glm::uvec4(0u);
+        node.count[0] = node.count[1] = glm::uvec4(0u);
         std::vector<std::pair<int, std::uint32_t>> interior;  // (lane, binary node)
         for (int i = 0; i < lane_count; ++i) {
             const BinaryNode& n = binary_[lanes[i]];
             for (int axis = 0; axis < 3; ++axis) {
-                node.bounds[2 * axis][i] = n.bounds.min[axis];
-                node.bounds[2 * axis + 1][i] = n.bounds.max[axis];
+                set_node_plane(node, 2 * axis, i, n.bounds.min[axis]);
+                set_node_plane(node, 2 * axis + 1, i, n.bounds.max[axis]);
             }
             if (n.count > 0) {
-                node.child[i] = T0_BVH_LEAF | static_cast<std::uint32_t>(leaves_.size());
-                node.count[i] = n.count;
+                node.child[i / 4][i % 4] = T0_BVH_LEAF | static_cast<std::uint32_t>(leaves_.size());
+                node.count[i / 4][i % 4] = n.count;
                 leaves_.push_back(BvhLeaf{n.first, n.count});
             } else {
                 interior.emplace_back(i, lanes[i]);
@@ -295,7 +304,8 @@ class Collapser {
         wide_.resize(wide_.size() + interior.size());
         int depth = 1;
         for (std::size_t k = 0; k < interior.size(); ++k) {
-            node.child[interior[k].first] = static_cast<std::uint32_t>(first_child + k);
+            const int i = interior[k].first;
+            node.child[i / 4][i % 4] = static_cast<std::uint32_t>(first_child + k);
             depth = std::max(depth, 1 + fill(first_child + k, interior[k].second));
         }
         wide_[wide] = node;
@@ -326,14 +336,15 @@ Bvh build_bvh(const std::vector<AABB>& triangle_bounds, int max_leaf_size) {
     Bvh bvh;
     const int leaf_size = std::min(std::max(1, max_leaf_size), 4);  // one packet
     const std::vector<BinaryNode> binary = Builder(std::move(items), leaf_size).build(bvh.order);
-    // The traversal stack holds at most three entries per level. A greedy
-    // tree may be as deep as the binary one; where that is too deep, the
-    // collapse by levels halves the depth.
+    // The traversal stack holds at most seven entries per level, and one
+    // more for a moment (kernel/intersect.h). A greedy tree may be as deep
+    // as the binary one; where that is too deep, the collapse by levels
+    // divides the depth by three.
     Collapser(binary, true).collapse(bvh);
-    if (3 * bvh.depth > T0_BVH_STACK_SIZE) {
+    if (7 * bvh.depth + 1 > T0_BVH_STACK_SIZE) {
         Collapser(binary, false).collapse(bvh);
     }
-    if (3 * bvh.depth > T0_BVH_STACK_SIZE) {
+    if (7 * bvh.depth + 1 > T0_BVH_STACK_SIZE) {
         throw std::runtime_error("build_bvh: tree too deep for the traversal stack");
     }
     return bvh;

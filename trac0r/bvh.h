@@ -1,5 +1,5 @@
 // A bounding volume hierarchy over triangles: a binary tree by binned SAH,
-// collapsed into the 4-wide node array both backends traverse
+// collapsed into the 8-wide node array both backends traverse
 // (kernel/intersect.h).
 #ifndef TRAC0R_BVH_H
 #define TRAC0R_BVH_H
@@ -19,7 +19,7 @@ struct BvhLeaf {
 };
 
 struct Bvh {
-    // Node 0 is the root. Each node has up to four children (lanes), each
+    // Node 0 is the root. Each node has up to eight children (lanes), each
     // a node or, with count > 0, leaf `child & ~T0_BVH_LEAF` of `leaves`:
     // see kernel::BvhNode. The packer turns leaf i into TrianglePacket i.
     std::vector<kernel::BvhNode> nodes;

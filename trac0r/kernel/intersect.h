@@ -194,10 +194,15 @@ T0_INLINE float intersect_triangle(T0_GLOBAL const TriangleRecord* tri, Ray ray,
     return t;
 }
 
-// The numbers of a ray that the BVH's vector tests use, each in all four
-// lanes: made once per traversal, not once per node.
+// The numbers of a ray that the BVH's vector tests use, each in every
+// lane: made once per traversal, not once per node. The node test works on
+// eight lanes (a node's children), the packet test on four (its triangles).
 typedef struct RayLanes {
-    t0_lanes origin[3];
+    t0_wide origin[3];
+    t0_wide inv_direction[3];
+    // inv_direction widened by 2 gamma(4), for the far planes (see
+    // child_entries).
+    t0_wide inv_direction_far[3];
     // The origin in the triangle test's axis order (Ray.permuted_origin),
     // read by fixed index. Indexed by the ray's axes at run time, LLVM
     // (PoCL) kept this struct in memory and reached each vector through a
@@ -205,14 +210,10 @@ typedef struct RayLanes {
     // way (two series), the CPU's the same, for three more splats a ray
     // (README).
     t0_lanes permuted_origin[3];
-    t0_lanes inv_direction[3];
-    // inv_direction widened by 2 gamma(4), for the far planes (see
-    // child_entries).
-    t0_lanes inv_direction_far[3];
     t0_lanes shear[3];
     t0_lanes parallel_det;
-    // Per axis, where in a node the bounds vector is that holds the planes
-    // the ray enters (near) and leaves (far) through, as a byte offset (an
+    // Per axis, where in a node the eight lanes of the plane are that the
+    // ray enters (near) and leaves (far) through, as a byte offset (an
     // address, not an index, to compute per node): the minima for a
     // positive direction component, the maxima for a negative one.
     size_t near[3];
@@ -226,15 +227,23 @@ T0_INLINE void splat3(float3 v, t0_lanes* out) {
     out[2] = lanes_splat(v.z);
 }
 
+// Each component of v in all eight lanes: out[0..2].
+T0_INLINE void wide_splat3(float3 v, t0_wide* out) {
+    out[0] = wide_splat(v.x);
+    out[1] = wide_splat(v.y);
+    out[2] = wide_splat(v.z);
+}
+
 T0_INLINE RayLanes make_ray_lanes(Ray ray) {
     RayLanes l;
-    splat3(ray.origin, l.origin);
+    wide_splat3(ray.origin, l.origin);
+    wide_splat3(ray.inv_direction, l.inv_direction);
+    wide_splat3(ray.inv_direction * (1.0f + 2.0f * T0_GAMMA4), l.inv_direction_far);
     splat3(ray.permuted_origin, l.permuted_origin);
-    splat3(ray.inv_direction, l.inv_direction);
-    splat3(ray.inv_direction * (1.0f + 2.0f * T0_GAMMA4), l.inv_direction_far);
     splat3(ray.shear, l.shear);
     l.parallel_det = lanes_splat(ray.parallel_det);
-    const size_t plane = sizeof(float4);  // bounds[2 axis] min, bounds[2 axis + 1] max
+    // Plane p's eight lanes are 2 p float4s into BvhNode.bounds.
+    const size_t plane = 2 * sizeof(float4);
     l.near[0] = ray.inv_direction.x < 0.0f ? 1 * plane : 0 * plane;
     l.near[1] = ray.inv_direction.y < 0.0f ? 3 * plane : 2 * plane;
     l.near[2] = ray.inv_direction.z < 0.0f ? 5 * plane : 4 * plane;
@@ -332,46 +341,54 @@ T0_INLINE Hit traverse_flat(const SceneView* scene, const Ray* ray, float t_max,
     return hit;
 }
 
-// Entries the traversal stack holds: a node pushes at most three children
-// (its nearest is visited next), so 3 x the tree's depth in nodes, which
-// trac0r/bvh.cpp checks (SAH to binary depth 32, then halving, and two
-// binary levels per 4-wide node).
-#define T0_BVH_STACK_SIZE 96
+// Entries the traversal stack holds: a node leaves at most seven children
+// there (its nearest is visited next; all eight may be there for a moment
+// while they are put in order), so 7 x the tree's depth in nodes + 1,
+// which trac0r/bvh.cpp checks (SAH to binary depth 32, then halving, and
+// three binary levels per 8-wide node: at most 21 levels).
+#define T0_BVH_STACK_SIZE 148
 
-// The distances along the ray to the planes of the bounds vector `offset`
-// bytes into n->bounds (four children's planes across `axis`), with inv
-// as the ray's inverse direction there.
-T0_INLINE t0_lanes plane_distances(T0_GLOBAL const BvhNode* n, size_t offset, const RayLanes* l,
-                                   int axis, t0_lanes inv) {
-    T0_GLOBAL const float4* planes =
-        (T0_GLOBAL const float4*)((T0_GLOBAL const char*)n->bounds + offset);
-    return lanes_mul(lanes_sub(lanes_load(planes), l->origin[axis]), inv);
+// Plane p's coordinate of node n's child i (0 to 7): lane i of the plane.
+T0_INLINE float node_plane(T0_GLOBAL const BvhNode* n, int p, int i) {
+    return buffer_component(&n->bounds[2 * p + (i >> 2)], i & 3);
 }
 
-// The ray against the boxes of node n's four children over [0, t_max] (in
-// every lane): bit i of the result is set when it enters child i's box, at
-// entry[i] (the others' entries mean nothing). aabb_entry, four boxes per
-// operation, with one difference: the exits are widened by taking them with
-// inv_direction (1 + 2 gamma(4)), made once per ray, not by multiplying
-// each one by 1 + 2 gamma(3), which is one operation less in the chain
-// from a node's load to the choice of the next. The factor's own rounding
-// makes four in an exit, three in an entry: (1 + u)^3 / (1 - u)^4 < 1 + 8u
-// = 1 + 2 gamma(4) rounded, so an exit is still never below an entry that
-// rounding has moved out (pbrt-v4, Bounds3::IntersectP).
+// Node n's child word i (0 to 7): a node index, or T0_BVH_LEAF | a packet.
+T0_INLINE t0_u32 node_child(T0_GLOBAL const BvhNode* n, int i) {
+    return buffer_uint_component(&n->child[i >> 2], i & 3);
+}
+
+// The distances along the ray to the eight planes `offset` bytes into
+// n->bounds (the children's planes across `axis`), with inv as the ray's
+// inverse direction there.
+T0_INLINE t0_wide plane_distances(T0_GLOBAL const BvhNode* n, size_t offset, const RayLanes* l,
+                                  int axis, t0_wide inv) {
+    T0_GLOBAL const float4* planes =
+        (T0_GLOBAL const float4*)((T0_GLOBAL const char*)n->bounds + offset);
+    return wide_mul(wide_sub(wide_load(planes), l->origin[axis]), inv);
+}
+
+// The ray against the boxes of node n's eight children over [0, t_max]
+// (limit: t_max in every lane): bit i of the result is set when it enters
+// child i's box, at entry[i] (the others' entries mean nothing).
+// aabb_entry, eight boxes per operation, with one difference: the exits are
+// widened by taking them with inv_direction (1 + 2 gamma(4)), made once per
+// ray, not by multiplying each one by 1 + 2 gamma(3), which is one
+// operation less in the chain from a node's load to the choice of the next.
+// The factor's own rounding makes four in an exit, three in an entry:
+// (1 + u)^3 / (1 - u)^4 < 1 + 8u = 1 + 2 gamma(4) rounded, so an exit is
+// still never below an entry that rounding has moved out (pbrt-v4,
+// Bounds3::IntersectP).
 T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const RayLanes* l,
-                            t0_lanes t_max, float* entry) {
+                            float t_max, t0_wide limit, float* entry) {
     if (ray->any_parallel) {
         // aabb_entry's slow path, one lane at a time; unused lanes (their
         // box is inverted) are skipped.
         int mask = 0;
-        for (int i = 0; i < 4; ++i) {
-            const float3 lo = make_float3(buffer_component(&n->bounds[0], i),
-                                          buffer_component(&n->bounds[2], i),
-                                          buffer_component(&n->bounds[4], i));
-            const float3 hi = make_float3(buffer_component(&n->bounds[1], i),
-                                          buffer_component(&n->bounds[3], i),
-                                          buffer_component(&n->bounds[5], i));
-            const float t = lo.x <= hi.x ? aabb_entry(lo, hi, *ray, lanes_first(t_max)) : T0_NO_HIT;
+        for (int i = 0; i < T0_BVH_WIDTH; ++i) {
+            const float3 lo = make_float3(node_plane(n, 0, i), node_plane(n, 2, i), node_plane(n, 4, i));
+            const float3 hi = make_float3(node_plane(n, 1, i), node_plane(n, 3, i), node_plane(n, 5, i));
+            const float t = lo.x <= hi.x ? aabb_entry(lo, hi, *ray, t_max) : T0_NO_HIT;
             entry[i] = t;
             mask |= (t < T0_NO_HIT ? 1 : 0) << i;
         }
@@ -381,35 +398,19 @@ T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const Ra
     // and the maximum for a negative one: for a box, the same floats as the
     // min and max of aabb_entry (rounding is monotonic), and for an unused
     // lane's inverted box an entry beyond the exit.
-    const t0_lanes near_x = plane_distances(n, l->near[0], l, 0, l->inv_direction[0]);
-    const t0_lanes far_x = plane_distances(n, l->far[0], l, 0, l->inv_direction_far[0]);
-    const t0_lanes near_y = plane_distances(n, l->near[1], l, 1, l->inv_direction[1]);
-    const t0_lanes far_y = plane_distances(n, l->far[1], l, 1, l->inv_direction_far[1]);
-    const t0_lanes near_z = plane_distances(n, l->near[2], l, 2, l->inv_direction[2]);
-    const t0_lanes far_z = plane_distances(n, l->far[2], l, 2, l->inv_direction_far[2]);
-    const t0_lanes t_near =
-        lanes_max(lanes_max(near_x, near_y), lanes_max(near_z, lanes_splat(0.0f)));
-    const t0_lanes t_far = lanes_min(lanes_min(far_x, far_y), far_z);
-    const t0_lanes limit = lanes_min(t_far, t_max);
-    lanes_store(t_near, entry);
-    return mask_bits(lanes_le(t_near, limit));
+    const t0_wide near_x = plane_distances(n, l->near[0], l, 0, l->inv_direction[0]);
+    const t0_wide far_x = plane_distances(n, l->far[0], l, 0, l->inv_direction_far[0]);
+    const t0_wide near_y = plane_distances(n, l->near[1], l, 1, l->inv_direction[1]);
+    const t0_wide far_y = plane_distances(n, l->far[1], l, 1, l->inv_direction_far[1]);
+    const t0_wide near_z = plane_distances(n, l->near[2], l, 2, l->inv_direction[2]);
+    const t0_wide far_z = plane_distances(n, l->far[2], l, 2, l->inv_direction_far[2]);
+    const t0_wide t_near = wide_max(wide_max(near_x, near_y), wide_max(near_z, wide_splat(0.0f)));
+    const t0_wide t_far = wide_min(wide_min(far_x, far_y), far_z);
+    wide_store(t_near, entry);
+    return wide_mask_bits(wide_le(t_near, wide_min(t_far, limit)));
 }
 
-// Puts positions i and j of a node's (entry, lane) list in order of entry;
-// selects, not branches.
-T0_INLINE void order_lanes(float* entry, int* lane, int i, int j) {
-    const float ei = entry[i];
-    const float ej = entry[j];
-    const int li = lane[i];
-    const int lj = lane[j];
-    const int swap = ej < ei;
-    entry[i] = swap ? ej : ei;
-    entry[j] = swap ? ei : ej;
-    lane[i] = swap ? lj : li;
-    lane[j] = swap ? li : lj;
-}
-
-// Nearest hit below t_max through the 4-wide BVH; with any_hit, stops at
+// Nearest hit below t_max through the 8-wide BVH; with any_hit, stops at
 // the first hit (shadow rays). Of a node's children that the ray enters,
 // the nearest is visited next and the others wait on the stack with their
 // entry distances, farthest at the bottom; one is skipped if a hit has come
@@ -424,7 +425,8 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
     float stack_entry[T0_BVH_STACK_SIZE];
     int top = 0;
     const RayLanes lanes = make_ray_lanes(*ray);
-    t0_lanes limit = lanes_splat(t_max);  // hit.t in every lane
+    t0_lanes limit = lanes_splat(t_max);     // hit.t in every lane of a packet
+    t0_wide node_limit = wide_splat(t_max);  // and of a node
     t0_u32 child = 0u;  // what is visited: node 0, the root, or a leaf (T0_BVH_LEAF)
     for (;;) {
         if ((child & T0_BVH_LEAF) != 0u) {
@@ -450,17 +452,18 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
                     return hit;
                 }
                 limit = lanes_splat(hit.t);
+                node_limit = wide_splat(hit.t);
             }
         } else {
             T0_GLOBAL const BvhNode* n = &scene->nodes[child];
-            float entry[4];
-            const int mask = child_entries(n, ray, &lanes, limit, entry);
+            float entry[T0_BVH_WIDTH];
+            const int mask = child_entries(n, ray, &lanes, hit.t, node_limit, entry);
             if (mask != 0) {
                 const int first = lowest_set_bit(mask);
                 const int rest = mask & (mask - 1);
                 if (rest == 0) {
                     // One child entered (most nodes): no sort.
-                    child = buffer_uint_component(&n->child, first);
+                    child = node_child(n, first);
                     continue;
                 }
                 if ((rest & (rest - 1)) == 0) {
@@ -469,31 +472,31 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
                     const int first_nearer = entry[first] <= entry[second];
                     const int near = first_nearer ? first : second;
                     const int far = first_nearer ? second : first;
-                    stack_child[top] = buffer_uint_component(&n->child, far);
+                    stack_child[top] = node_child(n, far);
                     stack_entry[top] = entry[far];
                     ++top;
-                    child = buffer_uint_component(&n->child, near);
+                    child = node_child(n, near);
                     continue;
                 }
-                // Three or four: a sorting network puts the entered
-                // children nearest first, then the one left out (at
-                // infinity).
-                if (mask != 15) {
-                    entry[lowest_set_bit(~mask & 15)] = T0_INFINITY;
-                }
-                int lane[4] = {0, 1, 2, 3};
-                order_lanes(entry, lane, 0, 1);
-                order_lanes(entry, lane, 2, 3);
-                order_lanes(entry, lane, 0, 2);
-                order_lanes(entry, lane, 1, 3);
-                order_lanes(entry, lane, 1, 2);
-                const int entered = mask == 15 ? 4 : 3;
-                for (int i = entered - 1; i > 0; --i) {
-                    stack_child[top] = buffer_uint_component(&n->child, lane[i]);
-                    stack_entry[top] = entry[i];
+                // Three or more: each is inserted into the stack above the
+                // ones farther than it, so the nearest ends on top, and is
+                // visited next.
+                const int bottom = top;
+                for (int m = mask; m != 0; m &= m - 1) {
+                    const int i = lowest_set_bit(m);
+                    const float e = entry[i];
+                    int k = top;
+                    while (k > bottom && stack_entry[k - 1] < e) {
+                        stack_entry[k] = stack_entry[k - 1];
+                        stack_child[k] = stack_child[k - 1];
+                        --k;
+                    }
+                    stack_entry[k] = e;
+                    stack_child[k] = node_child(n, i);
                     ++top;
                 }
-                child = buffer_uint_component(&n->child, lane[0]);
+                --top;
+                child = stack_child[top];
                 continue;
             }
         }

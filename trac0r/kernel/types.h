@@ -63,18 +63,21 @@ typedef struct T0_ALIGN16 ShapeRecord {
     uint4 range;      // x: first triangle, y: triangle count, z: material
 } ShapeRecord;
 
-// A node of the 4-wide BVH (trac0r/bvh.h): the boxes of its (up to) four
-// children (nodes, or leaves of one TrianglePacket each) side by side,
-// lane i of each vector for child i, so that one vector operation per
-// plane tests all four boxes. bounds[2 axis] holds the
-// minima on an axis, bounds[2 axis + 1] the maxima. An unused lane has the
-// empty box min = +FLT_MAX, max = -FLT_MAX, which no ray enters.
+// A node of the 8-wide BVH (trac0r/bvh.h): the boxes of its (up to) eight
+// children (nodes, or leaves of one TrianglePacket each) side by side, so
+// that one eight-lane operation per plane tests all eight boxes (t0_wide:
+// AVX on PoCL, two SSE vectors on the CPU). Plane p (0 min x, 1 max x,
+// 2 min y, 3 max y, 4 min z, 5 max z) holds child i's coordinate in lane
+// i % 4 of bounds[2 p + i / 4]; child i's word is lane i % 4 of
+// child[i / 4]. An unused lane has the empty box min = +FLT_MAX,
+// max = -FLT_MAX, which no ray enters.
+#define T0_BVH_WIDTH 8
 typedef struct T0_ALIGN16 BvhNode {
-    float4 bounds[6];  // min x, max x, min y, max y, min z, max z
-    uint4 child;       // per lane: a node index, or T0_BVH_LEAF | a packet index
-    uint4 count;       // per lane: the leaf's triangle count; 0: a node (or unused).
-                       // No kernel reads it (T0_BVH_LEAF says leaf); test_bvh checks
-                       // packets against it, and it keeps a node at two cache lines.
+    float4 bounds[12];
+    uint4 child[2];  // per lane: a node index, or T0_BVH_LEAF | a packet index
+    uint4 count[2];  // per lane: the leaf's triangle count; 0: a node (or unused).
+                     // No kernel reads it (T0_BVH_LEAF says leaf); test_bvh checks
+                     // packets against it, and it keeps a node at four cache lines.
 } BvhNode;
 
 // In BvhNode.child, the lane is a leaf: the traversal reads one word a
@@ -145,7 +148,7 @@ T0_NAMESPACE_BEGIN
 T0_STATIC_ASSERT_SIZE(TriangleRecord, 80);
 T0_STATIC_ASSERT_SIZE(ShapeRecord, 48);
 T0_STATIC_ASSERT_SIZE(MaterialRecord, 48);
-T0_STATIC_ASSERT_SIZE(BvhNode, 128);
+T0_STATIC_ASSERT_SIZE(BvhNode, 256);
 T0_STATIC_ASSERT_SIZE(TrianglePacket, 176);
 T0_STATIC_ASSERT_SIZE(LightRecord, 32);
 T0_STATIC_ASSERT_SIZE(CameraRecord, 96);
