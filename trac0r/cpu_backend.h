@@ -12,7 +12,6 @@ class CpuBackend : public Backend {
     explicit CpuBackend(int threads = 0);
     std::string name() const override { return "cpu"; }
     std::string device() const override;
-    std::size_t auto_bvh_min_triangles() const override { return cpu_auto_bvh_min_triangles; }
     void set_scene(const PackedScene& scene) override;
     void reset(int width, int height) override;
     void render_frame(const kernel::CameraRecord& camera, std::uint64_t seed, std::uint32_t frame,

@@ -20,13 +20,12 @@ enum class Accel {
 
 // Below how many triangles `automatic` keeps the flat list, where it is
 // faster: measured by benchmarks/accel_crossover.cpp (README,
-// "Performance"). On PoCL the two are level between 12 and 24 triangles
-// (0.97 to 1.04) and the BVH is faster from 24; on the CPU backend it is
-// faster from the smallest scene measured (12 triangles) on.
-// Backend::auto_bvh_min_triangles gives each backend's; a packer that
-// knows no backend uses the larger.
-const std::size_t auto_bvh_min_triangles = 24;
-const std::size_t cpu_auto_bvh_min_triangles = 12;
+// "Performance"). With 8-wide BVH nodes the BVH is as fast or faster from
+// the smallest scene measured (12 triangles: 1.02 to 1.22 times the flat
+// list's paths per second on the CPU backend, 1.04 to 1.05 on PoCL, three
+// runs) on both backends; with 4-wide nodes PoCL's crossover was at 24.
+// Backend::auto_bvh_min_triangles lets a backend have its own.
+const std::size_t auto_bvh_min_triangles = 12;
 
 enum class Integrator {
     naive,  // the thesis' algorithm: emission is found by scattering alone
