@@ -2,6 +2,7 @@
 // offset that keeps a new ray off the surface it leaves.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <random>
 
 #include "trac0r/kernel/intersect.h"
 #include "trac0r/kernel/rng.h"
@@ -348,5 +349,39 @@ TEST_CASE("offset hit points leave the exact plane of their triangle", "[kernel]
         }
         CHECK(hits > 15000);
         CHECK(wrong_side == 0);
+    }
+}
+
+TEST_CASE("exact edge functions: the exact sign, the same in doubles and in floats, and "
+          "exact negatives when the vertices swap",
+          "[kernel][intersect]") {
+    // Nearly parallel p and q, whose float products round to equal floats
+    // about half the time, at scales where the float version is exact.
+    std::mt19937 rng(2);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const float scales[] = {1e-9f, 1e-3f, 1.0f, 1e4f, 1e9f};
+    for (float scale : scales) {
+        CAPTURE(scale);
+        int rounded_to_zero = 0;
+        for (int i = 0; i < 100000; ++i) {
+            const float px = scale * u(rng);
+            const float py = scale * u(rng);
+            const float k = 1.0f + 1e-6f * u(rng);
+            const float qx = std::nextafter(px * k, px * 2.0f * u(rng));
+            const float qy = py * k;
+            const double exact = static_cast<double>(px) * qy - static_cast<double>(py) * qx;
+            const int sign = (exact > 0.0) - (exact < 0.0);
+            rounded_to_zero += px * qy - py * qx == 0.0f;
+            const float d = exact_edge_double(px, py, qx, qy);
+            const float f = exact_edge_float(px, py, qx, qy);
+            REQUIRE(((d > 0.0f) - (d < 0.0f)) == sign);
+            REQUIRE(((f > 0.0f) - (f < 0.0f)) == sign);
+            REQUIRE(exact_edge_double(qx, qy, px, py) == -d);
+            REQUIRE(exact_edge_float(qx, qy, px, py) == -f);
+        }
+        CHECK(rounded_to_zero > 1000);
+        // In line: exactly 0, both ways.
+        REQUIRE(exact_edge_double(scale, 2.0f * scale, 3.0f * scale, 6.0f * scale) == 0.0f);
+        REQUIRE(exact_edge_float(scale, 2.0f * scale, 3.0f * scale, 6.0f * scale) == 0.0f);
     }
 }

@@ -466,6 +466,103 @@ TEST_CASE("needle-thin triangles: finite unit normals, hits only inside, with va
     }
 }
 
+TEST_CASE("a triangle far smaller than its distance from the ray is hit only where the ray "
+          "passes it",
+          "[stability][intersect]") {
+    // Seen from 1 to 2 units away, a triangle of 1e-7 to 1e-5 units is a
+    // few floats wide in the ray's frame: its edge functions are products
+    // that round to equal floats. Two of three rounded to 0 counted as a
+    // hit, up to a unit away from the triangle (before the exact
+    // recomputation of zeros in intersect_triangle).
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const float sizes[] = {1e-7f, 1e-6f, 1e-5f};
+    for (float size : sizes) {
+        CAPTURE(size);
+        int near = 0;
+        int false_hits = 0;
+        for (int i = 0; i < 200000; ++i) {
+            const glm::vec3 c(u(rng), u(rng), u(rng));
+            const kernel::TriangleRecord record =
+                pack(Triangle(c, c + size * glm::vec3(u(rng), u(rng), u(rng)),
+                              c + size * glm::vec3(u(rng), u(rng), u(rng))));
+            if (!(record.normal.w > 0.0f)) {
+                continue;
+            }
+            const glm::vec3 origin = c + glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.0f, 0.0f, 1.0f);
+            const glm::vec3 direction = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)));
+            // The ray's distance from c, in doubles.
+            const glm::dvec3 to_c = glm::dvec3(c) - glm::dvec3(origin);
+            const glm::dvec3 d(direction);
+            const double along = glm::dot(to_c, d);
+            const double miss = glm::length(to_c - along * d);
+            float hit_u = 0.0f;
+            float hit_v = 0.0f;
+            const float t = kernel::intersect_triangle(&record, kernel::make_ray(origin, direction),
+                                                       &hit_u, &hit_v);
+            if (miss < 1e3 * size && along > 0.0) {
+                ++near;  // may be hit: not checked
+                continue;
+            }
+            false_hits += t != T0_NO_HIT;
+        }
+        CHECK(false_hits == 0);
+        CHECK(near < 100);
+    }
+}
+
+// A cloud of 2,000 emitting triangles of 1e-7 in a cube of side 2, one
+// shape (so the flat list tests every one for each ray through the cube),
+// seen from 2 units away: no camera ray passes within 1e-4 of one (the
+// chance is below 1e-3 for the whole image), so the image is black.
+Scene tiny_emitters() {
+    Scene scene;
+    scene.materials.push_back(make_material(MaterialType::emissive, glm::vec3(1.0f), 1.0f));
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    Shape shape;
+    for (int i = 0; i < 2000; ++i) {
+        const glm::vec3 c(u(rng), u(rng), u(rng));
+        shape.triangles.emplace_back(c, c + 1e-7f * glm::vec3(u(rng), u(rng), u(rng)),
+                                     c + 1e-7f * glm::vec3(u(rng), u(rng), u(rng)));
+        shape.aabb.extend(shape.triangles.back().bounds());
+    }
+    scene.shapes.push_back(shape);
+    scene.camera.position = glm::vec3(0.2f, 0.3f, -3.0f);
+    scene.camera.direction = glm::vec3(0.0f, 0.0f, 1.0f);
+    scene.camera.vertical_fov = 50.0f;
+    scene.render.width = 24;
+    scene.render.height = 24;
+    scene.render.max_depth = 2;
+    return scene;
+}
+
+TEST_CASE("emitters far smaller than their distance from the camera are not seen where no ray "
+          "passes them, on both backends",
+          "[stability][intersect][opencl]") {
+    // Before the exact check of zero edge functions, hundreds of pixels
+    // were lit by hits a unit away from any emitter.
+    const Scene scene = tiny_emitters();
+    const Accel structures[] = {Accel::flat, Accel::bvh};
+    for (Accel accel : structures) {
+        CAPTURE(accel == Accel::bvh);
+        Renderer on_cpu(scene, cpu(), 3, with(accel));
+        Renderer on_opencl(scene, std::make_unique<OpenClBackend>(0), 3, with(accel));
+        for (int frame = 0; frame < 4; ++frame) {
+            on_cpu.render_frame();
+            on_opencl.render_frame();
+        }
+        int lit_cpu = 0;
+        int lit_opencl = 0;
+        for (std::size_t i = 0; i < on_cpu.image().pixels.size(); ++i) {
+            lit_cpu += on_cpu.image().pixels[i] != glm::vec3(0.0f);
+            lit_opencl += on_opencl.image().pixels[i] != glm::vec3(0.0f);
+        }
+        CHECK(lit_cpu == 0);
+        CHECK(lit_opencl == 0);
+    }
+}
+
 // ============================================================================
 // Scale
 // ============================================================================
