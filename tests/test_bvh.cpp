@@ -38,6 +38,38 @@ Scene triangle_soup(int count, unsigned seed) {
     return scene;
 }
 
+// A scene the greedy collapse makes too deep: `levels` clusters of 32
+// small triangles, each a quarter the size of the one before and beside
+// the rest of the scene, which lies in the corner at the origin. The SAH
+// splits a cluster from the rest at each level, and the cluster's subtree
+// is larger than the rest, so the greedy collapse spends a wide node's
+// lanes on the cluster and goes down the spine one binary level per node
+// (its depth is levels + 1). At 24 levels the smallest clusters are 1e-14
+// of the scene, far below the scales STABILITY.md covers: rays meet them
+// only on their way to the larger ones.
+Scene nested_clusters(int levels) {
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    Shape shape;
+    float s = 1.0f;
+    for (int k = 0; k < levels; ++k, s *= 0.25f) {
+        for (int i = 0; i < 32; ++i) {
+            // Centroids in x from s/2 to s, y and z from 0 to s.
+            const glm::vec3 c = s * glm::vec3(0.5f + 0.45f * u(rng), 0.95f * u(rng), 0.95f * u(rng));
+            const float size = 0.05f * s;
+            shape.triangles.emplace_back(c, c + size * glm::vec3(u(rng), u(rng), 0.0f),
+                                         c + size * glm::vec3(0.0f, u(rng), u(rng)));
+            shape.aabb.extend(shape.triangles.back().bounds());
+        }
+    }
+    Scene scene;
+    Material m;
+    m.type = MaterialType::diffuse;
+    scene.materials.push_back(m);
+    scene.shapes.push_back(shape);
+    return scene;
+}
+
 // Lane i of a node: its box, empty (inverted) for an unused lane.
 AABB lane_box(const kernel::BvhNode& n, int i) {
     AABB box;
@@ -133,53 +165,15 @@ PackOptions with(Accel accel) {
     return o;
 }
 
-}  // namespace
-
-TEST_CASE("the BVH is a valid tree over every triangle", "[bvh]") {
-    for (int count : {1, 2, 5, 100, 5000}) {
-        CAPTURE(count);
-        const PackedScene p = pack_scene(triangle_soup(count, 3), with(Accel::bvh));
-        REQUIRE(p.features & T0_FEATURE_BVH);
-        REQUIRE(p.shapes.empty());
-        check_tree(p);
-    }
-    check_tree(pack_scene(builtin_scene(), with(Accel::bvh)));
-}
-
-TEST_CASE("a BVH over coincident triangles stays shallow", "[bvh]") {
-    // All centroids equal: no SAH split exists, the builder must halve.
-    Scene scene = triangle_soup(1, 1);
-    const Triangle t = scene.shapes[0].triangles[0];
-    scene.shapes[0].triangles.assign(20000, t);
-    const PackedScene p = pack_scene(scene, with(Accel::bvh));
-    check_tree(p);
-}
-
-TEST_CASE("BVH traversal finds the same nearest hit as testing every triangle", "[bvh]") {
-    const Scene scene = triangle_soup(2000, 9);
+// Traces `rays` through the BVH and the flat list of `scene`: the same
+// nearest hits and shadow-ray answers. Returns how many rays hit.
+int same_hits(const Scene& scene, const std::vector<kernel::Ray>& rays) {
     const PackedScene bvh = pack_scene(scene, with(Accel::bvh));
     const PackedScene flat = pack_scene(scene, with(Accel::flat));
     const kernel::SceneView bvh_view = bvh.view();
     const kernel::SceneView flat_view = flat.view();
-    std::mt19937 rng(5);
-    std::uniform_real_distribution<float> u(-1.5f, 1.5f);
     int hits = 0;
-    for (int i = 0; i < 20000; ++i) {
-        const glm::vec3 origin(u(rng), u(rng), u(rng));
-        glm::vec3 direction = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)));
-        // One ray in four parallel to one or two axes: the node test's
-        // per-lane path for zero direction components.
-        if (i % 4 == 0) {
-            direction[i % 3] = 0.0f;
-            if (i % 8 == 0) {
-                direction[(i + 1) % 3] = 0.0f;
-            }
-            if (glm::length(direction) == 0.0f) {
-                direction[(i + 2) % 3] = 1.0f;
-            }
-            direction = glm::normalize(direction);
-        }
-        const kernel::Ray ray = kernel::make_ray(origin, direction);
+    for (const kernel::Ray& ray : rays) {
         const kernel::Hit a = kernel::traverse_bvh(&bvh_view, &ray, T0_NO_HIT, 0);
         const kernel::Hit b = kernel::traverse_flat(&flat_view, &ray, T0_NO_HIT, 0);
         REQUIRE((a.triangle >= 0) == (b.triangle >= 0));
@@ -202,7 +196,85 @@ TEST_CASE("BVH traversal finds the same nearest hit as testing every triangle", 
                 kernel::occluded(&flat_view, &ray, limit));
         REQUIRE(kernel::occluded(&bvh_view, &ray, limit) == (b.triangle >= 0 && b.t < limit));
     }
-    REQUIRE(hits > 1000);  // the rays do meet the soup
+    return hits;
+}
+
+}  // namespace
+
+TEST_CASE("the BVH is a valid tree over every triangle", "[bvh]") {
+    for (int count : {1, 2, 5, 100, 5000}) {
+        CAPTURE(count);
+        const PackedScene p = pack_scene(triangle_soup(count, 3), with(Accel::bvh));
+        REQUIRE(p.features & T0_FEATURE_BVH);
+        REQUIRE(p.shapes.empty());
+        check_tree(p);
+    }
+    check_tree(pack_scene(builtin_scene(), with(Accel::bvh)));
+}
+
+TEST_CASE("a BVH over coincident triangles stays shallow", "[bvh]") {
+    // All centroids equal: no SAH split exists, the builder must halve.
+    Scene scene = triangle_soup(1, 1);
+    const Triangle t = scene.shapes[0].triangles[0];
+    scene.shapes[0].triangles.assign(20000, t);
+    const PackedScene p = pack_scene(scene, with(Accel::bvh));
+    check_tree(p);
+}
+
+TEST_CASE("a BVH the greedy collapse makes too deep is collapsed by levels", "[bvh]") {
+    const Scene scene = nested_clusters(24);
+    const PackedScene p = pack_scene(scene, with(Accel::bvh));
+    CAPTURE(p.bvh_depth);
+    REQUIRE(p.bvh_by_levels);
+    check_tree(p);
+    REQUIRE(7 * p.bvh_depth + 1 <= T0_BVH_STACK_SIZE);
+    // Twelve levels: the greedy collapse is shallow enough, and is kept.
+    REQUIRE_FALSE(pack_scene(nested_clusters(12), with(Accel::bvh)).bvh_by_levels);
+}
+
+TEST_CASE("BVH traversal finds the same nearest hit as testing every triangle", "[bvh]") {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-1.5f, 1.5f);
+    std::vector<kernel::Ray> rays;
+    for (int i = 0; i < 20000; ++i) {
+        const glm::vec3 origin(u(rng), u(rng), u(rng));
+        glm::vec3 direction = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)));
+        // One ray in four parallel to one or two axes: the node test's
+        // per-lane path for zero direction components.
+        if (i % 4 == 0) {
+            direction[i % 3] = 0.0f;
+            if (i % 8 == 0) {
+                direction[(i + 1) % 3] = 0.0f;
+            }
+            if (glm::length(direction) == 0.0f) {
+                direction[(i + 2) % 3] = 1.0f;
+            }
+            direction = glm::normalize(direction);
+        }
+        rays.push_back(kernel::make_ray(origin, direction));
+    }
+    REQUIRE(same_hits(triangle_soup(2000, 9), rays) > 1000);  // the rays do meet the soup
+}
+
+TEST_CASE("traversal of a BVH collapsed by levels finds the same hits", "[bvh]") {
+    // Rays towards a point of a triangle of the eight largest clusters
+    // (down to 6e-5 of the scene: the scales STABILITY.md covers), from
+    // twice its distance to the corner away, through the smaller clusters.
+    const Scene scene = nested_clusters(24);
+    const std::vector<Triangle>& triangles = scene.shapes[0].triangles;
+    std::mt19937 rng(6);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    std::vector<kernel::Ray> rays;
+    for (int i = 0; i < 20000; ++i) {
+        const Triangle& t = triangles[static_cast<std::size_t>(i * 7919) % (32 * 8)];  // clusters 0 to 7
+        const float b1 = u(rng);
+        const float b2 = (1.0f - b1) * u(rng);
+        const glm::vec3 target = t.v0 + b1 * (t.v1 - t.v0) + b2 * (t.v2 - t.v0);
+        const glm::vec3 direction =
+            glm::normalize(glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f));
+        rays.push_back(kernel::make_ray(target - 2.0f * glm::length(target) * direction, direction));
+    }
+    REQUIRE(same_hits(scene, rays) > 15000);
 }
 
 TEST_CASE("flat and BVH renders of the Cornell box are the same image", "[bvh][render]") {

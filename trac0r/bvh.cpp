@@ -343,6 +343,7 @@ Bvh build_bvh(const std::vector<AABB>& triangle_bounds, int max_leaf_size) {
     Collapser(binary, true).collapse(bvh);
     if (7 * bvh.depth + 1 > T0_BVH_STACK_SIZE) {
         Collapser(binary, false).collapse(bvh);
+        bvh.by_levels = true;
     }
     if (7 * bvh.depth + 1 > T0_BVH_STACK_SIZE) {
         throw std::runtime_error("build_bvh: tree too deep for the traversal stack");

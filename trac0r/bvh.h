@@ -27,6 +27,9 @@ struct Bvh {
     // order[i]: which input triangle is the i-th in leaf order.
     std::vector<std::uint32_t> order;
     int depth = 0;  // longest path from the root to a node with only leaves, in nodes
+    // Collapsed by levels (three binary levels per node) because the greedy
+    // collapse was too deep for the traversal stack (bvh.cpp).
+    bool by_levels = false;
 };
 
 // Binned SAH (16 bins per axis) in O(n log n). At most `max_leaf_size`

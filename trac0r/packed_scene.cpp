@@ -112,6 +112,7 @@ std::vector<std::uint32_t> pack_bvh(const std::vector<UsableTriangle>& usable,
     Bvh bvh = build_bvh(bounds);
     packed.nodes = std::move(bvh.nodes);
     packed.bvh_depth = bvh.depth;
+    packed.bvh_by_levels = bvh.by_levels;
     packed.triangles.reserve(usable.size());
     for (std::uint32_t index : bvh.order) {
         const UsableTriangle& u = usable[index];

@@ -47,6 +47,7 @@ struct PackedScene {
     std::vector<kernel::BvhNode> nodes;             // empty with the flat structure
     std::vector<kernel::TrianglePacket> packets;    // the BVH's leaves (empty without)
     int bvh_depth = 0;
+    bool bvh_by_levels = false;  // see Bvh::by_levels
     std::vector<kernel::MaterialRecord> materials;
     // Every emitting triangle with its power CDF (built for both
     // integrators; only NEE reads it).

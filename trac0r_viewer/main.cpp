@@ -79,8 +79,9 @@ void print_verbose(trac0r::Renderer& r, const Options& o) {
         std::fprintf(stderr, "acceleration: flat list of %zu shapes (--accel %s)\n",
                      p.shapes.size(), o.accel.c_str());
     } else {
-        std::fprintf(stderr, "acceleration: BVH of %zu nodes, depth %d (--accel %s)\n",
-                     p.nodes.size(), p.bvh_depth, o.accel.c_str());
+        std::fprintf(stderr, "acceleration: BVH of %zu nodes, depth %d%s (--accel %s)\n",
+                     p.nodes.size(), p.bvh_depth,
+                     p.bvh_by_levels ? ", collapsed by levels" : "", o.accel.c_str());
     }
     std::fprintf(stderr, "backend: %s (%s)\n", r.backend().name().c_str(),
                  r.backend().device().c_str());
