@@ -15,11 +15,8 @@
 
 #include "trac0r/scene_loader.h"
 
-#include <time.h>
-
 #include <algorithm>
 #include <cstdio>
-#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
@@ -29,182 +26,159 @@ using namespace trac0r::kernel;
 
 namespace {
 
-const char *const usage =
+const char* const usage =
     "Usage: bench_ray_order [SCENE.json] [--size W H] [--passes N]\n"
     "\n"
     "Casts the primary and diffuse-bounce rays of SCENE (default\n"
     "scenes/cornell.json) at W x H (default 800 x 600) through its BVH on one\n"
-    "thread, in pixel order, shuffled, sorted by direction octant (within "
-    "runs\n"
-    "of 64 rays, as a tile's paths, and over the whole set), and each ray "
-    "twice\n"
+    "thread, in pixel order, shuffled, sorted by direction octant (within runs\n"
+    "of 64 rays, as a tile's paths, and over the whole set), and each ray twice\n"
     "in a row; prints a ray's time, the median of N passes (default 7).\n";
 
 struct Options {
-  std::string scene = "scenes/cornell.json";
-  int width = 800;
-  int height = 600;
-  int passes = 7;
+    std::string scene = "scenes/cornell.json";
+    int width = 800;
+    int height = 600;
+    int passes = 7;
 };
 
 // false for --help.
-bool parse(int argc, char **argv, Options &o) {
-  bool have_scene = false;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&](const std::string &flag) {
-      if (i + 1 >= argc) {
-        throw trac0r_bench::UsageError(flag + ": expected a value");
-      }
-      return std::string(argv[++i]);
-    };
-    if (a == "-h" || a == "--help") {
-      return false;
-    } else if (a == "--size") {
-      o.width = static_cast<int>(
-          trac0r_bench::parse_long("--size", value("--size"), 1, 16384));
-      o.height = static_cast<int>(
-          trac0r_bench::parse_long("--size", value("--size"), 1, 16384));
-    } else if (a == "--passes") {
-      o.passes = static_cast<int>(
-          trac0r_bench::parse_long("--passes", value("--passes"), 1, 1000));
-    } else if (!a.empty() && a[0] != '-' && !have_scene) {
-      o.scene = a;
-      have_scene = true;
-    } else {
-      throw trac0r_bench::UsageError("unexpected argument '" + a +
-                                     "' (see --help)");
+bool parse(int argc, char** argv, Options& o) {
+    bool have_scene = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&](const std::string& flag) {
+            if (i + 1 >= argc) {
+                throw trac0r_bench::UsageError(flag + ": expected a value");
+            }
+            return std::string(argv[++i]);
+        };
+        if (a == "-h" || a == "--help") {
+            return false;
+        } else if (a == "--size") {
+            o.width =
+                static_cast<int>(trac0r_bench::parse_long("--size", value("--size"), 1, 16384));
+            o.height =
+                static_cast<int>(trac0r_bench::parse_long("--size", value("--size"), 1, 16384));
+        } else if (a == "--passes") {
+            o.passes =
+                static_cast<int>(trac0r_bench::parse_long("--passes", value("--passes"), 1, 1000));
+        } else if (!a.empty() && a[0] != '-' && !have_scene) {
+            o.scene = a;
+            have_scene = true;
+        } else {
+            throw trac0r_bench::UsageError("unexpected argument '" + a + "' (see --help)");
+        }
     }
-  }
-  return true;
+    return true;
 }
 
-// Seconds of CPU time of the calling thread (the casts run on one thread;
-// OpenMP's idle workers must not count).
-double thread_cpu_seconds() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+int octant(const Ray& r) {
+    return (r.direction.x < 0.0f ? 1 : 0) | (r.direction.y < 0.0f ? 2 : 0) |
+           (r.direction.z < 0.0f ? 4 : 0);
 }
 
-int octant(const Ray &r) {
-  return (r.direction.x < 0.0f ? 1 : 0) | (r.direction.y < 0.0f ? 2 : 0) |
-         (r.direction.z < 0.0f ? 4 : 0);
-}
-
-void sort_by_octant(std::vector<Ray>::iterator begin,
-                    std::vector<Ray>::iterator end) {
-  std::stable_sort(begin, end, [](const Ray &a, const Ray &b) {
-    return octant(a) < octant(b);
-  });
+void sort_by_octant(std::vector<Ray>::iterator begin, std::vector<Ray>::iterator end) {
+    std::stable_sort(begin, end, [](const Ray& a, const Ray& b) { return octant(a) < octant(b); });
 }
 
 struct Cast {
-  double seconds_per_ray;
-  long checksum; // sum of the triangles hit (-1 for a miss): the same in every
-                 // order
+    double seconds_per_ray;
+    long checksum;  // sum of the triangles hit (-1 a miss): the same in every order
 };
 
 // The median over passes of one pass's thread CPU time per ray, each ray
 // cast `repeats` times in a row.
-Cast cast(const SceneView &scene, const std::vector<Ray> &rays, int passes,
-          int repeats) {
-  std::vector<double> seconds;
-  long checksum = 0;
-  for (int pass = 0; pass <= passes; ++pass) { // pass 0: warm-up
-    long sum = 0;
-    const double start = thread_cpu_seconds();
-    for (const Ray &ray : rays) {
-      for (int r = 0; r < repeats; ++r) {
-        sum += intersect_scene(&scene, &ray).triangle;
-      }
+Cast cast(const SceneView& scene, const std::vector<Ray>& rays, int passes, int repeats) {
+    std::vector<double> seconds;
+    long checksum = 0;
+    for (int pass = 0; pass <= passes; ++pass) {  // pass 0: warm-up
+        long sum = 0;
+        const double start = trac0r_bench::thread_cpu_seconds();
+        for (const Ray& ray : rays) {
+            for (int r = 0; r < repeats; ++r) {
+                sum += intersect_scene(&scene, &ray).triangle;
+            }
+        }
+        const double elapsed = trac0r_bench::thread_cpu_seconds() - start;
+        if (pass > 0) {
+            seconds.push_back(elapsed / static_cast<double>(rays.size()));
+        }
+        checksum = sum / repeats;
     }
-    const double elapsed = thread_cpu_seconds() - start;
-    if (pass > 0) {
-      seconds.push_back(elapsed / static_cast<double>(rays.size()));
-    }
-    checksum = sum / repeats;
-  }
-  std::sort(seconds.begin(), seconds.end());
-  return Cast{seconds[seconds.size() / 2], checksum};
+    std::sort(seconds.begin(), seconds.end());
+    return Cast{seconds[seconds.size() / 2], checksum};
 }
 
-void report(const char *set, const SceneView &scene,
-            const std::vector<Ray> &pixel_order, int passes) {
-  std::vector<Ray> shuffled = pixel_order;
-  std::mt19937 engine(1);
-  std::shuffle(shuffled.begin(), shuffled.end(), engine);
-  std::vector<Ray> tiles = pixel_order;
-  for (std::size_t i = 0; i < tiles.size(); i += 64) {
-    sort_by_octant(tiles.begin() + static_cast<long>(i),
-                   tiles.begin() +
-                       static_cast<long>(std::min(tiles.size(), i + 64)));
-  }
-  std::vector<Ray> sorted = pixel_order;
-  sort_by_octant(sorted.begin(), sorted.end());
-
-  const Cast base = cast(scene, pixel_order, passes, 1);
-  auto row = [&](const char *order, const Cast &c) {
-    if (c.checksum != base.checksum) {
-      throw std::runtime_error(std::string(set) + ", " + order +
-                               ": other hits than in pixel order");
+void report(const char* set, const SceneView& scene, const std::vector<Ray>& pixel_order,
+            int passes) {
+    std::vector<Ray> shuffled = pixel_order;
+    std::mt19937 engine(1);
+    std::shuffle(shuffled.begin(), shuffled.end(), engine);
+    std::vector<Ray> tiles = pixel_order;
+    for (std::size_t i = 0; i < tiles.size(); i += 64) {
+        sort_by_octant(tiles.begin() + static_cast<long>(i),
+                       tiles.begin() + static_cast<long>(std::min(tiles.size(), i + 64)));
     }
-    std::printf("| %s | %s | %.1f | %.3f |\n", set, order,
-                1e9 * c.seconds_per_ray,
-                c.seconds_per_ray / base.seconds_per_ray);
-  };
-  row("pixel order", base);
-  row("shuffled", cast(scene, shuffled, passes, 1));
-  row("by octant, within runs of 64", cast(scene, tiles, passes, 1));
-  row("by octant, whole set", cast(scene, sorted, passes, 1));
-  // Twice in a row: the second cast's time is what the two take less the
-  // time of one.
-  const Cast twice = cast(scene, pixel_order, passes, 2);
-  row("pixel order, the second of two casts of each ray",
-      Cast{twice.seconds_per_ray - base.seconds_per_ray, twice.checksum});
+    std::vector<Ray> sorted = pixel_order;
+    sort_by_octant(sorted.begin(), sorted.end());
+
+    const Cast base = cast(scene, pixel_order, passes, 1);
+    auto row = [&](const char* order, const Cast& c) {
+        if (c.checksum != base.checksum) {
+            throw std::runtime_error(std::string(set) + ", " + order +
+                                     ": other hits than in pixel order");
+        }
+        std::printf("| %s | %s | %.1f | %.3f |\n", set, order, 1e9 * c.seconds_per_ray,
+                    c.seconds_per_ray / base.seconds_per_ray);
+    };
+    row("pixel order", base);
+    row("shuffled", cast(scene, shuffled, passes, 1));
+    row("by octant, within runs of 64", cast(scene, tiles, passes, 1));
+    row("by octant, whole set", cast(scene, sorted, passes, 1));
+    // Twice in a row: the second cast's time is what the two take less the
+    // time of one.
+    const Cast twice = cast(scene, pixel_order, passes, 2);
+    row("pixel order, the second of two casts of each ray",
+        Cast{twice.seconds_per_ray - base.seconds_per_ray, twice.checksum});
 }
 
-int run(const Options &o) {
-  const Scene scene = load_scene_file(o.scene);
-  PackOptions options;
-  options.accel = Accel::bvh;
-  const PackedScene packed = pack_scene(scene, options);
-  const CameraRecord camera =
-      make_camera_record(scene.camera, o.width, o.height);
-  const trac0r_bench::RaySets sets =
-      trac0r_bench::make_ray_sets(packed, camera);
-  auto rays_of = [](const trac0r_bench::RaySet &set) {
-    std::vector<Ray> rays;
-    rays.reserve(set.size());
-    for (std::size_t i = 0; i < set.size(); ++i) {
-      rays.push_back(make_ray(xyz(set.origins[i]), xyz(set.directions[i])));
-    }
-    return rays;
-  };
-  std::printf("%s, BVH, %d x %d: %zu primary and %zu diffuse-bounce rays; a "
-              "ray's thread CPU "
-              "time on one thread of the CPU backend's kernel, median of %d "
-              "passes after one "
-              "warm-up\n\n",
-              o.scene.c_str(), o.width, o.height, sets.primary.size(),
-              sets.bounce.size(), o.passes);
-  std::printf("| rays | order | ns a ray | / pixel order |\n| --- | --- | ---: "
-              "| ---: |\n");
-  const SceneView view = packed.view();
-  report("primary", view, rays_of(sets.primary), o.passes);
-  report("diffuse bounce", view, rays_of(sets.bounce), o.passes);
-  return 0;
+int run(const Options& o) {
+    const Scene scene = load_scene_file(o.scene);
+    PackOptions options;
+    options.accel = Accel::bvh;
+    const PackedScene packed = pack_scene(scene, options);
+    const CameraRecord camera = make_camera_record(scene.camera, o.width, o.height);
+    const trac0r_bench::RaySets sets = trac0r_bench::make_ray_sets(packed, camera);
+    auto rays_of = [](const trac0r_bench::RaySet& set) {
+        std::vector<Ray> rays;
+        rays.reserve(set.size());
+        for (std::size_t i = 0; i < set.size(); ++i) {
+            rays.push_back(make_ray(xyz(set.origins[i]), xyz(set.directions[i])));
+        }
+        return rays;
+    };
+    std::printf("%s, BVH, %d x %d: %zu primary and %zu diffuse-bounce rays; a ray's thread CPU "
+                "time on one thread of the CPU backend's kernel, median of %d passes after one "
+                "warm-up\n\n",
+                o.scene.c_str(), o.width, o.height, sets.primary.size(), sets.bounce.size(),
+                o.passes);
+    std::printf("| rays | order | ns a ray | / pixel order |\n| --- | --- | ---: | ---: |\n");
+    const SceneView view = packed.view();
+    report("primary", view, rays_of(sets.primary), o.passes);
+    report("diffuse bounce", view, rays_of(sets.bounce), o.passes);
+    return 0;
 }
 
-} // namespace
+}  // namespace
 
-int main(int argc, char **argv) {
-  return trac0r_bench::run_main("bench_ray_order", [&] {
-    Options o;
-    if (!parse(argc, argv, o)) {
-      std::fputs(usage, stdout);
-      return 0;
-    }
-    return run(o);
-  });
+int main(int argc, char** argv) {
+    return trac0r_bench::run_main("bench_ray_order", [&] {
+        Options o;
+        if (!parse(argc, argv, o)) {
+            std::fputs(usage, stdout);
+            return 0;
+        }
+        return run(o);
+    });
 }

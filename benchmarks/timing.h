@@ -32,6 +32,14 @@ inline double process_cpu_seconds() {
     return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+// Seconds of CPU time of the calling thread alone: for work timed on one
+// thread, which OpenMP's idle workers must not add to.
+inline double thread_cpu_seconds() {
+    timespec t;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 // The cores that the "on N free cores" figures assume.
 inline int machine_cores() { return omp_get_num_procs(); }
 
