@@ -40,8 +40,8 @@ Scene box_grid(int boxes) {
         for (int j = 0; j < boxes; ++j) {
             const float step = 0.8f / boxes;
             const glm::vec3 p(-0.4f + (i + 0.5f) * step, -0.05f, -0.4f + (j + 0.5f) * step);
-            scene.shapes.push_back(make_box(p, glm::vec3(0.0f, 0.3f * i, 0.0f),
-                                            glm::vec3(0.5f * step), white));
+            scene.shapes.push_back(
+                make_box(p, glm::vec3(0.0f, 0.3f * i, 0.0f), glm::vec3(0.5f * step), white));
         }
     }
     return scene;
@@ -74,9 +74,10 @@ int main(int argc, char** argv) {
 #ifdef TRAC0R_HAVE_OPENCL
     backends.emplace_back(new OpenClBackend(0));  // throws when there is no device
 #endif
-    std::printf("%d x %d, %d timed frames after one warm-up; paths per second on %d free cores, "
-                "from CPU time",
-                width, height, frames, trac0r_bench::machine_cores());
+    std::printf(
+        "%d x %d, %d timed frames after one warm-up; paths per second on %d free cores, "
+        "from CPU time",
+        width, height, frames, trac0r_bench::machine_cores());
     for (const auto& b : backends) {
         std::printf("; %s: %s", b->name().c_str(), b->device().c_str());
     }
@@ -99,10 +100,12 @@ int main(int argc, char** argv) {
         const double pixels = static_cast<double>(width) * height;
         std::printf("| %zu |", flat_packed.triangles.size());
         for (const auto& backend : backends) {
-            const double f = pixels / trac0r_bench::measure(*backend, flat_packed, scene, frames)
-                                          .free_frame_seconds();
-            const double b = pixels / trac0r_bench::measure(*backend, bvh_packed, scene, frames)
-                                          .free_frame_seconds();
+            const double f =
+                pixels /
+                trac0r_bench::measure(*backend, flat_packed, scene, frames).free_frame_seconds();
+            const double b =
+                pixels /
+                trac0r_bench::measure(*backend, bvh_packed, scene, frames).free_frame_seconds();
             std::printf(" %.3f | %.3f | %.2f |", f * 1e-6, b * 1e-6, b / f);
         }
         std::printf("\n");

@@ -111,8 +111,7 @@ Config parse(int argc, char** argv) {
 }
 
 // Median of three real builds of the program for `features`.
-double median_build_seconds(const Scene& scene, const PackedScene& packed,
-                            std::uint32_t features) {
+double median_build_seconds(const Scene& scene, const PackedScene& packed, std::uint32_t features) {
     const kernel::CameraRecord camera_8x8 = make_camera_record(scene.camera, 8, 8);
     static int nonce = 0;
     PackedScene p = packed;
@@ -137,11 +136,12 @@ double median_build_seconds(const Scene& scene, const PackedScene& packed,
 // Rays per second of ray casting alone: the same rays (made once from the
 // BVH scene) through each structure on each backend.
 void print_ray_table(const Config& config) {
-    std::printf("\nRays per second of ray casting alone (nearest hit, no shading), %d x %d: "
-                "one jittered primary ray per pixel, and one cosine-distributed diffuse "
-                "bounce from each primary hit that does not emit; %d passes after "
-                "one warm-up, on %d free cores from CPU time (benchmarks/ray_cast.h):\n\n",
-                config.width, config.height, config.frames, trac0r_bench::machine_cores());
+    std::printf(
+        "\nRays per second of ray casting alone (nearest hit, no shading), %d x %d: "
+        "one jittered primary ray per pixel, and one cosine-distributed diffuse "
+        "bounce from each primary hit that does not emit; %d passes after "
+        "one warm-up, on %d free cores from CPU time (benchmarks/ray_cast.h):\n\n",
+        config.width, config.height, config.frames, trac0r_bench::machine_cores());
     std::printf("| scene | backend | accel | primary Mrays/s | diffuse bounce Mrays/s |\n");
     std::printf("| --- | --- | --- | --- | --- |\n");
     trac0r_bench::OpenClCaster opencl;
@@ -202,12 +202,14 @@ int main(int argc, char** argv) {
                     config.width, config.height, config.frames, cpu.device().c_str(),
                     opencl.device().c_str());
         const int cores = trac0r_bench::machine_cores();
-        std::printf("Mask bits: 0x40 = BVH, 0x20 = flat list. A frame is one path per pixel. "
-                    "fps and Mpaths/s on %d free cores: %d / the frame's CPU time (all threads); "
-                    "wall ms/frame depends on the machine's load.\n\n",
-                    cores, cores);
-        std::printf("| scene | backend | accel | mask | build s | wall ms/frame | CPU ms/frame | "
-                    "fps | Mpaths/s |\n");
+        std::printf(
+            "Mask bits: 0x40 = BVH, 0x20 = flat list. A frame is one path per pixel. "
+            "fps and Mpaths/s on %d free cores: %d / the frame's CPU time (all threads); "
+            "wall ms/frame depends on the machine's load.\n\n",
+            cores, cores);
+        std::printf(
+            "| scene | backend | accel | mask | build s | wall ms/frame | CPU ms/frame | "
+            "fps | Mpaths/s |\n");
         std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
         const double pixels = static_cast<double>(config.width) * config.height;
         std::string ratios;
@@ -237,12 +239,12 @@ int main(int argc, char** argv) {
                     const trac0r_bench::Timing t =
                         trac0r_bench::measure(*row.backend, *row.packed, scene, config.frames);
                     const double free = t.free_frame_seconds();
-                    std::printf("| %s | %s | %s | %s (0x%02x) | %.2f | %.0f | %.0f | %.2f "
-                                "| %.3f |\n",
-                                path.c_str(), row.backend->name().c_str(), to_string(accel),
-                                row.mask, row.packed->features, t.build_seconds,
-                                1e3 * t.frame_seconds, 1e3 * t.cpu_frame_seconds, 1.0 / free,
-                                pixels / free * 1e-6);
+                    std::printf(
+                        "| %s | %s | %s | %s (0x%02x) | %.2f | %.0f | %.0f | %.2f "
+                        "| %.3f |\n",
+                        path.c_str(), row.backend->name().c_str(), to_string(accel), row.mask,
+                        row.packed->features, t.build_seconds, 1e3 * t.frame_seconds,
+                        1e3 * t.cpu_frame_seconds, 1.0 / free, pixels / free * 1e-6);
                     std::fflush(stdout);
                 }
             }
@@ -268,8 +270,7 @@ int main(int argc, char** argv) {
                         bvh_backend.reset(new OpenClBackend(0));
                     }
                     const trac0r_bench::Alternated t = trac0r_bench::measure_alternated(
-                        *flat_backend, flat_packed, *bvh_backend, bvh_packed, scene,
-                        config.frames);
+                        *flat_backend, flat_packed, *bvh_backend, bvh_packed, scene, config.frames);
                     std::vector<double> ratios_per_round;
                     for (std::size_t i = 0; i < t.a.size(); ++i) {
                         ratios_per_round.push_back(t.a[i] / t.b[i]);
@@ -278,9 +279,8 @@ int main(int argc, char** argv) {
                         std::minmax_element(ratios_per_round.begin(), ratios_per_round.end());
                     char cell[160];
                     std::snprintf(cell, sizeof cell, "%s %.2f (%.2f to %.2f; %.0f and %.0f ms)",
-                                  b == 0 ? "CPU" : "OpenCL",
-                                  trac0r_bench::median(ratios_per_round), *range.first,
-                                  *range.second, 1e3 * trac0r_bench::median(t.a),
+                                  b == 0 ? "CPU" : "OpenCL", trac0r_bench::median(ratios_per_round),
+                                  *range.first, *range.second, 1e3 * trac0r_bench::median(t.a),
                                   1e3 * trac0r_bench::median(t.b));
                     cells += (b == 0 ? "" : ", ") + std::string(cell);
                 }
@@ -288,15 +288,17 @@ int main(int argc, char** argv) {
             }
         }
         if (!ratios.empty()) {
-            std::printf("\nBVH / flat list, paths per second: the median over %d rounds of a "
-                        "flat-list frame then a BVH frame, each backend twice (one per "
-                        "structure), of the ratio of their CPU times (the range; the median "
-                        "CPU ms of a flat and of a BVH frame):\n\n%s",
-                        config.frames, ratios.c_str());
+            std::printf(
+                "\nBVH / flat list, paths per second: the median over %d rounds of a "
+                "flat-list frame then a BVH frame, each backend twice (one per "
+                "structure), of the ratio of their CPU times (the range; the median "
+                "CPU ms of a flat and of a BVH frame):\n\n%s",
+                config.frames, ratios.c_str());
         }
         print_ray_table(config);
-        std::printf("\nOpenCL program build time, to the end of the first (8 x 8) launch, "
-                    "median of 3 real compiles:\n\n");
+        std::printf(
+            "\nOpenCL program build time, to the end of the first (8 x 8) launch, "
+            "median of 3 real compiles:\n\n");
         std::printf("| scene | mask | build s |\n| --- | --- | --- |\n");
         for (const std::string& path : config.scenes) {
             const Scene scene = load_scene_file(path);

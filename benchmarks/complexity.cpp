@@ -35,8 +35,8 @@ using namespace trac0r;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using trac0r_bench::UsageError;
 using trac0r_bench::parse_long;
+using trac0r_bench::UsageError;
 
 const char* usage = R"(Usage: bench_complexity [options]
 
@@ -354,8 +354,9 @@ Level measure_level(const Options& o, const Backends& backends, int subdivisions
 }
 
 void print_table(const std::vector<Level>& levels) {
-    std::printf("| triangles | subdivisions | CPU flat fps | CPU BVH fps | OpenCL flat fps | "
-                "OpenCL BVH fps | BVH pack s |\n");
+    std::printf(
+        "| triangles | subdivisions | CPU flat fps | CPU BVH fps | OpenCL flat fps | "
+        "OpenCL BVH fps | BVH pack s |\n");
     std::printf("| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (const Level& l : levels) {
         std::printf("| %zu | %d | %s | %s | %s | %s | %.2f |\n", l.triangles, l.subdivisions,
@@ -391,13 +392,15 @@ int run(const Options& o) {
 #ifdef TRAC0R_HAVE_OPENCL
         backends[1].reset(new OpenClBackend(0));  // throws when there is no device
 #else
-        throw UsageError("--backends opencl: this build has no OpenCL backend "
-                         "(configured with TRAC0R_OPENCL=OFF); use --backends cpu");
+        throw UsageError(
+            "--backends opencl: this build has no OpenCL backend "
+            "(configured with TRAC0R_OPENCL=OFF); use --backends cpu");
 #endif
     }
-    std::printf("%d x %d, %d timed frames after one warm-up (median of %d rounds), max depth "
-                "from the scene, fps on %d free cores from CPU time (benchmarks/timing.h);",
-                o.width, o.height, o.frames, o.repeats, trac0r_bench::machine_cores());
+    std::printf(
+        "%d x %d, %d timed frames after one warm-up (median of %d rounds), max depth "
+        "from the scene, fps on %d free cores from CPU time (benchmarks/timing.h);",
+        o.width, o.height, o.frames, o.repeats, trac0r_bench::machine_cores());
     for (int b = 0; b < 2; ++b) {
         if (backends[b]) {
             std::printf(" %s: %s;", backend_names[b], backends[b]->device().c_str());

@@ -38,8 +38,8 @@ using namespace trac0r;
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using trac0r_bench::UsageError;
 using trac0r_bench::parse_long;
+using trac0r_bench::UsageError;
 
 const char* usage = R"(Usage: bench_convergence [SCENE.json] [options]
 
@@ -255,8 +255,8 @@ Reference reference_image(const Options& o, const Scene& scene) {
         r.render_frame();
         if (static_cast<long>(r.frames()) >= next_report) {
             const double s = std::chrono::duration<double>(Clock::now() - start).count();
-            std::fprintf(stderr, "  reference %u / %ld spp, %.0f s\n", r.frames(),
-                         o.reference_spp, s);
+            std::fprintf(stderr, "  reference %u / %ld spp, %.0f s\n", r.frames(), o.reference_spp,
+                         s);
             next_report += std::max(1L, o.reference_spp / 10);
         }
     }
@@ -271,7 +271,7 @@ Reference reference_image(const Options& o, const Scene& scene) {
 
 struct Checkpoint {
     long spp;
-    double seconds;       // on machine_cores() free cores: CPU seconds / cores
+    double seconds;  // on machine_cores() free cores: CPU seconds / cores
     double wall_seconds;
     ImageError error;
     double estimated_rel_mse;
@@ -308,11 +308,12 @@ int run(const Options& o) {
                 o.scene_path.empty() ? "built-in Cornell box" : o.scene_path.c_str(), o.width,
                 o.height, o.reference_path.empty() ? "rendered" : o.reference_path.c_str(),
                 ref.own_rel_mse);
-    std::printf("seconds: render time on %d free cores (the process's CPU time over all its\n"
-                "threads / %d; the wall clock measures a shared machine's load as well),\n"
-                "frames of all configurations interleaved, after one warm-up frame each\n"
-                "(no OpenCL build); wall s: the wall clock\n\n",
-                trac0r_bench::machine_cores(), trac0r_bench::machine_cores());
+    std::printf(
+        "seconds: render time on %d free cores (the process's CPU time over all its\n"
+        "threads / %d; the wall clock measures a shared machine's load as well),\n"
+        "frames of all configurations interleaved, after one warm-up frame each\n"
+        "(no OpenCL build); wall s: the wall clock\n\n",
+        trac0r_bench::machine_cores(), trac0r_bench::machine_cores());
     std::printf(
         "| config | spp | seconds | wall s | RMSE | rel. MSE | PSNR dB | estimated rel. MSE |\n");
     std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
@@ -322,7 +323,7 @@ int run(const Options& o) {
     struct Run {
         const Config* config;
         std::unique_ptr<Renderer> renderer;
-        double seconds;       // on free cores, from CPU time
+        double seconds;  // on free cores, from CPU time
         double wall_seconds;
         bool stopped;
         std::vector<Checkpoint> points;
@@ -358,8 +359,7 @@ int run(const Options& o) {
                     run.renderer->render_frame();  // returns when the frame is done
                     run.seconds += (trac0r_bench::process_cpu_seconds() - cpu_start) /
                                    trac0r_bench::machine_cores();
-                    run.wall_seconds +=
-                        std::chrono::duration<double>(Clock::now() - start).count();
+                    run.wall_seconds += std::chrono::duration<double>(Clock::now() - start).count();
                     pending = true;
                 }
             }
@@ -381,13 +381,12 @@ int run(const Options& o) {
         const Config& c = *run.config;
         const std::vector<Checkpoint>& points = run.points;
         for (const Checkpoint& p : points) {
-            std::printf("| %s | %ld | %.3f | %.3f | %.4g | %.4g | %.2f | %.4g |\n",
-                        c.label.c_str(), p.spp, p.seconds, p.wall_seconds, p.error.rmse,
-                        p.error.relative_mse, p.error.psnr, p.estimated_rel_mse);
+            std::printf("| %s | %ld | %.3f | %.3f | %.4g | %.4g | %.2f | %.4g |\n", c.label.c_str(),
+                        p.spp, p.seconds, p.wall_seconds, p.error.rmse, p.error.relative_mse,
+                        p.error.psnr, p.estimated_rel_mse);
             csv << '"' << c.label << "\"," << p.spp << ',' << p.seconds << ',' << p.error.rmse
-                << ',' << p.error.relative_mse << ',' << p.error.psnr << ','
-                << p.estimated_rel_mse << ',' << ref.own_rel_mse << ',' << p.wall_seconds
-                << '\n';
+                << ',' << p.error.relative_mse << ',' << p.error.psnr << ',' << p.estimated_rel_mse
+                << ',' << ref.own_rel_mse << ',' << p.wall_seconds << '\n';
         }
         // The slope where the reference's own noise is under a tenth of the
         // error and the per-pixel estimates have settled (8 spp on).
@@ -406,8 +405,8 @@ int run(const Options& o) {
             std::snprintf(line, sizeof line,
                           "%s: rel. MSE ~ time^%.2f, RMSE ~ time^%.2f (%zu checkpoints, %ld..%ld "
                           "spp)",
-                          c.label.c_str(), log_log_slope(t, rel), log_log_slope(t, rmse),
-                          t.size(), used.front(), used.back());
+                          c.label.c_str(), log_log_slope(t, rel), log_log_slope(t, rmse), t.size(),
+                          used.front(), used.back());
         } else {
             std::snprintf(line, sizeof line, "%s: too few checkpoints for a slope",
                           c.label.c_str());

@@ -182,8 +182,8 @@ class OpenClCaster {
             buffers.push_back(m);
             return m;
         };
-        cl_mem triangles = upload(packed.triangles.data(),
-                                  packed.triangles.size() * sizeof(packed.triangles[0]));
+        cl_mem triangles =
+            upload(packed.triangles.data(), packed.triangles.size() * sizeof(packed.triangles[0]));
         cl_mem shapes =
             upload(packed.shapes.data(), packed.shapes.size() * sizeof(packed.shapes[0]));
         cl_mem nodes = upload(packed.nodes.data(), packed.nodes.size() * sizeof(packed.nodes[0]));

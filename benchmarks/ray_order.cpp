@@ -158,11 +158,11 @@ int run(const Options& o) {
         }
         return rays;
     };
-    std::printf("%s, BVH, %d x %d: %zu primary and %zu diffuse-bounce rays; a ray's thread CPU "
-                "time on one thread of the CPU backend's kernel, median of %d passes after one "
-                "warm-up\n\n",
-                o.scene.c_str(), o.width, o.height, sets.primary.size(), sets.bounce.size(),
-                o.passes);
+    std::printf(
+        "%s, BVH, %d x %d: %zu primary and %zu diffuse-bounce rays; a ray's thread CPU "
+        "time on one thread of the CPU backend's kernel, median of %d passes after one "
+        "warm-up\n\n",
+        o.scene.c_str(), o.width, o.height, sets.primary.size(), sets.bounce.size(), o.passes);
     std::printf("| rays | order | ns a ray | / pixel order |\n| --- | --- | ---: | ---: |\n");
     const SceneView view = packed.view();
     report("primary", view, rays_of(sets.primary), o.passes);

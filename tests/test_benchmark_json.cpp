@@ -47,8 +47,7 @@ void check_benchmark_json(const std::string& out, long frames, int width, int he
     CHECK(j["min_fps"].get<double>() <= j["median_fps"].get<double>() * (1 + 1e-3));
     CHECK(j["min_fps"].get<double>() <= mean_fps * (1 + 1e-3));
     CHECK(j["ms_per_frame"].get<double>() == Approx(1e3 / mean_fps).epsilon(1e-3));
-    CHECK(j["paths_per_second"].get<double>() ==
-          Approx(mean_fps * width * height).epsilon(1e-3));
+    CHECK(j["paths_per_second"].get<double>() == Approx(mean_fps * width * height).epsilon(1e-3));
 }
 
 }  // namespace trac0r_test
@@ -74,8 +73,7 @@ TEST_CASE("--benchmark --output saves the last frame", "[benchmark]") {
 
 TEST_CASE("--benchmark 0 and a bad count are command-line errors", "[benchmark]") {
     for (const char* count : {"0", "-3", "ten"}) {
-        const ViewerRun r =
-            run_viewer_process(std::string("--headless --benchmark ") + count);
+        const ViewerRun r = run_viewer_process(std::string("--headless --benchmark ") + count);
         INFO(r.err);
         CHECK(r.exit_code == 2);
         CHECK(r.err.find("--benchmark") != std::string::npos);

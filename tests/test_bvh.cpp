@@ -55,7 +55,8 @@ Scene nested_clusters(int levels) {
     for (int k = 0; k < levels; ++k, s *= 0.25f) {
         for (int i = 0; i < 32; ++i) {
             // Centroids in x from s/2 to s, y and z from 0 to s.
-            const glm::vec3 c = s * glm::vec3(0.5f + 0.45f * u(rng), 0.95f * u(rng), 0.95f * u(rng));
+            const glm::vec3 c =
+                s * glm::vec3(0.5f + 0.45f * u(rng), 0.95f * u(rng), 0.95f * u(rng));
             const float size = 0.05f * s;
             shape.triangles.emplace_back(c, c + size * glm::vec3(u(rng), u(rng), 0.0f),
                                          c + size * glm::vec3(0.0f, u(rng), u(rng)));
@@ -125,7 +126,8 @@ int check_subtree(const PackedScene& p, std::uint32_t node, std::vector<int>& se
                 ++seen.at(t);
                 const kernel::TriangleRecord& tri = p.triangles[t];
                 REQUIRE(packet.area[lane] == tri.normal.w);
-                const glm::vec3 vertices[3] = {glm::vec3(tri.v0), glm::vec3(tri.v1), glm::vec3(tri.v2)};
+                const glm::vec3 vertices[3] = {glm::vec3(tri.v0), glm::vec3(tri.v1),
+                                               glm::vec3(tri.v2)};
                 for (int k = 0; k < 3; ++k) {
                     REQUIRE(glm::vec3(packet.vertex[3 * k][lane], packet.vertex[3 * k + 1][lane],
                                       packet.vertex[3 * k + 2][lane]) == vertices[k]);
@@ -266,13 +268,15 @@ TEST_CASE("traversal of a BVH collapsed by levels finds the same hits", "[bvh]")
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     std::vector<kernel::Ray> rays;
     for (int i = 0; i < 20000; ++i) {
-        const Triangle& t = triangles[static_cast<std::size_t>(i * 7919) % (32 * 8)];  // clusters 0 to 7
+        const Triangle& t =
+            triangles[static_cast<std::size_t>(i * 7919) % (32 * 8)];  // clusters 0 to 7
         const float b1 = u(rng);
         const float b2 = (1.0f - b1) * u(rng);
         const glm::vec3 target = t.v0 + b1 * (t.v1 - t.v0) + b2 * (t.v2 - t.v0);
         const glm::vec3 direction =
             glm::normalize(glm::vec3(u(rng) - 0.5f, u(rng) - 0.5f, u(rng) - 0.5f));
-        rays.push_back(kernel::make_ray(target - 2.0f * glm::length(target) * direction, direction));
+        rays.push_back(
+            kernel::make_ray(target - 2.0f * glm::length(target) * direction, direction));
     }
     REQUIRE(same_hits(scene, rays) > 15000);
 }

@@ -71,8 +71,8 @@ TEST_CASE("intersect_triangle: interior hits give t, u, v", "[kernel][intersect]
             make_triangle(make_float3(1.5f, -2.0f, 0.25f), make_float3(-0.5f, 1.0f, 2.0f),
                           make_float3(3.0f, 2.5f, -1.0f));
         const float3 origin = make_float3(-3.0f, 4.0f, 5.0f);
-        const float3 target = xyz(tri.v0) + (xyz(tri.v1) - xyz(tri.v0)) * 0.3f +
-                              (xyz(tri.v2) - xyz(tri.v0)) * 0.45f;
+        const float3 target =
+            xyz(tri.v0) + (xyz(tri.v1) - xyz(tri.v0)) * 0.3f + (xyz(tri.v2) - xyz(tri.v0)) * 0.45f;
         const TriangleHit h = shoot(tri, origin, target - origin);
         REQUIRE(h.hit());
         CHECK(h.u == Approx(0.3f).epsilon(1e-5));
@@ -180,7 +180,8 @@ TEST_CASE("intersect_triangle is scale invariant", "[kernel][intersect]") {
         const float3 d = normalize(make_float3(1.0f, 0.0f, -1e-3f));
         for (float s : scales) {
             INFO("scale " << s);
-            TriangleRecord tri = make_triangle(xyz(unit.v0) * s, xyz(unit.v1) * s, xyz(unit.v2) * s);
+            TriangleRecord tri =
+                make_triangle(xyz(unit.v0) * s, xyz(unit.v1) * s, xyz(unit.v2) * s);
             const float3 origin_s = (make_float3(0.5f, 0.25f, 0.0f) - d * 10.0f) * s;
             const TriangleHit h = shoot(tri, origin_s, d);
             REQUIRE(h.hit());
@@ -352,9 +353,10 @@ TEST_CASE("offset hit points leave the exact plane of their triangle", "[kernel]
     }
 }
 
-TEST_CASE("exact edge functions: the exact sign, the same in doubles and in floats, and "
-          "exact negatives when the vertices swap",
-          "[kernel][intersect]") {
+TEST_CASE(
+    "exact edge functions: the exact sign, the same in doubles and in floats, and "
+    "exact negatives when the vertices swap",
+    "[kernel][intersect]") {
     // Nearly parallel p and q, whose float products round to equal floats
     // about half the time, at scales where the float version is exact.
     std::mt19937 rng(2);

@@ -188,13 +188,12 @@ TEST_CASE("a scene without a light list renders the same with both integrators",
         R"("white": {"type": "emissive", "color": [0, 0, 0], "emittance": 5})",
     };
     for (const char* material : materials) {
-        const std::string json =
-            std::string(R"({"camera": {"position": [0, 0, -1.2]},
+        const std::string json = std::string(R"({"camera": {"position": [0, 0, -1.2]},
                             "render": {"width": 16, "height": 12, "max_depth": 5},
                             "materials": {"glass": {"type": "glass", "color": [1, 1, 1]},
                                           "glossy": {"type": "glossy", "color": [1, 1, 1],
                                                      "roughness": 0.3},)") +
-            material + R"(},
+                                 material + R"(},
                  "shapes": [{"type": "box", "material": "white", "size": [3, 3, 3]},
                             {"type": "icosphere", "material": "glass", "radius": 0.3},
                             {"type": "plane", "material": "glossy", "position": [0, -1, 0],
@@ -305,9 +304,9 @@ TEST_CASE("eval_material agrees with scatter_material's directions, weights and 
         float roughness;
         double theta;
     };
-    const Case cases[] = {{T0_MATERIAL_DIFFUSE, 0.0f, 0.3},  {T0_MATERIAL_GLOSSY, 0.09f, 0.2},
-                          {T0_MATERIAL_GLOSSY, 0.09f, 1.5},  {T0_MATERIAL_GLOSSY, 0.5f, 1.0},
-                          {T0_MATERIAL_GLOSSY, 1.0f, 0.7},   {T0_MATERIAL_GLOSSY, 0.007f, 0.5}};
+    const Case cases[] = {{T0_MATERIAL_DIFFUSE, 0.0f, 0.3}, {T0_MATERIAL_GLOSSY, 0.09f, 0.2},
+                          {T0_MATERIAL_GLOSSY, 0.09f, 1.5}, {T0_MATERIAL_GLOSSY, 0.5f, 1.0},
+                          {T0_MATERIAL_GLOSSY, 1.0f, 0.7},  {T0_MATERIAL_GLOSSY, 0.007f, 0.5}};
     for (const Case& c : cases) {
         CAPTURE(c.type, c.roughness, c.theta);
         const kernel::MaterialRecord m = make_material(c.type, c.roughness);
@@ -339,11 +338,10 @@ TEST_CASE("eval_material agrees with scatter_material's directions, weights and 
         CAPTURE(worst_pdf_error, worst_f_cos_error);
         REQUIRE(worst_pdf_error < 1e-3);
         REQUIRE(worst_f_cos_error < 1e-3);
-        const float3 axis = c.type == T0_MATERIAL_DIFFUSE
-                                ? normal
-                                : kernel::reflect_direction(incoming, normal);
-        const double half_angle = c.type == T0_MATERIAL_DIFFUSE ? 0.5 * M_PI
-                                                                : c.roughness * 0.5 * M_PI;
+        const float3 axis =
+            c.type == T0_MATERIAL_DIFFUSE ? normal : kernel::reflect_direction(incoming, normal);
+        const double half_angle =
+            c.type == T0_MATERIAL_DIFFUSE ? 0.5 * M_PI : c.roughness * 0.5 * M_PI;
         const double solid_angle = 2.0 * M_PI * (1.0 - std::cos(half_angle));
         const kernel::Frame frame = kernel::frame_from_normal(axis);
         double sum = 0.0, sum2 = 0.0;
@@ -352,9 +350,9 @@ TEST_CASE("eval_material agrees with scatter_material's directions, weights and 
             const double cos_t = 1.0 - kernel::rng_float(&rng) * (1.0 - std::cos(half_angle));
             const double sin_t = std::sqrt(std::fmax(0.0, 1.0 - cos_t * cos_t));
             const double phi = 2.0 * M_PI * kernel::rng_float(&rng);
-            const float3 local = make_float3(static_cast<float>(sin_t * std::cos(phi)),
-                                             static_cast<float>(sin_t * std::sin(phi)),
-                                             static_cast<float>(cos_t));
+            const float3 local =
+                make_float3(static_cast<float>(sin_t * std::cos(phi)),
+                            static_cast<float>(sin_t * std::sin(phi)), static_cast<float>(cos_t));
             const float3 d = glm::normalize(kernel::frame_to_world(frame, local));
             const double value =
                 kernel::eval_material(&scene, &m, incoming, normal, d).pdf * solid_angle;

@@ -16,9 +16,7 @@ using namespace trac0r;
 
 namespace {
 
-Scene small(const std::string& name) {
-    return load_test_scene(name, 32, 24);
-}
+Scene small(const std::string& name) { return load_test_scene(name, 32, 24); }
 
 void render_frames(Renderer& r, std::uint32_t until) {
     while (r.frames() < until) {

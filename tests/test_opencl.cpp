@@ -151,8 +151,8 @@ TEST_CASE("a kernel that fails to build reports the build log", "[opencl]") {
     setenv("TRAC0R_OPENCL_OPTIONS", "-Dmake_ray=syntax_error(", 1);
     OpenClBackend backend(0);
     const PackedScene packed = pack_scene(load_test_scene("furnace.json", 8, 8));
-    REQUIRE_THROWS_WITH(backend.set_scene(packed), Catch::Contains("build log") &&
-                                                       Catch::Contains("syntax_error"));
+    REQUIRE_THROWS_WITH(backend.set_scene(packed),
+                        Catch::Contains("build log") && Catch::Contains("syntax_error"));
     unsetenv("TRAC0R_OPENCL_OPTIONS");
 }
 

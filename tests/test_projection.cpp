@@ -127,21 +127,20 @@ TEST_CASE("a box wholly in front of the camera: 12 edges at the corners' project
 
 TEST_CASE("boxes behind the camera or outside the view draw nothing", "[projection]") {
     const kernel::CameraRecord cam = record_at(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f));
-    CHECK(project_aabb_wireframe(cam, box(glm::vec3(-1.0f, -1.0f, -3.0f),
-                                          glm::vec3(1.0f, 1.0f, -2.0f)),
-                                 0.01f)
+    CHECK(project_aabb_wireframe(
+              cam, box(glm::vec3(-1.0f, -1.0f, -3.0f), glm::vec3(1.0f, 1.0f, -2.0f)), 0.01f)
               .empty());
     // Far to the right, outside the 60-degree (vertical) view.
-    CHECK(project_aabb_wireframe(cam, box(glm::vec3(50.0f, -0.1f, 1.0f),
-                                          glm::vec3(51.0f, 0.1f, 2.0f)),
-                                 0.01f)
+    CHECK(project_aabb_wireframe(
+              cam, box(glm::vec3(50.0f, -0.1f, 1.0f), glm::vec3(51.0f, 0.1f, 2.0f)), 0.01f)
               .empty());
     CHECK(project_aabb_wireframe(cam, AABB(), 0.01f).empty());  // empty box
 }
 
-TEST_CASE("a box partly behind the camera is clipped at the near plane, not drawn across "
-          "the screen",
-          "[projection]") {
+TEST_CASE(
+    "a box partly behind the camera is clipped at the near plane, not drawn across "
+    "the screen",
+    "[projection]") {
     // A long, thin box along the view axis, from behind the camera to well
     // in front, below and left of the eye: a floor rail the camera stands
     // over. Projecting the corners behind the camera without clipping would
@@ -168,8 +167,8 @@ TEST_CASE("a box partly behind the camera is clipped at the near plane, not draw
     bool reaches_border = false;
     for (const Segment2& s : segments) {
         for (glm::vec2 end : {s.a, s.b}) {
-            reaches_border = reaches_border || end.x < pixel_tolerance ||
-                             end.y > 600.0f - pixel_tolerance;
+            reaches_border =
+                reaches_border || end.x < pixel_tolerance || end.y > 600.0f - pixel_tolerance;
         }
     }
     CHECK(reaches_border);
@@ -191,9 +190,10 @@ TEST_CASE("a box around the camera: only the edges in front remain, inside the i
     }
 }
 
-TEST_CASE("fly camera: moves in the camera's frame, turns without reaching the pole, zooms "
-          "within limits",
-          "[projection]") {
+TEST_CASE(
+    "fly camera: moves in the camera's frame, turns without reaching the pole, zooms "
+    "within limits",
+    "[projection]") {
     Camera c;
     c.position = glm::vec3(1.0f, 2.0f, 3.0f);
     c.direction = glm::vec3(1.0f, 0.0f, 0.0f);  // looking along +x, y up

@@ -25,7 +25,8 @@ Scene furnace_scene(float rho, float le, int max_depth) {
     wall.color = glm::vec3(rho);
     wall.emittance = le / rho;
     scene.materials.push_back(wall);
-    scene.shapes.push_back(make_box(glm::vec3(0.0f), glm::vec3(0.3f, 0.2f, 0.1f), glm::vec3(2.0f), 0));
+    scene.shapes.push_back(
+        make_box(glm::vec3(0.0f), glm::vec3(0.3f, 0.2f, 0.1f), glm::vec3(2.0f), 0));
     scene.camera.position = glm::vec3(0.1f, -0.2f, 0.05f);
     scene.camera.direction = glm::vec3(0.2f, 0.1f, 1.0f);
     scene.camera.vertical_fov = 90.0f;

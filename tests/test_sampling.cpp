@@ -294,7 +294,8 @@ TEST_CASE("sample_cosine_cone_sin2: inside the cone, right pdf and moments, chi-
     }
 }
 
-TEST_CASE("sample_cosine_cone_sin2 of zero width is the axis with a delta pdf", "[kernel][sampling]") {
+TEST_CASE("sample_cosine_cone_sin2 of zero width is the axis with a delta pdf",
+          "[kernel][sampling]") {
     const float3 axis = normalize(make_float3(0.2f, 0.3f, -0.9f));
     const DirectionSample s = sample_cosine_cone_sin2(axis, cone_sin2(0.0f), 0.7f, 0.3f);
     CHECK(length(s.direction - axis) < unit_tolerance);

@@ -36,9 +36,7 @@ std::string scene_json(const std::string& materials = white_material,
            R"(}, "shapes": [)" + shapes + "]}";
 }
 
-std::string with_shape(const std::string& shape) {
-    return scene_json(white_material, shape);
-}
+std::string with_shape(const std::string& shape) { return scene_json(white_material, shape); }
 
 std::string with_material(const std::string& material) {
     return scene_json(white_material + ", " + material, plane_shape);
@@ -48,9 +46,7 @@ std::string with_extra(const std::string& extra) {
     return scene_json(white_material, plane_shape, extra);
 }
 
-Scene parse(const std::string& text) {
-    return parse_scene(text, "test.json", "");
-}
+Scene parse(const std::string& text) { return parse_scene(text, "test.json", ""); }
 
 // The message of the SceneError that parsing throws; a test fails if it
 // throws nothing or something else.

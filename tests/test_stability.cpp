@@ -216,9 +216,10 @@ kernel::TriangleRecord pack(const Triangle& t) {
 // Intersection
 // ============================================================================
 
-TEST_CASE("a closed mesh seen from inside has no cracks: every ray through an edge or a "
-          "vertex hits, flat and BVH",
-          "[stability][intersect]") {
+TEST_CASE(
+    "a closed mesh seen from inside has no cracks: every ray through an edge or a "
+    "vertex hits, flat and BVH",
+    "[stability][intersect]") {
     // An icosphere with awkward float vertices (rotated, off the origin), and
     // rays from random points inside aimed exactly at its vertices and at
     // random points of its edges: the rays that would slip between two
@@ -249,9 +250,8 @@ TEST_CASE("a closed mesh seen from inside has no cracks: every ray through an ed
             const glm::vec3 corners[3] = {t.v0, t.v1, t.v2};
             const int k = i % 3;
             // Even rays: a vertex; odd rays: a point of an edge.
-            const glm::vec3 aim = i % 2 == 0 ? corners[k]
-                                             : corners[k] + u(rng) * (corners[(k + 1) % 3] -
-                                                                      corners[k]);
+            const glm::vec3 aim =
+                i % 2 == 0 ? corners[k] : corners[k] + u(rng) * (corners[(k + 1) % 3] - corners[k]);
             const kernel::Ray ray = kernel::make_ray(origin, glm::normalize(aim - origin));
             leaks += nearest_hit(&view, ray).triangle < 0;
         }
@@ -259,9 +259,10 @@ TEST_CASE("a closed mesh seen from inside has no cracks: every ray through an ed
     }
 }
 
-TEST_CASE("rays through an edge shared by two triangles hit at least one of them, at the "
-          "same distance",
-          "[stability][intersect]") {
+TEST_CASE(
+    "rays through an edge shared by two triangles hit at least one of them, at the "
+    "same distance",
+    "[stability][intersect]") {
     // Two triangles of a skewed quad share the edge p-q; points on it come
     // from float interpolation, so rays pass a rounding error either side.
     // Not its ends: p and q are corners of the quad, where a ray a rounding
@@ -320,9 +321,8 @@ TEST_CASE("a ray in the plane of a face misses it and hits the perpendicular fac
         const float starts[] = {-0.5f, 0.0f, 0.25f};
         for (float x : starts) {
             CAPTURE(x);
-            const kernel::Hit hit =
-                nearest_hit(&view, kernel::make_ray(glm::vec3(x, -1.0f, 0.125f),
-                                                                glm::vec3(1.0f, 0.0f, 0.0f)));
+            const kernel::Hit hit = nearest_hit(
+                &view, kernel::make_ray(glm::vec3(x, -1.0f, 0.125f), glm::vec3(1.0f, 0.0f, 0.0f)));
             REQUIRE(hit.triangle >= 0);
             const kernel::TriangleRecord& t =
                 packed.triangles[static_cast<std::size_t>(hit.triangle)];
@@ -330,9 +330,9 @@ TEST_CASE("a ray in the plane of a face misses it and hits the perpendicular fac
             CHECK(hit.t == 1.0f - x);
         }
         // Along the floor's diagonal, through the corner at (1, -1, 1).
-        const kernel::Hit diagonal = nearest_hit(
-            &view, kernel::make_ray(glm::vec3(-0.5f, -1.0f, -0.5f),
-                                    glm::normalize(glm::vec3(1.0f, 0.0f, 1.0f))));
+        const kernel::Hit diagonal =
+            nearest_hit(&view, kernel::make_ray(glm::vec3(-0.5f, -1.0f, -0.5f),
+                                                glm::normalize(glm::vec3(1.0f, 0.0f, 1.0f))));
         REQUIRE(diagonal.triangle >= 0);
         CHECK(packed.triangles[static_cast<std::size_t>(diagonal.triangle)].normal.y != 1.0f);
         CHECK(std::isfinite(diagonal.u));
@@ -341,9 +341,10 @@ TEST_CASE("a ray in the plane of a face misses it and hits the perpendicular fac
     }
 }
 
-TEST_CASE("the parallel threshold is relative: a ray 1e-8 off a plane misses, 1e-3 off hits, "
-          "at every scale",
-          "[stability][intersect]") {
+TEST_CASE(
+    "the parallel threshold is relative: a ray 1e-8 off a plane misses, 1e-3 off hits, "
+    "at every scale",
+    "[stability][intersect]") {
     // An absolute determinant threshold would hit the near-parallel ray on a
     // huge triangle or miss the shallow one on a tiny triangle.
     const float scales[] = {1e-4f, 1.0f, 1e4f};
@@ -418,9 +419,10 @@ TEST_CASE("zero-area triangles are never hit and have no NaN normal", "[stabilit
     }
 }
 
-TEST_CASE("needle-thin triangles: finite unit normals, hits only inside, with valid "
-          "barycentrics",
-          "[stability][intersect]") {
+TEST_CASE(
+    "needle-thin triangles: finite unit normals, hits only inside, with valid "
+    "barycentrics",
+    "[stability][intersect]") {
     // Long and thin to the limit of float: the third vertex a few units in
     // the last place off the long edge, near the origin and at 1e5.
     const float offsets[] = {0.0f, 1e5f};
@@ -466,9 +468,10 @@ TEST_CASE("needle-thin triangles: finite unit normals, hits only inside, with va
     }
 }
 
-TEST_CASE("a triangle far smaller than its distance from the ray is hit only where the ray "
-          "passes it",
-          "[stability][intersect]") {
+TEST_CASE(
+    "a triangle far smaller than its distance from the ray is hit only where the ray "
+    "passes it",
+    "[stability][intersect]") {
     // Seen from 1 to 2 units away, a triangle of 1e-7 to 1e-5 units is a
     // few floats wide in the ray's frame: its edge functions are products
     // that round to equal floats. Two of three rounded to 0 counted as a
@@ -489,7 +492,8 @@ TEST_CASE("a triangle far smaller than its distance from the ray is hit only whe
             if (!(record.normal.w > 0.0f)) {
                 continue;
             }
-            const glm::vec3 origin = c + glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.0f, 0.0f, 1.0f);
+            const glm::vec3 origin =
+                c + glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.0f, 0.0f, 1.0f);
             const glm::vec3 direction = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)));
             // The ray's distance from c, in doubles.
             const glm::dvec3 to_c = glm::dvec3(c) - glm::dvec3(origin);
@@ -537,9 +541,10 @@ Scene tiny_emitters() {
     return scene;
 }
 
-TEST_CASE("emitters far smaller than their distance from the camera are not seen where no ray "
-          "passes them, on both backends",
-          "[stability][intersect][opencl]") {
+TEST_CASE(
+    "emitters far smaller than their distance from the camera are not seen where no ray "
+    "passes them, on both backends",
+    "[stability][intersect][opencl]") {
     // Before the exact check of zero edge functions, hundreds of pixels
     // were lit by hits a unit away from any emitter.
     const Scene scene = tiny_emitters();
@@ -667,9 +672,10 @@ TEST_CASE("at 1e5 from the origin, offset rays leave the surface and do not re-h
     CHECK(escapes == 0);
 }
 
-TEST_CASE("grazing rays leave tilted surfaces at every scale and distance: no self-hit, no "
-          "leak, an offset of a few eps of the magnitude",
-          "[stability][scale]") {
+TEST_CASE(
+    "grazing rays leave tilted surfaces at every scale and distance: no self-hit, no "
+    "leak, an offset of a few eps of the magnitude",
+    "[stability][scale]") {
     // The room's walls are axis-aligned, where the hit point is exact along
     // the normal; tilted triangles (a rotated box, an icosphere) round it
     // there too. From random points of every triangle, on either side,
@@ -685,7 +691,7 @@ TEST_CASE("grazing rays leave tilted surfaces at every scale and distance: no se
         float scale;
         float offset;
     };
-    const Case cases[] = {{1e-4f, 0.0f}, {1.0f, 0.0f}, {1e4f, 0.0f},
+    const Case cases[] = {{1e-4f, 0.0f}, {1.0f, 0.0f},   {1e4f, 0.0f},
                           {1.0f, 1e5f},  {1e-4f, 10.0f}, {1e4f, 1e9f}};
     const double eps = std::ldexp(1.0, -24);
     for (const Case& c : cases) {
@@ -727,11 +733,10 @@ TEST_CASE("grazing rays leave tilted surfaces at every scale and distance: no se
                     const glm::vec3 origin = kernel::offset_ray_origin(position, side, magnitude);
                     // Distance from the plane of the float vertices, in double.
                     const glm::dvec3 v0(glm::vec3(tri->v0));
-                    const glm::dvec3 normal = glm::normalize(
-                        glm::cross(glm::dvec3(glm::vec3(tri->v1)) - v0,
-                                   glm::dvec3(glm::vec3(tri->v2)) - v0));
-                    const double off_plane = glm::dot(glm::dvec3(origin) - v0, normal) *
-                                             (inward ? -1.0 : 1.0);
+                    const glm::dvec3 normal = glm::normalize(glm::cross(
+                        glm::dvec3(glm::vec3(tri->v1)) - v0, glm::dvec3(glm::vec3(tri->v2)) - v0));
+                    const double off_plane =
+                        glm::dot(glm::dvec3(origin) - v0, normal) * (inward ? -1.0 : 1.0);
                     too_far += !(off_plane > 0.0 && off_plane < 21.0 * eps * magnitude);
                     const float cos_theta = std::pow(10.0f, -6.0f * kernel::rng_float(&rng));
                     const float sin_theta = std::sqrt(1.0f - cos_theta * cos_theta);
@@ -740,8 +745,7 @@ TEST_CASE("grazing rays leave tilted surfaces at every scale and distance: no se
                     const glm::vec3 d = glm::normalize(kernel::frame_to_world(
                         frame, glm::vec3(sin_theta * std::cos(phi), sin_theta * std::sin(phi),
                                          cos_theta)));
-                    const kernel::Hit next =
-                        nearest_hit(&view, kernel::make_ray(origin, d));
+                    const kernel::Hit next = nearest_hit(&view, kernel::make_ray(origin, d));
                     self_hits += next.triangle == hit.triangle;
                     leaks += inward && next.triangle < 0;
                 }
@@ -801,9 +805,10 @@ double furnace_mean(double rho, double le, int max_depth) {
 
 }  // namespace
 
-TEST_CASE("glass slab: ior 1 is invisible except its tint; ior 1.5 and 3 transmit "
-          "(1 - R) / (1 + R)",
-          "[stability][material]") {
+TEST_CASE(
+    "glass slab: ior 1 is invisible except its tint; ior 1.5 and 3 transmit "
+    "(1 - R) / (1 + R)",
+    "[stability][material]") {
     // Near normal incidence each interface reflects R = ((n - 1) / (n + 1))^2
     // and the slab's inter-reflections sum to a transmittance of
     // (1 - R) / (1 + R): 0.923 for n = 1.5, 0.6 for n = 3. Index-matched
@@ -884,9 +889,10 @@ TEST_CASE("a roughness-0 mirror furnace conserves energy like the diffuse one",
     require_mean(*r, furnace_mean(rho, 1.0, depth), std::pow(rho, depth - 1));
 }
 
-TEST_CASE("roughness 1: the cosine hemisphere around the mirror direction, the part below the "
-          "surface absorbed",
-          "[stability][material]") {
+TEST_CASE(
+    "roughness 1: the cosine hemisphere around the mirror direction, the part below the "
+    "surface absorbed",
+    "[stability][material]") {
     // At roughness 1 the glossy cone is a cosine-weighted hemisphere around
     // the mirror direction m. Projected onto the disc perpendicular to m
     // (Malley) it is uniform, and the directions below the surface fill the
@@ -1068,9 +1074,10 @@ TEST_CASE("the rigged generator draws exactly the requested uniforms", "[stabili
     }
 }
 
-TEST_CASE("uniforms of exactly 0 and 1 - 2^-24 give every material finite directions and "
-          "weights",
-          "[stability][sampling]") {
+TEST_CASE(
+    "uniforms of exactly 0 and 1 - 2^-24 give every material finite directions and "
+    "weights",
+    "[stability][sampling]") {
     // The direction samplers alone are checked in test_sampling.cpp; here
     // the material routines that draw their own numbers, for every
     // combination of extremes, at normal, oblique, grazing and exactly
@@ -1078,8 +1085,8 @@ TEST_CASE("uniforms of exactly 0 and 1 - 2^-24 give every material finite direct
     const float extremes[] = {0.0f, largest_uniform};
     std::vector<kernel::MaterialRecord> materials;
     auto add = [&materials](unsigned type, float roughness, float ior) {
-        materials.push_back(kernel::make_material_record(type, glm::vec3(0.8f, 0.5f, 0.2f), 0.0f,
-                                                         roughness, ior));
+        materials.push_back(
+            kernel::make_material_record(type, glm::vec3(0.8f, 0.5f, 0.2f), 0.0f, roughness, ior));
     };
     add(T0_MATERIAL_DIFFUSE, 0.0f, 1.5f);
     for (float roughness : {0.0f, 0.5f, 1.0f}) {
@@ -1121,9 +1128,10 @@ TEST_CASE("uniforms of exactly 0 and 1 - 2^-24 give every material finite direct
     CHECK(checked == 7 * 4 * 2 * 4);
 }
 
-TEST_CASE("uniforms of exactly 0 and 1 - 2^-24 into light sampling: a light in the list, a "
-          "point on it, a finite contribution",
-          "[stability][sampling]") {
+TEST_CASE(
+    "uniforms of exactly 0 and 1 - 2^-24 into light sampling: a light in the list, a "
+    "point on it, a finite contribution",
+    "[stability][sampling]") {
     // Next-event estimation draws three numbers per light sample: which
     // light (an inverse-CDF search), and a point on it (the square-root
     // map). Every combination of extremes, from a point of the room's floor,
@@ -1238,9 +1246,9 @@ TEST_CASE("a lamp of infinite emittance: every non-finite sample is counted and 
             kernel::rng_seed_pixel(&rng, seed, pixel, frame);
             const float jx = kernel::rng_float(&rng);
             const float jy = kernel::rng_float(&rng);
-            const kernel::Hit hit = nearest_hit(
-                &view, kernel::camera_ray(cam, static_cast<float>(pixel % 16),
-                                          static_cast<float>(pixel / 16), jx, jy));
+            const kernel::Hit hit =
+                nearest_hit(&view, kernel::camera_ray(cam, static_cast<float>(pixel % 16),
+                                                      static_cast<float>(pixel / 16), jx, jy));
             lamp_hits += hit.triangle >= 0 &&
                          packed.triangles[static_cast<std::size_t>(hit.triangle)].ids.x == 1u;
         }
@@ -1280,9 +1288,10 @@ TEST_CASE("a firefly of 1e6 among 100,000 samples keeps the mean exact", "[stabi
     CHECK(std::fabs(mean.x - 1e6 / (n + 1.0)) > 0.09);
 }
 
-TEST_CASE("the OpenCL backend: bit-identical for the same seed, non-finite samples dropped, "
-          "and a scene at 1e5 renders as the CPU's at the origin",
-          "[stability][numerics][opencl]") {
+TEST_CASE(
+    "the OpenCL backend: bit-identical for the same seed, non-finite samples dropped, "
+    "and a scene at 1e5 renders as the CPU's at the origin",
+    "[stability][numerics][opencl]") {
     // All three scenes have the room's feature mask, so PoCL builds one
     // program (seconds) and every backend below reuses it. The offset and
     // the hit point's pull into its triangle are bit tricks and float steps
@@ -1417,9 +1426,10 @@ TEST_CASE("looking straight along world up is refused; the renderer keeps its ca
     }
 }
 
-TEST_CASE("fields of view: outside (0, 180) is an error naming the file and field; the "
-          "extremes inside render finite images",
-          "[stability][camera]") {
+TEST_CASE(
+    "fields of view: outside (0, 180) is an error naming the file and field; the "
+    "extremes inside render finite images",
+    "[stability][camera]") {
     auto scene_text = [](const std::string& fov) {
         return R"({"camera": {"position": [0, 0, -0.5], "vertical_fov": )" + fov +
                R"(}, "render": {"width": 16, "height": 16, "max_depth": 4},

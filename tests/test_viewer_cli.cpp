@@ -70,8 +70,8 @@ TEST_CASE("a headless render of cornell.json is deterministic and finite", "[cli
 }
 
 TEST_CASE("a PNG and a PFM are written for the built-in scene", "[cli]") {
-    const Run r = run_viewer(
-        "--headless --width 40 --height 30 --spp 2 --output cli.png --output cli.pfm");
+    const Run r =
+        run_viewer("--headless --width 40 --height 30 --spp 2 --output cli.png --output cli.pfm");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
     const std::string png = read_bytes("cli.png");

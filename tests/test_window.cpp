@@ -88,9 +88,10 @@ bool same_pixels(const trac0r::Image& a, const trac0r::Image& b) {
 
 }  // namespace
 
-TEST_CASE("scripted input: movement restarts accumulation and changes the image, F1 draws "
-          "the AABBs, P saves screenshots, Esc exits 0",
-          "[window]") {
+TEST_CASE(
+    "scripted input: movement restarts accumulation and changes the image, F1 draws "
+    "the AABBs, P saves screenshots, Esc exits 0",
+    "[window]") {
     const std::string dir = empty_directory("window_session");
     // --spp 4: the window pauses at 4 samples per pixel, so every screenshot
     // below is of exactly 4 spp of its view.
@@ -111,9 +112,8 @@ wait 100
 key P            # 4: with the overlay
 key Escape
 )");
-    const ViewerRun r =
-        run_viewer_process(cornell + " --width 200 --height 150 --spp 4 --replay script.txt",
-                           "cd " + dir + " &&");
+    const ViewerRun r = run_viewer_process(
+        cornell + " --width 200 --height 150 --spp 4 --replay script.txt", "cd " + dir + " &&");
     INFO(r.err);
     REQUIRE(r.exit_code == 0);  // Esc quits cleanly
     const std::vector<Screenshot> shots = screenshots_said(r.err);
@@ -164,8 +164,7 @@ key Escape
     CHECK(yellow_pixels(png[3]) > 100);
 }
 
-TEST_CASE("right-drag looks around, the wheel zooms, R restarts, B says what it did",
-          "[window]") {
+TEST_CASE("right-drag looks around, the wheel zooms, R restarts, B says what it did", "[window]") {
     const std::string dir = empty_directory("window_look");
     write_file(dir + "/script.txt", R"(wait_spp 3
 key P
@@ -182,9 +181,8 @@ key B            # to OpenCL (PoCL), or a message why not
 wait 200
 key Escape
 )");
-    const ViewerRun r =
-        run_viewer_process(cornell + " --width 120 --height 90 --spp 3 --replay script.txt",
-                           "cd " + dir + " &&");
+    const ViewerRun r = run_viewer_process(
+        cornell + " --width 120 --height 90 --spp 3 --replay script.txt", "cd " + dir + " &&");
     INFO(r.err);
     REQUIRE(r.exit_code == 0);
     const std::vector<Screenshot> shots = screenshots_said(r.err);
@@ -215,8 +213,9 @@ TEST_CASE("a bad --replay file is one message naming the line, before any window
     const ViewerRun missing = run_viewer_process("--replay no_such_replay.txt");
     CHECK(missing.exit_code == 1);
     CHECK(missing.err.find("no_such_replay.txt") != std::string::npos);
-    const ViewerRun headless = run_viewer_process("--replay bad_replay.txt --headless "
-                                                  "--output x.png");
+    const ViewerRun headless = run_viewer_process(
+        "--replay bad_replay.txt --headless "
+        "--output x.png");
     CHECK(headless.exit_code == 2);
     CHECK(headless.err.find("--replay") != std::string::npos);
 }

@@ -65,7 +65,8 @@ class Builder {
     // The binary tree (node 0 the root) and, in `order`, the items in leaf
     // order.
     std::vector<BinaryNode> build(std::vector<std::uint32_t>& order) {
-        nodes_.reserve(2 * items_.size() / static_cast<std::size_t>(std::max(1, max_leaf_ / 2)) + 1);
+        nodes_.reserve(2 * items_.size() / static_cast<std::size_t>(std::max(1, max_leaf_ / 2)) +
+                       1);
         nodes_.emplace_back();
         build_node(0, 0, items_.size(), 1);
         order.clear();
@@ -181,7 +182,8 @@ class Builder {
     void median_split(std::size_t node, const AABB& bounds, const AABB& centroid_bounds,
                       std::size_t begin, std::size_t end, int depth) {
         const glm::vec3 extent = centroid_bounds.max - centroid_bounds.min;
-        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+        const int axis =
+            extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
         const std::size_t mid = begin + (end - begin) / 2;
         std::nth_element(items_.begin() + static_cast<std::ptrdiff_t>(begin),
                          items_.begin() + static_cast<std::ptrdiff_t>(mid),
@@ -330,8 +332,8 @@ Bvh build_bvh(const std::vector<AABB>& triangle_bounds, int max_leaf_size) {
     std::vector<BuildItem> items;
     items.reserve(triangle_bounds.size());
     for (std::size_t i = 0; i < triangle_bounds.size(); ++i) {
-        items.push_back({triangle_bounds[i], triangle_bounds[i].center(),
-                         static_cast<std::uint32_t>(i)});
+        items.push_back(
+            {triangle_bounds[i], triangle_bounds[i].center(), static_cast<std::uint32_t>(i)});
     }
     Bvh bvh;
     const int leaf_size = std::min(std::max(1, max_leaf_size), 4);  // one packet

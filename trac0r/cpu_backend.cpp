@@ -38,8 +38,9 @@ void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t 
         const long y0 = (t / tiles_x) * tile;
         for (long y = y0; y < y0 + tile && y < height; ++y) {
             for (long x = x0; x < x0 + tile && x < width; ++x) {
-                kernel::render_pixel(&view, camera, accum, static_cast<std::uint32_t>(y * width + x),
-                                     seed, frame, max_depth);
+                kernel::render_pixel(&view, camera, accum,
+                                     static_cast<std::uint32_t>(y * width + x), seed, frame,
+                                     max_depth);
             }
         }
     }

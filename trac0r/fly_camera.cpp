@@ -37,14 +37,13 @@ Camera turn_camera(const Camera& camera, float yaw_radians, float pitch_radians)
     const float elevation = std::asin(std::max(-1.0f, std::min(1.0f, glm::dot(f.forward, f.up))));
     const glm::vec3 heading = glm::normalize(f.forward - glm::dot(f.forward, f.up) * f.up);
     // Yaw about world_up: heading turns towards right for positive angles.
-    const glm::vec3 turned =
-        std::cos(yaw_radians) * heading + std::sin(yaw_radians) * f.right;
+    const glm::vec3 turned = std::cos(yaw_radians) * heading + std::sin(yaw_radians) * f.right;
     const float max_elevation = 0.5f * 3.14159265f - fly_camera_min_pole_angle;
     const float new_elevation =
         std::max(-max_elevation, std::min(max_elevation, elevation + pitch_radians));
     Camera result = camera;
-    result.direction = glm::normalize(std::cos(new_elevation) * turned +
-                                      std::sin(new_elevation) * f.up);
+    result.direction =
+        glm::normalize(std::cos(new_elevation) * turned + std::sin(new_elevation) * f.up);
     return result;
 }
 

@@ -10,8 +10,8 @@ Triangle::Triangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c)
     const glm::dvec3 e2 = glm::dvec3(c) - glm::dvec3(a);
     const glm::dvec3 n = glm::cross(e1, e2);
     const double twice_area = glm::length(n);
-    const double longest2 = glm::max(glm::max(glm::dot(e1, e1), glm::dot(e2, e2)),
-                                     glm::dot(e2 - e1, e2 - e1));
+    const double longest2 =
+        glm::max(glm::max(glm::dot(e1, e1), glm::dot(e2, e2)), glm::dot(e2 - e1, e2 - e1));
     // Degenerate when its height over its longest edge, twice_area /
     // longest^2, is below float resolution (FLT_EPSILON = 2^-23): the third
     // vertex is within rounding of the line of the other two, as when it was

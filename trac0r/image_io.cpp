@@ -90,12 +90,13 @@ void write_pfm(const std::string& path, const Image& image) {
         throw std::runtime_error(path + ": cannot open for writing");
     }
     // A negative scale says little-endian.
-    out << "PF\n" << image.width << " " << image.height << "\n"
+    out << "PF\n"
+        << image.width << " " << image.height << "\n"
         << (host_is_little_endian() ? "-1.0" : "1.0") << "\n";
     for (int y = image.height - 1; y >= 0; --y) {  // PFM stores the bottom row first
-        out.write(reinterpret_cast<const char*>(&image.pixels[static_cast<std::size_t>(y) *
-                                                              image.width]),
-                  static_cast<std::streamsize>(sizeof(glm::vec3)) * image.width);
+        out.write(
+            reinterpret_cast<const char*>(&image.pixels[static_cast<std::size_t>(y) * image.width]),
+            static_cast<std::streamsize>(sizeof(glm::vec3)) * image.width);
     }
     if (!out) {
         throw std::runtime_error(path + ": write failed");
@@ -118,8 +119,8 @@ Image read_pfm(const std::string& path) {
     const bool file_little = scale < 0.0;
     image.pixels.resize(static_cast<std::size_t>(image.width) * image.height);
     for (int y = image.height - 1; y >= 0; --y) {
-        char* row = reinterpret_cast<char*>(&image.pixels[static_cast<std::size_t>(y) *
-                                                          image.width]);
+        char* row =
+            reinterpret_cast<char*>(&image.pixels[static_cast<std::size_t>(y) * image.width]);
         const std::size_t bytes = sizeof(glm::vec3) * image.width;
         if (!in.read(row, static_cast<std::streamsize>(bytes))) {
             throw std::runtime_error(path + ": PFM data is truncated");

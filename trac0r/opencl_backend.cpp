@@ -104,8 +104,9 @@ SharedDevice& shared_device(int index) {
     }
     const std::vector<DeviceHandle> all = enumerate_devices();
     if (all.empty()) {
-        throw OpenClError("no OpenCL platform or device found (install an OpenCL driver, "
-                          "e.g. Debian's pocl-opencl-icd)");
+        throw OpenClError(
+            "no OpenCL platform or device found (install an OpenCL driver, "
+            "e.g. Debian's pocl-opencl-icd)");
     }
     if (index < 0 || static_cast<std::size_t>(index) >= all.size()) {
         throw OpenClError("--device " + std::to_string(index) + ": no such OpenCL device; " +
@@ -118,10 +119,9 @@ SharedDevice& shared_device(int index) {
     check(status, "clCreateContext");
     d.queue = clCreateCommandQueue(d.context, d.device, 0, &status);
     check(status, "clCreateCommandQueue");
-    d.description = device_string(d.device, CL_DEVICE_NAME) + " (" +
-                    platform_string(all[static_cast<std::size_t>(index)].platform,
-                                    CL_PLATFORM_NAME) +
-                    ")";
+    d.description =
+        device_string(d.device, CL_DEVICE_NAME) + " (" +
+        platform_string(all[static_cast<std::size_t>(index)].platform, CL_PLATFORM_NAME) + ")";
     return devices.emplace(index, d).first->second;
 }
 
@@ -149,8 +149,7 @@ cl_program get_program(SharedDevice& d, const std::string& options, double* buil
         const std::string log = build_log(program, d.device);
         clReleaseProgram(program);
         throw OpenClError("OpenCL program build failed on " + d.description + " with options '" +
-                          options + "' (error " + std::to_string(status) + "); build log:\n" +
-                          log);
+                          options + "' (error " + std::to_string(status) + "); build log:\n" + log);
     }
     *build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -18,8 +18,7 @@ bool finite(const glm::vec3& v) {
 }
 
 bool usable_triangle(const Triangle& t) {
-    return finite(t.v0) && finite(t.v1) && finite(t.v2) && t.area > 0.0f &&
-           std::isfinite(t.area);
+    return finite(t.v0) && finite(t.v1) && finite(t.v2) && t.area > 0.0f && std::isfinite(t.area);
 }
 
 kernel::TriangleRecord pack_triangle(const Triangle& t, unsigned material, unsigned shape) {
@@ -48,14 +47,13 @@ std::uint32_t material_feature(MaterialType type) {
     return 0;
 }
 
-const char* const feature_bit_names[T0_FEATURE_COUNT] = {
-    "emissive", "diffuse", "glass", "glossy", "emittance", "flat", "bvh", "nee"};
+const char* const feature_bit_names[T0_FEATURE_COUNT] = {"emissive",  "diffuse", "glass", "glossy",
+                                                         "emittance", "flat",    "bvh",   "nee"};
 
 // What this build's kernel can do at all.
-const std::uint32_t implemented_features = T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE |
-                                           T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
-                                           T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT |
-                                           T0_FEATURE_BVH | T0_FEATURE_NEE;
+const std::uint32_t implemented_features =
+    T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE | T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
+    T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT | T0_FEATURE_BVH | T0_FEATURE_NEE;
 
 }  // namespace
 
@@ -155,8 +153,8 @@ void pack_lights(PackedScene& packed, const std::vector<std::uint32_t>& packed_i
     for (std::uint32_t i : packed_index) {
         const kernel::TriangleRecord& t = packed.triangles[i];
         const kernel::MaterialRecord& m = packed.materials[t.ids.x];
-        const double p = static_cast<double>(m.params.x) *
-                         kernel::luminance(glm::vec3(m.color)) * 0.5 * t.normal.w;
+        const double p = static_cast<double>(m.params.x) * kernel::luminance(glm::vec3(m.color)) *
+                         0.5 * t.normal.w;
         if (p > 0.0 && std::isfinite(p)) {
             emitting.push_back(i);
             power.push_back(p);
@@ -197,11 +195,11 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
         }
     }
     const bool use_bvh =
-        !usable.empty() && (options.accel == Accel::bvh ||
-                            (options.accel == Accel::automatic &&
-                             usable.size() >= (options.auto_bvh_min_triangles > 0
-                                                   ? options.auto_bvh_min_triangles
-                                                   : auto_bvh_min_triangles)));
+        !usable.empty() &&
+        (options.accel == Accel::bvh ||
+         (options.accel == Accel::automatic &&
+          usable.size() >= (options.auto_bvh_min_triangles > 0 ? options.auto_bvh_min_triangles
+                                                               : auto_bvh_min_triangles)));
     // packed_index[u]: where usable triangle u went (the flat list keeps
     // their order).
     std::vector<std::uint32_t> packed_index(usable.size());

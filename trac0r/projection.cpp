@@ -46,8 +46,8 @@ glm::vec2 camera_space_to_image(const kernel::CameraRecord& camera, const glm::v
                      0.5f * height * (1.0f - sy / camera.extent.y));
 }
 
-bool project_point(const kernel::CameraRecord& camera, const glm::vec3& world,
-                   float near_distance, glm::vec2* image_position) {
+bool project_point(const kernel::CameraRecord& camera, const glm::vec3& world, float near_distance,
+                   glm::vec2* image_position) {
     const glm::vec3 p = to_camera_space(camera, world);
     if (!(p.z >= near_distance)) {
         return false;
@@ -62,8 +62,7 @@ bool clip_segment_to_image(Segment2* segment, float width, float height) {
     float t1 = 1.0f;
     // Each boundary as p * t <= q: left, right, top, bottom.
     const float p[4] = {-d.x, d.x, -d.y, d.y};
-    const float q[4] = {segment->a.x, width - segment->a.x, segment->a.y,
-                        height - segment->a.y};
+    const float q[4] = {segment->a.x, width - segment->a.x, segment->a.y, height - segment->a.y};
     for (int i = 0; i < 4; ++i) {
         if (p[i] == 0.0f) {
             if (q[i] < 0.0f) {

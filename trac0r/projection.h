@@ -27,8 +27,8 @@ glm::vec2 camera_space_to_image(const kernel::CameraRecord& camera, const glm::v
 // The image position of a world point, or false when the point lies closer
 // than `near_distance` along the view direction (behind the camera
 // included), where a perspective projection would flip or blow up.
-bool project_point(const kernel::CameraRecord& camera, const glm::vec3& world,
-                   float near_distance, glm::vec2* image_position);
+bool project_point(const kernel::CameraRecord& camera, const glm::vec3& world, float near_distance,
+                   glm::vec2* image_position);
 
 struct Segment2 {
     glm::vec2 a;

@@ -724,8 +724,6 @@ const char* builtin_scene_json() {
     return std::strncmp(text, "// ---- ", 8) == 0 && newline ? newline + 1 : text;
 }
 
-Scene builtin_scene() {
-    return parse_scene(builtin_scene_json(), "built-in scene", "");
-}
+Scene builtin_scene() { return parse_scene(builtin_scene_json(), "built-in scene", ""); }
 
 }  // namespace trac0r

@@ -53,16 +53,16 @@ void add_quad(std::vector<Triangle>& out, const glm::vec3& centre, const glm::ve
 
 std::vector<Triangle> unit_icosphere(int subdivisions) {
     const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0},  {-1, -t, 0}, {1, -t, 0},
-                                {0, -1, t}, {0, 1, t},  {0, -1, -t}, {0, 1, -t},
-                                {t, 0, -1}, {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<glm::vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0},
+                                {0, -1, t}, {0, 1, t}, {0, -1, -t}, {0, 1, -t},
+                                {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
     for (glm::vec3& p : v) {
         p = glm::normalize(p);
     }
     std::vector<std::array<int, 3>> faces = {
-        {0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+        {0, 11, 5},  {0, 5, 1},  {0, 1, 7},  {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
         {11, 10, 2}, {10, 7, 6}, {7, 1, 8},  {3, 9, 4},  {3, 4, 2},   {3, 2, 6}, {3, 6, 8},
-        {3, 8, 9},  {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
+        {3, 8, 9},   {4, 9, 5},  {2, 4, 11}, {6, 2, 10}, {8, 6, 7},   {9, 8, 1}};
     for (int level = 0; level < subdivisions; ++level) {
         std::map<std::pair<int, int>, int> midpoints;
         auto midpoint = [&](int i, int j) {
@@ -143,8 +143,8 @@ Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
     const std::string base_dir = path.substr(0, path.find_last_of('/') + 1);
     // Materials of the OBJ are ignored (the scene file assigns one), so no
     // .mtl is needed; triangulate polygons.
-    if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, path.c_str(),
-                          base_dir.c_str(), true)) {
+    if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, path.c_str(), base_dir.c_str(),
+                          true)) {
         throw std::runtime_error(path + ": cannot read OBJ mesh" + (err.empty() ? "" : ": " + err));
     }
     const std::size_t vertex_count = attrib.vertices.size() / 3;
@@ -157,8 +157,8 @@ Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
                 if (index < 0 || static_cast<std::size_t>(index) >= vertex_count) {
                     throw std::runtime_error(path + ": face of shape '" + s.name +
                                              "' refers to vertex " + std::to_string(index + 1) +
-                                             ", but the file has " +
-                                             std::to_string(vertex_count) + " vertices");
+                                             ", but the file has " + std::to_string(vertex_count) +
+                                             " vertices");
                 }
                 p[k] = glm::vec3(attrib.vertices[3 * index], attrib.vertices[3 * index + 1],
                                  attrib.vertices[3 * index + 2]);

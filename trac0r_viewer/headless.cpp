@@ -74,8 +74,7 @@ class Progress {
         return f;
     }
 
-    void draw(long spp, double elapsed, double paths_per_second, double estimate,
-              double fraction) {
+    void draw(long spp, double elapsed, double paths_per_second, double estimate, double fraction) {
         last_drawn_spp_ = spp;
         const int width = 30;
         const int filled = static_cast<int>(fraction * width);
@@ -86,8 +85,8 @@ class Progress {
         }
         std::fprintf(stderr, "%s[%s%s] %3.0f%%  %ld spp  %.1f s  ETA %.1f s  %.2f Mpaths/s%s%s",
                      tty_ ? "\r" : "", std::string(filled, '#').c_str(),
-                     std::string(width - filled, '.').c_str(), 100.0 * fraction, spp, elapsed,
-                     eta, paths_per_second * 1e-6, noise, tty_ ? "   " : "\n");
+                     std::string(width - filled, '.').c_str(), 100.0 * fraction, spp, elapsed, eta,
+                     paths_per_second * 1e-6, noise, tty_ ? "   " : "\n");
         std::fflush(stderr);
     }
 
@@ -154,8 +153,8 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
     long spp = 0;
     const auto estimate = [&] {
         if (estimate_spp != spp) {
-            last_estimate = trac0r::estimate_relative_mse(renderer.accumulator(),
-                                                          renderer.width(), renderer.height());
+            last_estimate = trac0r::estimate_relative_mse(renderer.accumulator(), renderer.width(),
+                                                          renderer.height());
             estimate_spp = spp;
         }
         return last_estimate;
@@ -192,18 +191,21 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
     }
     progress.finish(spp, elapsed, paths_per_second, last_estimate);
     const trac0r::RenderStats stats = renderer.stats();
-    std::fprintf(stderr, "rendered %ld spp of %dx%d in %.2f s (%.2f Mpaths/s); %.0f non-finite "
-                         "samples dropped\n",
+    std::fprintf(stderr,
+                 "rendered %ld spp of %dx%d in %.2f s (%.2f Mpaths/s); %.0f non-finite "
+                 "samples dropped\n",
                  spp, renderer.width(), renderer.height(), elapsed, paths_per_second * 1e-6,
                  stats.samples_dropped);
     if (by_error) {
         if (error_reached) {
-            std::fprintf(stderr, "target error reached: estimated relative MSE %.4g <= %.4g "
-                                 "after %ld spp, %.2f s\n",
+            std::fprintf(stderr,
+                         "target error reached: estimated relative MSE %.4g <= %.4g "
+                         "after %ld spp, %.2f s\n",
                          last_estimate, options.target_error, spp, elapsed);
         } else {
-            std::fprintf(stderr, "target error NOT reached: estimated relative MSE %.4g > %.4g "
-                                 "when the %s limit stopped the render (%ld spp, %.2f s)\n",
+            std::fprintf(stderr,
+                         "target error NOT reached: estimated relative MSE %.4g > %.4g "
+                         "when the %s limit stopped the render (%ld spp, %.2f s)\n",
                          last_estimate, options.target_error, spp_done_reason(options), spp,
                          elapsed);
         }
@@ -239,8 +241,8 @@ int run_benchmark(trac0r::Renderer& renderer, const Options& options,
     json.precision(6);
     json << "{\"frames\": " << frame_seconds.size() << ", \"mean_fps\": " << 1.0 / mean_seconds
          << ", \"median_fps\": " << 1.0 / percentile_sorted(sorted, 0.5)
-         << ", \"min_fps\": " << 1.0 / sorted.back() << ", \"ms_per_frame\": "
-         << 1e3 * mean_seconds << ", \"paths_per_second\": " << pixels / mean_seconds
+         << ", \"min_fps\": " << 1.0 / sorted.back() << ", \"ms_per_frame\": " << 1e3 * mean_seconds
+         << ", \"paths_per_second\": " << pixels / mean_seconds
          << ", \"width\": " << renderer.width() << ", \"height\": " << renderer.height()
          << ", \"triangles\": " << renderer.packed().triangles.size() << ", \"backend\": \""
          << json_escape(renderer.backend().name()) << "\", \"device\": \""

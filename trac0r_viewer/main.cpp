@@ -24,8 +24,9 @@ using trac0r_viewer::UsageError;
 void check_options(const Options& o) {
 #ifndef TRAC0R_HAVE_OPENCL
     if (o.backend == "opencl" || o.device >= 0 || o.list_devices) {
-        throw UsageError("--backend opencl / --device / --list-devices: this build has no "
-                         "OpenCL backend (configure with -DTRAC0R_OPENCL=ON)");
+        throw UsageError(
+            "--backend opencl / --device / --list-devices: this build has no "
+            "OpenCL backend (configure with -DTRAC0R_OPENCL=ON)");
     }
 #endif
     if (o.device >= 0 && o.backend != "opencl") {
@@ -33,16 +34,19 @@ void check_options(const Options& o) {
                          ": picks an OpenCL device; add --backend opencl");
     }
     if (o.headless && o.benchmark_frames == 0 && o.outputs.empty()) {
-        throw UsageError("--headless: nothing to do; give --output FILE (.png or .pfm) or "
-                         "--benchmark N");
+        throw UsageError(
+            "--headless: nothing to do; give --output FILE (.png or .pfm) or "
+            "--benchmark N");
     }
     if (o.benchmark_frames > 0 && (o.spp > 0 || o.seconds > 0.0 || o.target_error > 0.0)) {
-        throw UsageError("--benchmark: renders exactly N frames; it does not go with --spp, "
-                         "--seconds or --target-error");
+        throw UsageError(
+            "--benchmark: renders exactly N frames; it does not go with --spp, "
+            "--seconds or --target-error");
     }
     if (!o.replay_path.empty() && (o.headless || o.benchmark_frames > 0)) {
-        throw UsageError("--replay: scripts the interactive window; it does not go with "
-                         "--headless or --benchmark");
+        throw UsageError(
+            "--replay: scripts the interactive window; it does not go with "
+            "--headless or --benchmark");
     }
     // Checked before rendering, not after.
     for (const std::string& f : o.outputs) {
@@ -73,15 +77,16 @@ void print_verbose(trac0r::Renderer& r, const Options& o) {
                  "scene: %s, %zu shapes, %zu triangles (%zu degenerate left out), %dx%d, "
                  "max depth %d, seed %llu\n",
                  o.scene_path.empty() ? "built-in Cornell box" : o.scene_path.c_str(),
-                 r.scene().shapes.size(), p.triangles.size(), p.dropped_degenerate_triangles, r.width(),
-                 r.height(), r.scene().render.max_depth, static_cast<unsigned long long>(o.seed));
+                 r.scene().shapes.size(), p.triangles.size(), p.dropped_degenerate_triangles,
+                 r.width(), r.height(), r.scene().render.max_depth,
+                 static_cast<unsigned long long>(o.seed));
     if (p.nodes.empty()) {
         std::fprintf(stderr, "acceleration: flat list of %zu shapes (--accel %s)\n",
                      p.shapes.size(), o.accel.c_str());
     } else {
         std::fprintf(stderr, "acceleration: BVH of %zu nodes, depth %d%s (--accel %s)\n",
-                     p.nodes.size(), p.bvh_depth,
-                     p.bvh_by_levels ? ", collapsed by levels" : "", o.accel.c_str());
+                     p.nodes.size(), p.bvh_depth, p.bvh_by_levels ? ", collapsed by levels" : "",
+                     o.accel.c_str());
     }
     std::fprintf(stderr, "backend: %s (%s)\n", r.backend().name().c_str(),
                  r.backend().device().c_str());
@@ -100,8 +105,9 @@ int list_devices() {
 #ifdef TRAC0R_HAVE_OPENCL
     const std::vector<trac0r::OpenClDeviceInfo> devices = trac0r::list_opencl_devices();
     if (devices.empty()) {
-        std::fprintf(stderr, "trac0r_viewer: no OpenCL platform or device found (install an "
-                             "OpenCL driver, e.g. Debian's pocl-opencl-icd)\n");
+        std::fprintf(stderr,
+                     "trac0r_viewer: no OpenCL platform or device found (install an "
+                     "OpenCL driver, e.g. Debian's pocl-opencl-icd)\n");
         return 1;
     }
     for (const trac0r::OpenClDeviceInfo& d : devices) {
@@ -118,13 +124,15 @@ std::unique_ptr<trac0r::Backend> backend_named(const std::string& name, const Op
     if (name == "opencl") {
 #ifdef TRAC0R_HAVE_OPENCL
         if (o.device < 0 && trac0r::list_opencl_devices().empty()) {
-            throw std::runtime_error("no OpenCL device found (install an OpenCL driver, e.g. "
-                                     "Debian's pocl-opencl-icd)");
+            throw std::runtime_error(
+                "no OpenCL device found (install an OpenCL driver, e.g. "
+                "Debian's pocl-opencl-icd)");
         }
         return std::make_unique<trac0r::OpenClBackend>(o.device >= 0 ? o.device : 0);
 #else
-        throw std::runtime_error("this build has no OpenCL backend (configure with "
-                                 "-DTRAC0R_OPENCL=ON)");
+        throw std::runtime_error(
+            "this build has no OpenCL backend (configure with "
+            "-DTRAC0R_OPENCL=ON)");
 #endif
     }
     return std::make_unique<trac0r::CpuBackend>(o.threads);
@@ -136,8 +144,9 @@ std::unique_ptr<trac0r::Backend> backend_named(const std::string& name, const Op
 std::unique_ptr<trac0r::Backend> make_backend(const Options& o) {
 #ifdef TRAC0R_HAVE_OPENCL
     if (o.backend == "opencl" && o.device < 0 && trac0r::list_opencl_devices().empty()) {
-        std::fprintf(stderr, "trac0r_viewer: no OpenCL device found; falling back to the "
-                             "CPU backend (--device N insists on OpenCL)\n");
+        std::fprintf(stderr,
+                     "trac0r_viewer: no OpenCL device found; falling back to the "
+                     "CPU backend (--device N insists on OpenCL)\n");
         return backend_named("cpu", o);
     }
 #endif
@@ -170,10 +179,9 @@ int main(int argc, char** argv) {
             return renderer;
         };
         if (!options.headless) {
-            const std::string title =
-                "trac0r_viewer: " +
-                (options.scene_path.empty() ? std::string("built-in Cornell box")
-                                            : options.scene_path);
+            const std::string title = "trac0r_viewer: " + (options.scene_path.empty()
+                                                               ? std::string("built-in Cornell box")
+                                                               : options.scene_path);
             return trac0r_viewer::run_window(
                 options, title, scene.render, make_renderer,
                 [&](const std::string& name) { return backend_named(name, options); });

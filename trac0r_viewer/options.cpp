@@ -137,17 +137,16 @@ Options parse_options(int argc, const char* const* argv) {
         {"--max-depth", [&](auto f, auto v) { o.max_depth = (int)parse_integer(f, v, 1, 100000); }},
         {"--threads", [&](auto f, auto v) { o.threads = (int)parse_integer(f, v, 1, 1024); }},
         {"--accel", [&](auto f, auto v) { o.accel = parse_choice(f, v, "flat|bvh|auto"); }},
-        {"--integrator",
-         [&](auto f, auto v) { o.integrator = parse_choice(f, v, "naive|nee"); }},
+        {"--integrator", [&](auto f, auto v) { o.integrator = parse_choice(f, v, "naive|nee"); }},
         {"--target-error", [&](auto f, auto v) { o.target_error = parse_positive(f, v); }},
         {"--exposure", [&](auto f, auto v) { o.exposure = (float)parse_positive(f, v); }},
         {"--replay", [&](auto, auto v) { o.replay_path = v; }},
     };
     const std::map<std::string, bool*> switches = {{"--headless", &o.headless},
-                                                    {"--verbose", &o.verbose},
-                                                    {"--list-devices", &o.list_devices},
-                                                    {"--help", &o.help},
-                                                    {"-h", &o.help}};
+                                                   {"--verbose", &o.verbose},
+                                                   {"--list-devices", &o.list_devices},
+                                                   {"--help", &o.help},
+                                                   {"-h", &o.help}};
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         const auto sw = switches.find(arg);

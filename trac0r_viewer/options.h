@@ -15,8 +15,8 @@ struct Options {
     int device = -1;
     int width = 0;  // 0: the scene's
     int height = 0;
-    long spp = 0;          // 0: not given
-    double seconds = 0.0;  // 0: not given
+    long spp = 0;                      // 0: not given
+    double seconds = 0.0;              // 0: not given
     std::vector<std::string> outputs;  // --output, may be repeated
     bool headless = false;
     long benchmark_frames = 0;

@@ -28,7 +28,8 @@ const char* overlay_font_path() { return TRAC0R_FONT; }
 
 Font::Font(const std::string& path, int point_size) {
     if (!std::ifstream(path)) {
-        throw WindowError("font " + path + " not found: install Debian's fonts-dejavu-core, or "
+        throw WindowError("font " + path +
+                          " not found: install Debian's fonts-dejavu-core, or "
                           "configure with -DTRAC0R_FONT=/path/to/a/monospace.ttf");
     }
     if (TTF_Init() != 0) {
@@ -103,8 +104,8 @@ std::string overlay_text(const OverlayFigures& f) {
         text += format("samples  %ld spp  rel. MSE \u2248 %.3g\n", f.spp, f.relative_mse);
     } else if (std::isfinite(f.relative_mse)) {
         // Estimated every half second or so (window_worker.h): say when.
-        text += format("samples  %ld spp  rel. MSE \u2248 %.3g at %ld spp\n", f.spp,
-                       f.relative_mse, f.relative_mse_spp);
+        text += format("samples  %ld spp  rel. MSE \u2248 %.3g at %ld spp\n", f.spp, f.relative_mse,
+                       f.relative_mse_spp);
     } else {
         text += format("samples  %ld spp  rel. MSE \u2248 ? (from 2 spp)\n", f.spp);
     }
@@ -113,8 +114,8 @@ std::string overlay_text(const OverlayFigures& f) {
                    f.height);
     const glm::vec3 p = f.camera.position;
     const glm::vec3 d = glm::normalize(f.camera.direction);
-    text += format("camera   pos (%.3f, %.3f, %.3f)  dir (%.3f, %.3f, %.3f)  fov %.1f\n", p.x,
-                   p.y, p.z, d.x, d.y, d.z, f.camera.vertical_fov);
+    text += format("camera   pos (%.3f, %.3f, %.3f)  dir (%.3f, %.3f, %.3f)  fov %.1f\n", p.x, p.y,
+                   p.z, d.x, d.y, d.z, f.camera.vertical_fov);
     text += f.mouse_in_image
                 ? format("mouse    pixel (%d, %d)  radiance (%.4g, %.4g, %.4g)\n", f.mouse_x,
                          f.mouse_y, f.mouse_radiance.x, f.mouse_radiance.y, f.mouse_radiance.z)

@@ -52,7 +52,7 @@ struct OverlayFigures {
     long spp = 0;
     double relative_mse = 0.0;  // estimated; +inf when unknown (below 2 spp)
     long relative_mse_spp = 0;  // the samples per pixel it was estimated at
-    int preview_factor = 0;  // 0: a full-resolution frame
+    int preview_factor = 0;     // 0: a full-resolution frame
     std::string backend;
     std::string device;
     std::size_t triangles = 0;

@@ -146,8 +146,7 @@ std::vector<ReplayCommand> parse_replay(const std::string& text, const std::stri
         // The argument is the rest of the line: key names may hold spaces.
         const std::size_t space = content.find_first_of(" \t");
         const std::string command = content.substr(0, space);
-        const std::string argument =
-            space == std::string::npos ? "" : trim(content.substr(space));
+        const std::string argument = space == std::string::npos ? "" : trim(content.substr(space));
         const LineParser parser(origin, line, content);
         for (const ReplayCommand& c : parse_line(parser, command, argument)) {
             commands.push_back(c);
@@ -228,8 +227,7 @@ void ReplayPlayer::push_marker(std::uint32_t window_id) {
     e.user.windowID = window_id;
     e.user.timestamp = SDL_GetTicks();
     if (SDL_PushEvent(&e) < 0) {
-        std::fprintf(stderr, "trac0r_viewer: --replay: cannot push an event: %s\n",
-                     SDL_GetError());
+        std::fprintf(stderr, "trac0r_viewer: --replay: cannot push an event: %s\n", SDL_GetError());
         return;  // nothing would ever hand it back
     }
     awaiting_marker_ = true;
@@ -301,8 +299,7 @@ void ReplayPlayer::push(std::uint32_t window_id, const ReplayCommand& c) {
     }
     e.common.timestamp = SDL_GetTicks();
     if (SDL_PushEvent(&e) < 0) {
-        std::fprintf(stderr, "trac0r_viewer: --replay: cannot push an event: %s\n",
-                     SDL_GetError());
+        std::fprintf(stderr, "trac0r_viewer: --replay: cannot push an event: %s\n", SDL_GetError());
     }
 }
 

@@ -64,8 +64,8 @@ Window::Window(const std::string& title, int render_width, int render_height, bo
         width = std::max(1, static_cast<int>(width * scale));
         height = std::max(1, static_cast<int>(height * scale));
     }
-    window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED,
-                               width, height, SDL_WINDOW_RESIZABLE);
+    window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, width,
+                               height, SDL_WINDOW_RESIZABLE);
     if (!window_) {
         const std::string error = sdl_error();
         SDL_QuitSubSystem(SDL_INIT_VIDEO);
@@ -94,8 +94,8 @@ void Window::set_image(const trac0r::Rgb8Image& image) {
         if (texture_) {
             SDL_DestroyTexture(texture_);
         }
-        texture_ = SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGB24,
-                                     SDL_TEXTUREACCESS_STREAMING, image.width, image.height);
+        texture_ = SDL_CreateTexture(renderer_, SDL_PIXELFORMAT_RGB24, SDL_TEXTUREACCESS_STREAMING,
+                                     image.width, image.height);
         if (!texture_) {
             throw WindowError("cannot create a " + std::to_string(image.width) + "x" +
                               std::to_string(image.height) + " texture: " + sdl_error());
@@ -150,8 +150,8 @@ trac0r::Rgb8Image Window::read_image_area() const {
     image.width = r.w;
     image.height = r.h;
     image.bytes.resize(static_cast<std::size_t>(r.w) * r.h * 3);
-    if (SDL_RenderReadPixels(renderer_, &r, SDL_PIXELFORMAT_RGB24, image.bytes.data(),
-                             r.w * 3) != 0) {
+    if (SDL_RenderReadPixels(renderer_, &r, SDL_PIXELFORMAT_RGB24, image.bytes.data(), r.w * 3) !=
+        0) {
         throw WindowError("cannot read the window's pixels: " + sdl_error());
     }
     return image;

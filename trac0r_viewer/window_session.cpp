@@ -72,8 +72,7 @@ class Session {
   public:
     Session(const Options& options, Window& window, const Font& font,
             std::unique_ptr<trac0r::Renderer> renderer,
-            const RenderWorker::BackendFactory& make_backend,
-            std::vector<ReplayCommand> replay);
+            const RenderWorker::BackendFactory& make_backend, std::vector<ReplayCommand> replay);
     int run();
 
   private:
@@ -173,8 +172,7 @@ int Session::run() {
         take_from_worker();
         const std::string failure = worker_->failure();
         if (!failure.empty()) {
-            std::fprintf(stderr, "trac0r_viewer: error: rendering stopped: %s\n",
-                         failure.c_str());
+            std::fprintf(stderr, "trac0r_viewer: error: rendering stopped: %s\n", failure.c_str());
             return 1;
         }
         if (replaying_) {
@@ -193,8 +191,9 @@ int Session::run() {
     window_.hide();  // the window goes at once; the frame in flight may take a while
     if (!options_.outputs.empty()) {
         if (last_full_image_.pixels.empty()) {
-            std::fprintf(stderr, "trac0r_viewer: --output: no frame had finished yet; nothing "
-                                 "saved\n");
+            std::fprintf(stderr,
+                         "trac0r_viewer: --output: no frame had finished yet; nothing "
+                         "saved\n");
             return 1;
         }
         save_outputs(last_full_image_, options_);
@@ -252,11 +251,11 @@ void Session::handle(const SDL_Event& e) {
         break;
     }
     case SDL_MOUSEWHEEL: {
-        const int notches =
-            e.wheel.direction == SDL_MOUSEWHEEL_FLIPPED ? -e.wheel.y : e.wheel.y;
+        const int notches = e.wheel.direction == SDL_MOUSEWHEEL_FLIPPED ? -e.wheel.y : e.wheel.y;
         if (notches != 0) {
             // Away from the user zooms in: a narrower field of view.
-            change_camera(trac0r::zoom_camera(camera_, std::pow(0.9f, static_cast<float>(notches))));
+            change_camera(
+                trac0r::zoom_camera(camera_, std::pow(0.9f, static_cast<float>(notches))));
         }
         break;
     }
@@ -359,8 +358,8 @@ void Session::take_from_worker() {
 
 // What --replay's wait_spp waits for: the newest view, at full resolution.
 long Session::shown_spp() const {
-    const bool current = have_frame_ && !shown_.preview &&
-                         shown_.generation == requested_generation_;
+    const bool current =
+        have_frame_ && !shown_.preview && shown_.generation == requested_generation_;
     return current ? static_cast<long>(shown_.spp) : 0;
 }
 
@@ -377,7 +376,8 @@ OverlayFigures Session::figures() const {
     f.spp = shown_.spp;
     f.relative_mse = shown_.relative_mse;
     f.relative_mse_spp = shown_.relative_mse_spp;
-    f.preview_factor = shown_.preview ? window_.render_width() / std::max(1, shown_.image.width) : 0;
+    f.preview_factor =
+        shown_.preview ? window_.render_width() / std::max(1, shown_.image.width) : 0;
     f.backend = have_frame_ ? shown_.backend : options_.backend;
     f.device = have_frame_ ? shown_.device : "(first frame rendering)";
     f.triangles = triangles_;
@@ -393,10 +393,10 @@ OverlayFigures Session::figures() const {
         f.mouse_x = static_cast<int>(x);
         f.mouse_y = static_cast<int>(y);
         // A preview is smaller: the same spot of it.
-        const int ix = std::min(shown_.image.width - 1,
-                                static_cast<int>(x * shown_.image.width / f.width));
-        const int iy = std::min(shown_.image.height - 1,
-                                static_cast<int>(y * shown_.image.height / f.height));
+        const int ix =
+            std::min(shown_.image.width - 1, static_cast<int>(x * shown_.image.width / f.width));
+        const int iy =
+            std::min(shown_.image.height - 1, static_cast<int>(y * shown_.image.height / f.height));
         f.mouse_radiance = shown_.image.at(ix, iy);
     }
     return f;

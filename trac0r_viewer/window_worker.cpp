@@ -22,9 +22,8 @@ int preview_factor(int width, int height) {
     return std::max(1, std::min(4, std::min(width / 80, height / 60)));
 }
 
-RenderWorker::RenderWorker(std::unique_ptr<trac0r::Renderer> renderer,
-                           BackendFactory make_backend, const WorkerSettings& settings,
-                           std::function<void()> frame_ready)
+RenderWorker::RenderWorker(std::unique_ptr<trac0r::Renderer> renderer, BackendFactory make_backend,
+                           const WorkerSettings& settings, std::function<void()> frame_ready)
     : full_(std::move(renderer)),
       preview_factor_(preview_factor(full_->width(), full_->height())),
       make_backend_(std::move(make_backend)),
@@ -218,12 +217,12 @@ double RenderWorker::noise_estimate() {
     // on screen.
     const double interval =
         std::max(noise_estimate_interval, noise_estimate_cost_factor * last_estimate_cost_);
-    const bool due = last_estimate_spp_ == 0 ||
-                     seconds_since(last_estimate_time_) >= interval || paused();
+    const bool due =
+        last_estimate_spp_ == 0 || seconds_since(last_estimate_time_) >= interval || paused();
     if (due && last_estimate_spp_ != full_->frames()) {
         const Clock::time_point start = Clock::now();
-        last_estimate_ = trac0r::estimate_relative_mse(full_->accumulator(), full_->width(),
-                                                       full_->height());
+        last_estimate_ =
+            trac0r::estimate_relative_mse(full_->accumulator(), full_->width(), full_->height());
         last_estimate_spp_ = full_->frames();
         last_estimate_time_ = Clock::now();
         last_estimate_cost_ = seconds_since(start);

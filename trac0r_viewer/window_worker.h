@@ -53,8 +53,8 @@ struct WorkerFrame {
 
 struct WorkerSettings {
     std::uint64_t seed = 1;
-    trac0r::PackOptions pack;  // for renderers made on a backend switch
-    long spp_limit = 0;         // pause at this many samples per pixel (0: never)
+    trac0r::PackOptions pack;    // for renderers made on a backend switch
+    long spp_limit = 0;          // pause at this many samples per pixel (0: never)
     double seconds_limit = 0.0;  // pause after this long since a restart (0: never)
 };
 

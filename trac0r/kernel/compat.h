@@ -104,7 +104,9 @@ T0_INLINE float lanes_first(t0_lanes v) { return v.x; }
 // driver makes of float8. Loaded from two consecutive float4s of a buffer.
 typedef float8 t0_wide;
 typedef int8 t0_wide_mask;
-T0_INLINE t0_wide wide_load(__global const float4* p) { return vload8(0, (__global const float*)p); }
+T0_INLINE t0_wide wide_load(__global const float4* p) {
+    return vload8(0, (__global const float*)p);
+}
 T0_INLINE t0_wide wide_splat(float v) { return (float8)(v); }
 T0_INLINE t0_wide wide_sub(t0_wide a, t0_wide b) { return a - b; }
 T0_INLINE t0_wide wide_mul(t0_wide a, t0_wide b) { return a * b; }
@@ -170,8 +172,8 @@ using glm::normalize;
 using std::copysign;
 using std::cos;
 using std::fabs;
-using std::sin;
 using std::floor;
+using std::sin;
 using std::sqrt;
 
 // fmax and fmin with their C99 meaning (a NaN argument gives the other),
@@ -243,12 +245,24 @@ struct t0_wide {
 typedef t0_wide t0_wide_mask;
 inline t0_wide wide_load(const float4* p) { return t0_wide{lanes_load(p), lanes_load(p + 1)}; }
 inline t0_wide wide_splat(float v) { return t0_wide{_mm_set1_ps(v), _mm_set1_ps(v)}; }
-inline t0_wide wide_sub(t0_wide a, t0_wide b) { return t0_wide{_mm_sub_ps(a.lo, b.lo), _mm_sub_ps(a.hi, b.hi)}; }
-inline t0_wide wide_mul(t0_wide a, t0_wide b) { return t0_wide{_mm_mul_ps(a.lo, b.lo), _mm_mul_ps(a.hi, b.hi)}; }
-inline t0_wide wide_min(t0_wide a, t0_wide b) { return t0_wide{_mm_min_ps(a.lo, b.lo), _mm_min_ps(a.hi, b.hi)}; }
-inline t0_wide wide_max(t0_wide a, t0_wide b) { return t0_wide{_mm_max_ps(a.lo, b.lo), _mm_max_ps(a.hi, b.hi)}; }
-inline t0_wide_mask wide_le(t0_wide a, t0_wide b) { return t0_wide{_mm_cmple_ps(a.lo, b.lo), _mm_cmple_ps(a.hi, b.hi)}; }
-inline int wide_mask_bits(t0_wide_mask m) { return _mm_movemask_ps(m.lo) | (_mm_movemask_ps(m.hi) << 4); }
+inline t0_wide wide_sub(t0_wide a, t0_wide b) {
+    return t0_wide{_mm_sub_ps(a.lo, b.lo), _mm_sub_ps(a.hi, b.hi)};
+}
+inline t0_wide wide_mul(t0_wide a, t0_wide b) {
+    return t0_wide{_mm_mul_ps(a.lo, b.lo), _mm_mul_ps(a.hi, b.hi)};
+}
+inline t0_wide wide_min(t0_wide a, t0_wide b) {
+    return t0_wide{_mm_min_ps(a.lo, b.lo), _mm_min_ps(a.hi, b.hi)};
+}
+inline t0_wide wide_max(t0_wide a, t0_wide b) {
+    return t0_wide{_mm_max_ps(a.lo, b.lo), _mm_max_ps(a.hi, b.hi)};
+}
+inline t0_wide_mask wide_le(t0_wide a, t0_wide b) {
+    return t0_wide{_mm_cmple_ps(a.lo, b.lo), _mm_cmple_ps(a.hi, b.hi)};
+}
+inline int wide_mask_bits(t0_wide_mask m) {
+    return _mm_movemask_ps(m.lo) | (_mm_movemask_ps(m.hi) << 4);
+}
 inline void wide_store(t0_wide v, float* out) {
     _mm_storeu_ps(out, v.lo);
     _mm_storeu_ps(out + 4, v.hi);
@@ -262,19 +276,23 @@ inline t0_lanes lanes_splat(float v) { return t0_lanes{{v, v, v, v}}; }
 inline t0_lanes lanes_make(float a, float b, float c, float d) { return t0_lanes{{a, b, c, d}}; }
 // Returns a `type` (t0_lanes, t0_mask, t0_wide or t0_wide_mask) whose
 // lane i is expr.
-#define T0_LANEWISE(type, expr)                                  \
-    type r;                                                      \
+#define T0_LANEWISE(type, expr)                                   \
+    type r;                                                       \
     for (int i = 0; i < (int)(sizeof r.v / sizeof r.v[0]); ++i) { \
-        r.v[i] = (expr);                                         \
-    }                                                            \
+        r.v[i] = (expr);                                          \
+    }                                                             \
     return r
 inline t0_lanes lanes_add(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_lanes, a.v[i] + b.v[i]); }
 inline t0_lanes lanes_sub(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_lanes, a.v[i] - b.v[i]); }
 inline t0_lanes lanes_mul(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_lanes, a.v[i] * b.v[i]); }
 inline t0_lanes lanes_div(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_lanes, a.v[i] / b.v[i]); }
 inline t0_lanes lanes_abs(t0_lanes a) { T0_LANEWISE(t0_lanes, std::fabs(a.v[i])); }
-inline t0_lanes lanes_min(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_lanes, a.v[i] < b.v[i] ? a.v[i] : b.v[i]); }
-inline t0_lanes lanes_max(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_lanes, a.v[i] > b.v[i] ? a.v[i] : b.v[i]); }
+inline t0_lanes lanes_min(t0_lanes a, t0_lanes b) {
+    T0_LANEWISE(t0_lanes, a.v[i] < b.v[i] ? a.v[i] : b.v[i]);
+}
+inline t0_lanes lanes_max(t0_lanes a, t0_lanes b) {
+    T0_LANEWISE(t0_lanes, a.v[i] > b.v[i] ? a.v[i] : b.v[i]);
+}
 struct t0_mask {
     int v[4];
 };
@@ -299,9 +317,15 @@ inline t0_wide wide_load(const float4* p) {
 inline t0_wide wide_splat(float v) { T0_LANEWISE(t0_wide, v); }
 inline t0_wide wide_sub(t0_wide a, t0_wide b) { T0_LANEWISE(t0_wide, a.v[i] - b.v[i]); }
 inline t0_wide wide_mul(t0_wide a, t0_wide b) { T0_LANEWISE(t0_wide, a.v[i] * b.v[i]); }
-inline t0_wide wide_min(t0_wide a, t0_wide b) { T0_LANEWISE(t0_wide, a.v[i] < b.v[i] ? a.v[i] : b.v[i]); }
-inline t0_wide wide_max(t0_wide a, t0_wide b) { T0_LANEWISE(t0_wide, a.v[i] > b.v[i] ? a.v[i] : b.v[i]); }
-inline t0_wide_mask wide_le(t0_wide a, t0_wide b) { T0_LANEWISE(t0_wide_mask, a.v[i] <= b.v[i] ? -1 : 0); }
+inline t0_wide wide_min(t0_wide a, t0_wide b) {
+    T0_LANEWISE(t0_wide, a.v[i] < b.v[i] ? a.v[i] : b.v[i]);
+}
+inline t0_wide wide_max(t0_wide a, t0_wide b) {
+    T0_LANEWISE(t0_wide, a.v[i] > b.v[i] ? a.v[i] : b.v[i]);
+}
+inline t0_wide_mask wide_le(t0_wide a, t0_wide b) {
+    T0_LANEWISE(t0_wide_mask, a.v[i] <= b.v[i] ? -1 : 0);
+}
 #undef T0_LANEWISE
 inline int mask_bits(t0_mask m) {
     return (m.v[0] & 1) | (m.v[1] & 2) | (m.v[2] & 4) | (m.v[3] & 8);

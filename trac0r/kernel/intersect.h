@@ -44,7 +44,9 @@ typedef struct Hit {
 T0_INLINE int is_parallel_component(float d) { return !(fabs(d) > 1e-30f); }
 
 // d, or +-1e-30 where d is (nearly) zero: the divisor for 1 / d.
-T0_INLINE float nudged_divisor(float d) { return is_parallel_component(d) ? copysign(1e-30f, d) : d; }
+T0_INLINE float nudged_divisor(float d) {
+    return is_parallel_component(d) ? copysign(1e-30f, d) : d;
+}
 
 // Component k (0, 1, 2) of a vector that is not in a buffer.
 T0_INLINE float component3(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
@@ -67,10 +69,10 @@ T0_INLINE Ray make_ray(float3 origin, float3 direction) {
     r.ky = r.kx == 2 ? 0 : r.kx + 1;
     // d[kz] is the largest component, never nudged: inv[kz] = 1 / d[kz].
     const float inv_dz = inv[r.kz];
-    r.shear = make_float3(component3(direction, r.kx) * inv_dz, component3(direction, r.ky) * inv_dz,
-                          inv_dz);
-    r.permuted_origin = make_float3(component3(origin, r.kx), component3(origin, r.ky),
-                                    component3(origin, r.kz));
+    r.shear = make_float3(component3(direction, r.kx) * inv_dz,
+                          component3(direction, r.ky) * inv_dz, inv_dz);
+    r.permuted_origin =
+        make_float3(component3(origin, r.kx), component3(origin, r.ky), component3(origin, r.kz));
     r.parallel_det = T0_PARALLEL_COSINE * fabs(inv_dz);
     r.any_parallel = is_parallel_component(direction.x) || is_parallel_component(direction.y) ||
                      is_parallel_component(direction.z);
@@ -120,19 +122,19 @@ T0_INLINE float aabb_entry(float3 box_min, float3 box_max, Ray ray, float t_max)
         const float3 t_hi = (box_max - ray.origin) * ray.inv_direction;
         const float t_near = max_f(max_f(min_f(t_lo.x, t_hi.x), min_f(t_lo.y, t_hi.y)),
                                    max_f(min_f(t_lo.z, t_hi.z), 0.0f));
-        const float t_far = min_f(min_f(max_f(t_lo.x, t_hi.x), max_f(t_lo.y, t_hi.y)),
-                                  max_f(t_lo.z, t_hi.z)) *
-                            (1.0f + 2.0f * T0_GAMMA3);
+        const float t_far =
+            min_f(min_f(max_f(t_lo.x, t_hi.x), max_f(t_lo.y, t_hi.y)), max_f(t_lo.z, t_hi.z)) *
+            (1.0f + 2.0f * T0_GAMMA3);
         return t_near <= min_f(t_far, t_max) ? t_near : T0_NO_HIT;
     }
     float t_enter = 0.0f;
     float t_exit = t_max;
-    clip_slab(box_min.x, box_max.x, ray.origin.x, ray.direction.x, ray.inv_direction.x,
-              &t_enter, &t_exit);
-    clip_slab(box_min.y, box_max.y, ray.origin.y, ray.direction.y, ray.inv_direction.y,
-              &t_enter, &t_exit);
-    clip_slab(box_min.z, box_max.z, ray.origin.z, ray.direction.z, ray.inv_direction.z,
-              &t_enter, &t_exit);
+    clip_slab(box_min.x, box_max.x, ray.origin.x, ray.direction.x, ray.inv_direction.x, &t_enter,
+              &t_exit);
+    clip_slab(box_min.y, box_max.y, ray.origin.y, ray.direction.y, ray.inv_direction.y, &t_enter,
+              &t_exit);
+    clip_slab(box_min.z, box_max.z, ray.origin.z, ray.direction.z, ray.inv_direction.z, &t_enter,
+              &t_exit);
     return t_enter <= t_exit ? t_enter : T0_NO_HIT;
 }
 
@@ -358,8 +360,8 @@ T0_NOINLINE int packet_outside_exactly(T0_GLOBAL const TrianglePacket* p, const 
 // same floats lane for lane: bit i of the result is set when triangle i is
 // hit at a distance below t_max (in every lane), which then goes to t[i]
 // with its barycentrics to u[i], v[i].
-T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray,
-                               const RayLanes* l, t0_lanes t_max, float* t, float* u, float* v) {
+T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray, const RayLanes* l,
+                               t0_lanes t_max, float* t, float* u, float* v) {
     const t0_lanes ox = l->permuted_origin[0];
     const t0_lanes oy = l->permuted_origin[1];
     const t0_lanes oz = l->permuted_origin[2];
@@ -368,12 +370,18 @@ T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray
     const t0_lanes az = lanes_sub(packet_coordinate(p, 0, ray->kz), oz);
     const t0_lanes bz = lanes_sub(packet_coordinate(p, 1, ray->kz), oz);
     const t0_lanes cz = lanes_sub(packet_coordinate(p, 2, ray->kz), oz);
-    const t0_lanes ax = lanes_sub(lanes_sub(packet_coordinate(p, 0, ray->kx), ox), lanes_mul(sx, az));
-    const t0_lanes ay = lanes_sub(lanes_sub(packet_coordinate(p, 0, ray->ky), oy), lanes_mul(sy, az));
-    const t0_lanes bx = lanes_sub(lanes_sub(packet_coordinate(p, 1, ray->kx), ox), lanes_mul(sx, bz));
-    const t0_lanes by = lanes_sub(lanes_sub(packet_coordinate(p, 1, ray->ky), oy), lanes_mul(sy, bz));
-    const t0_lanes cx = lanes_sub(lanes_sub(packet_coordinate(p, 2, ray->kx), ox), lanes_mul(sx, cz));
-    const t0_lanes cy = lanes_sub(lanes_sub(packet_coordinate(p, 2, ray->ky), oy), lanes_mul(sy, cz));
+    const t0_lanes ax =
+        lanes_sub(lanes_sub(packet_coordinate(p, 0, ray->kx), ox), lanes_mul(sx, az));
+    const t0_lanes ay =
+        lanes_sub(lanes_sub(packet_coordinate(p, 0, ray->ky), oy), lanes_mul(sy, az));
+    const t0_lanes bx =
+        lanes_sub(lanes_sub(packet_coordinate(p, 1, ray->kx), ox), lanes_mul(sx, bz));
+    const t0_lanes by =
+        lanes_sub(lanes_sub(packet_coordinate(p, 1, ray->ky), oy), lanes_mul(sy, bz));
+    const t0_lanes cx =
+        lanes_sub(lanes_sub(packet_coordinate(p, 2, ray->kx), ox), lanes_mul(sx, cz));
+    const t0_lanes cy =
+        lanes_sub(lanes_sub(packet_coordinate(p, 2, ray->ky), oy), lanes_mul(sy, cz));
     const t0_lanes weight0 = lanes_sub(lanes_mul(cx, by), lanes_mul(cy, bx));
     const t0_lanes weight1 = lanes_sub(lanes_mul(ax, cy), lanes_mul(ay, cx));
     const t0_lanes weight2 = lanes_sub(lanes_mul(bx, ay), lanes_mul(by, ax));
@@ -389,11 +397,11 @@ T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray
     const t0_mask upright =
         lanes_lt(lanes_mul(lanes_load(&p->area), l->parallel_det), lanes_abs(det));
     const t0_lanes inv_det = lanes_div(lanes_splat(1.0f), det);
-    const t0_lanes distance = lanes_mul(
-        lanes_mul(lanes_add(lanes_add(lanes_mul(weight0, az), lanes_mul(weight1, bz)),
-                            lanes_mul(weight2, cz)),
-                  l->shear[2]),
-        inv_det);
+    const t0_lanes distance =
+        lanes_mul(lanes_mul(lanes_add(lanes_add(lanes_mul(weight0, az), lanes_mul(weight1, bz)),
+                                      lanes_mul(weight2, cz)),
+                            l->shear[2]),
+                  inv_det);
     const t0_mask ahead = mask_and(lanes_lt(zero, distance), lanes_lt(distance, t_max));
     int hits = mask_bits(mask_and_not(mask_and(upright, ahead), outside));
     if (hits != 0) {
@@ -497,8 +505,10 @@ T0_INLINE int child_entries(T0_GLOBAL const BvhNode* n, const Ray* ray, const Ra
         // box is inverted) are skipped.
         int mask = 0;
         for (int i = 0; i < T0_BVH_WIDTH; ++i) {
-            const float3 lo = make_float3(node_plane(n, 0, i), node_plane(n, 2, i), node_plane(n, 4, i));
-            const float3 hi = make_float3(node_plane(n, 1, i), node_plane(n, 3, i), node_plane(n, 5, i));
+            const float3 lo =
+                make_float3(node_plane(n, 0, i), node_plane(n, 2, i), node_plane(n, 4, i));
+            const float3 hi =
+                make_float3(node_plane(n, 1, i), node_plane(n, 3, i), node_plane(n, 5, i));
             const float t = lo.x <= hi.x ? aabb_entry(lo, hi, *ray, t_max) : T0_NO_HIT;
             entry[i] = t;
             mask |= (t < T0_NO_HIT ? 1 : 0) << i;

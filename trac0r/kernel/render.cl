@@ -25,11 +25,11 @@ SceneView scene_view(__global const TriangleRecord* triangles, __global const Sh
 
 __kernel void render_frame(__global const TriangleRecord* triangles,
                            __global const ShapeRecord* shapes,
-                           __global const MaterialRecord* materials,
-                           __global const BvhNode* nodes, uint shape_count,
-                           CameraRecord camera, __global AccumPixel* accum, ulong seed, uint frame,
-                           int max_depth, __global const LightRecord* lights,
-                           uint light_count, __global const TrianglePacket* packets) {
+                           __global const MaterialRecord* materials, __global const BvhNode* nodes,
+                           uint shape_count, CameraRecord camera, __global AccumPixel* accum,
+                           ulong seed, uint frame, int max_depth,
+                           __global const LightRecord* lights, uint light_count,
+                           __global const TrianglePacket* packets) {
     const uint pixel = (uint)get_global_id(0);
     if (pixel >= camera.size.x * camera.size.y) {
         return;

@@ -56,9 +56,12 @@ T0_INLINE float2_cs turn_cos_sin(float u) {
     const float k = floor(quarters + 0.5f);
     const float x = (quarters - k) * (0.5f * T0_PI);
     const float x2 = x * x;
-    const float s = x + x * x2 * (-1.6666654611e-1f + x2 * (8.3321608736e-3f + x2 * -1.9515295891e-4f));
-    const float c = 1.0f - 0.5f * x2 +
-                    x2 * x2 * (4.166664568298827e-2f + x2 * (-1.388731625493765e-3f + x2 * 2.443315711809948e-5f));
+    const float s =
+        x + x * x2 * (-1.6666654611e-1f + x2 * (8.3321608736e-3f + x2 * -1.9515295891e-4f));
+    const float c =
+        1.0f - 0.5f * x2 +
+        x2 * x2 *
+            (4.166664568298827e-2f + x2 * (-1.388731625493765e-3f + x2 * 2.443315711809948e-5f));
     const int q = (int)k & 3;
     float2_cs r;
     r.c = q == 0 ? c : (q == 1 ? -s : (q == 2 ? -c : s));

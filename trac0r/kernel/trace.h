@@ -168,8 +168,8 @@ T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng*
             float3 emitted = throughput * material_emission(m);
             if (T0_HAS_FEATURE(scene, T0_FEATURE_NEE) && lights_sampled &&
                 tri->ids.z != T0_NO_LIGHT) {
-                emitted *= power_heuristic(
-                    scatter_pdf, light_pdf_solid_angle(scene, tri, ray.direction, hit.t));
+                emitted *= power_heuristic(scatter_pdf,
+                                           light_pdf_solid_angle(scene, tri, ray.direction, hit.t));
             }
             radiance += emitted;
         }
@@ -217,7 +217,8 @@ T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng*
         scatter_pdf = s.pdf;
 
         // Continue from just off the surface, on the side the new ray leaves.
-        const float3 side = dot(s.direction, geometric_normal) > 0.0f ? geometric_normal : -geometric_normal;
+        const float3 side =
+            dot(s.direction, geometric_normal) > 0.0f ? geometric_normal : -geometric_normal;
         ray = make_ray(offset_ray_origin(position, side, magnitude), s.direction);
     }
     return radiance;

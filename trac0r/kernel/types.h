@@ -16,7 +16,7 @@
 // The feature mask: what a packed scene uses. The OpenCL program is built
 // with T0_FEATURES defined to the mask, so code behind a bit the scene does
 // not set is compiled out; the CPU backend tests the same bits at run time.
-#define T0_FEATURE_EMISSIVE (1u << 0)   // pure emitters
+#define T0_FEATURE_EMISSIVE (1u << 0)  // pure emitters
 #define T0_FEATURE_DIFFUSE (1u << 1)
 #define T0_FEATURE_GLASS (1u << 2)
 #define T0_FEATURE_GLOSSY (1u << 3)
@@ -51,9 +51,9 @@ typedef struct T0_ALIGN16 TriangleRecord {
 // is an inverse-CDF search over cdf.x, so y is exactly the difference of
 // consecutive cdf.x and picks and densities agree bit for bit.
 typedef struct T0_ALIGN16 LightRecord {
-    float4 cdf;     // x: probability of this light or an earlier one (the last is 1),
-                    // y: probability of this light, z: y / area, the density per area
-    uint4 triangle; // x: triangle index
+    float4 cdf;      // x: probability of this light or an earlier one (the last is 1),
+                     // y: probability of this light, z: y / area, the density per area
+    uint4 triangle;  // x: triangle index
 } LightRecord;
 
 // One shape of the flat structure: its AABB and its run of triangles.
