@@ -47,6 +47,16 @@ T0_INLINE float3 vabs3(float3 a) { return fabs(a); }
 T0_INLINE int float_bits(float f) { return as_int(f); }
 T0_INLINE float bits_float(int i) { return as_float(i); }
 T0_INLINE int is_finite_f(float f) { return isfinite(f); }
+// choose_f(condition, a, b): a where condition holds, else b, for a choice
+// that the data decide (whether a normal's component is zero). Here both
+// are computed and one is picked by bits: PoCL's LLVM kept ?: as a branch,
+// which mispredicted (README, "Performance"). The C++ build keeps ?:
+// (below): GCC's branches were faster on the CPU than computing both.
+T0_INLINE float choose_by_bits(int condition, float a, float b) {
+    const int mask = -(condition != 0);
+    return as_float((as_int(a) & mask) | (as_int(b) & ~mask));
+}
+#define choose_f(condition, a, b) choose_by_bits((condition), (a), (b))
 // Component k (0, 1, 2) of a vector in a buffer, read as a scalar: vector
 // types have no run-time component index in OpenCL C.
 T0_INLINE float buffer_component(__global const float4* v, int k) {
@@ -206,6 +216,9 @@ inline float bits_float(int i) {
     return f;
 }
 inline int is_finite_f(float f) { return std::isfinite(f) ? 1 : 0; }
+// choose_f(condition, a, b): a where condition holds, else b; only the
+// one chosen is computed (OpenCL computes both, above).
+#define choose_f(condition, a, b) ((condition) ? (a) : (b))
 // glm's own view of a vector as an array of its components.
 inline float buffer_component(const float4* v, int k) { return glm::value_ptr(*v)[k]; }
 inline t0_u32 buffer_uint_component(const uint4* v, int k) { return glm::value_ptr(*v)[k]; }

@@ -741,21 +741,18 @@ T0_INLINE float hit_magnitude(T0_GLOBAL const TriangleRecord* tri, float3 positi
 
 // The next float after x in the direction of the sign of towards (nonzero).
 // From 0 it steps to the smallest normal float: denormals may be flushed.
+// The step is unsigned: OpenCL computes it for x = -0 too (choose_f), where
+// a signed step down would overflow.
 T0_INLINE float next_float_towards(float x, float towards) {
-    if (x == 0.0f) {
-        return copysign(1.17549435e-38f, towards);
-    }
-    const int away_from_zero = (x > 0.0f) == (towards > 0.0f);
-    return bits_float(float_bits(x) + (away_from_zero ? 1 : -1));
+    const t0_u32 bits = (t0_u32)float_bits(x);
+    return choose_f(x == 0.0f, copysign(1.17549435e-38f, towards),
+                    bits_float((int)((x > 0.0f) == (towards > 0.0f) ? bits + 1u : bits - 1u)));
 }
 
 // One coordinate moved by n * distance, then one float further, so that
 // rounding never shortens the move (pbrt-v4's OffsetRayOrigin).
 T0_INLINE float offset_coordinate(float p, float n, float distance) {
-    if (n == 0.0f) {
-        return p;
-    }
-    return next_float_towards(p + n * distance, n);
+    return choose_f(n == 0.0f, p, next_float_towards(p + n * distance, n));
 }
 
 // Moves p off its surface along unit n (pointing to the side the new ray

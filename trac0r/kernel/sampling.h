@@ -62,10 +62,17 @@ T0_INLINE float2_cs turn_cos_sin(float u) {
         1.0f - 0.5f * x2 +
         x2 * x2 *
             (4.166664568298827e-2f + x2 * (-1.388731625493765e-3f + x2 * 2.443315711809948e-5f));
+    // Quarter turn q: (c, s), (-s, c), (-c, -s), (s, -c), made with bit
+    // operations (a swap, then sign flips), not branches: q is random, and
+    // PoCL kept the three-way choice as branches that mispredicted.
     const int q = (int)k & 3;
+    const int swap = -(q & 1);
+    const int sign = float_bits(-0.0f);
+    const int cb = float_bits(c);
+    const int sb = float_bits(s);
     float2_cs r;
-    r.c = q == 0 ? c : (q == 1 ? -s : (q == 2 ? -c : s));
-    r.s = q == 0 ? s : (q == 1 ? c : (q == 2 ? -s : -c));
+    r.c = bits_float(((sb & swap) | (cb & ~swap)) ^ (sign & -(((q + 1) >> 1) & 1)));
+    r.s = bits_float(((cb & swap) | (sb & ~swap)) ^ (sign & -(q >> 1)));
     return r;
 }
 
