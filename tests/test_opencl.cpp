@@ -5,18 +5,25 @@
 
 #include "trac0r/cpu_backend.h"
 #include "trac0r/kernel/accumulate.h"
+#include "trac0r/kernel/intersect.h"
+#include "trac0r/kernel/sampling.h"
 #include "trac0r/opencl_backend.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
 #include "test_support.h"
 
+#define CL_TARGET_OPENCL_VERSION 120
+#include <CL/cl.h>
 #include <sys/wait.h>
 
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <string>
+#include <vector>
 
 using namespace trac0r;
 
@@ -140,6 +147,166 @@ TEST_CASE("furnace on the OpenCL backend", "[opencl][furnace]") {
         r.render_frame();
     }
     require_furnace_mean(r.accumulator(), expected);
+}
+
+namespace {
+
+// A kernel appended to the embedded source: the helpers whose OpenCL and
+// C++ code differ (choose_f picks by bits in OpenCL and is ?: in C++), and
+// the quarter turn made by bit operations, on the device.
+const char* const helpers_kernel_source = R"(
+__kernel void bit_helpers(__global const float* u, uint turns, __global float* turned,
+                          __global const float4* moves, uint move_count, __global float* moved) {
+    const uint i = (uint)get_global_id(0);
+    if (i < turns) {
+        const float2_cs r = turn_cos_sin(u[i]);
+        turned[2 * i] = r.c;
+        turned[2 * i + 1] = r.s;
+    }
+    if (i < move_count) {
+        const float4 m = moves[i];
+        moved[2 * i] = offset_coordinate(m.x, m.y, m.z);
+        moved[2 * i + 1] = next_float_towards(m.x, m.y);
+    }
+}
+)";
+
+void require_cl(cl_int status, const char* what) {
+    INFO(what);
+    REQUIRE(status == CL_SUCCESS);
+}
+
+std::uint32_t bits_of(float f) {
+    std::uint32_t b;
+    std::memcpy(&b, &f, sizeof b);
+    return b;
+}
+
+}  // namespace
+
+TEST_CASE("the quarter turn and the ray offset give the same floats on OpenCL as in C++",
+          "[opencl]") {
+    // Angles: a grid of 2^16, and each side of every eighth turn (where the
+    // quadrant changes or the reduction reaches pi/4).
+    std::vector<float> u;
+    for (int i = 0; i < (1 << 16); ++i) {
+        u.push_back(static_cast<float>(i) / 65536.0f);
+    }
+    for (int k = 1; k <= 8; ++k) {
+        const float at = static_cast<float>(k) / 8.0f;
+        u.push_back(std::nextafter(at, 0.0f));
+        if (k < 8) {
+            u.push_back(std::nextafter(at, 1.0f));
+        }
+    }
+    // Offsets (p, n, distance): zeros of both signs in p and n, tiny, huge
+    // and ordinary coordinates. No subnormal inputs: a device may flush them.
+    std::vector<glm::vec4> moves;
+    const float ps[] = {0.0f,  -0.0f, FLT_MIN, -FLT_MIN, 1e-30f,  -1e-30f, 0.5f,
+                        -0.5f, 1.0f,  -1.0f,   123.456f, -7.0e4f, FLT_MAX, -FLT_MAX};
+    const float ns[] = {0.0f, -0.0f, 0.3f, -0.3f, 1.0f, -1.0f};
+    const float distances[] = {0.0f, 1e-7f, 1e-3f};
+    for (float p : ps) {
+        for (float n : ns) {
+            for (float distance : distances) {
+                moves.push_back(glm::vec4(p, n, distance, 0.0f));
+            }
+        }
+    }
+
+    cl_platform_id platform = nullptr;
+    cl_uint platforms = 0;
+    require_cl(clGetPlatformIDs(1, &platform, &platforms), "clGetPlatformIDs");
+    REQUIRE(platforms > 0);
+    cl_device_id device = nullptr;
+    require_cl(clGetDeviceIDs(platform, CL_DEVICE_TYPE_ALL, 1, &device, nullptr), "clGetDeviceIDs");
+    cl_int status = CL_SUCCESS;
+    cl_context context = clCreateContext(nullptr, 1, &device, nullptr, nullptr, &status);
+    require_cl(status, "clCreateContext");
+    cl_command_queue queue = clCreateCommandQueue(context, device, 0, &status);
+    require_cl(status, "clCreateCommandQueue");
+    const std::string source = std::string(opencl_kernel_source()) + helpers_kernel_source;
+    const char* text = source.c_str();
+    cl_program program = clCreateProgramWithSource(context, 1, &text, nullptr, &status);
+    require_cl(status, "clCreateProgramWithSource");
+    // The kernel is compiled for the built-in scene's mask, as the renderer
+    // would; the helpers do not depend on it.
+    char options[64];
+    std::snprintf(options, sizeof options, "-cl-std=CL1.2 -DT0_FEATURES=0x%xu",
+                  pack_scene(builtin_scene()).features);
+    if (clBuildProgram(program, 1, &device, options, nullptr, nullptr) != CL_SUCCESS) {
+        std::size_t size = 0;
+        clGetProgramBuildInfo(program, device, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
+        std::string log(size, '\0');
+        clGetProgramBuildInfo(program, device, CL_PROGRAM_BUILD_LOG, size, &log[0], nullptr);
+        FAIL("bit_helpers build failed:\n" << log);
+    }
+    cl_kernel kernel = clCreateKernel(program, "bit_helpers", &status);
+    require_cl(status, "clCreateKernel");
+
+    auto buffer = [&](cl_mem_flags flags, std::size_t bytes, void* data) {
+        cl_mem m = clCreateBuffer(context, flags, bytes, data, &status);
+        require_cl(status, "clCreateBuffer");
+        return m;
+    };
+    cl_mem u_buffer =
+        buffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, u.size() * sizeof(float), u.data());
+    cl_mem turned_buffer = buffer(CL_MEM_WRITE_ONLY, 2 * u.size() * sizeof(float), nullptr);
+    cl_mem moves_buffer = buffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                 moves.size() * sizeof(glm::vec4), moves.data());
+    cl_mem moved_buffer = buffer(CL_MEM_WRITE_ONLY, 2 * moves.size() * sizeof(float), nullptr);
+    const cl_uint turns = static_cast<cl_uint>(u.size());
+    const cl_uint move_count = static_cast<cl_uint>(moves.size());
+    require_cl(clSetKernelArg(kernel, 0, sizeof(cl_mem), &u_buffer), "clSetKernelArg");
+    require_cl(clSetKernelArg(kernel, 1, sizeof turns, &turns), "clSetKernelArg");
+    require_cl(clSetKernelArg(kernel, 2, sizeof(cl_mem), &turned_buffer), "clSetKernelArg");
+    require_cl(clSetKernelArg(kernel, 3, sizeof(cl_mem), &moves_buffer), "clSetKernelArg");
+    require_cl(clSetKernelArg(kernel, 4, sizeof move_count, &move_count), "clSetKernelArg");
+    require_cl(clSetKernelArg(kernel, 5, sizeof(cl_mem), &moved_buffer), "clSetKernelArg");
+    const std::size_t global = std::max(u.size(), moves.size());
+    require_cl(
+        clEnqueueNDRangeKernel(queue, kernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr),
+        "clEnqueueNDRangeKernel");
+    std::vector<float> turned(2 * u.size());
+    std::vector<float> moved(2 * moves.size());
+    require_cl(clEnqueueReadBuffer(queue, turned_buffer, CL_TRUE, 0, turned.size() * sizeof(float),
+                                   turned.data(), 0, nullptr, nullptr),
+               "clEnqueueReadBuffer");
+    require_cl(clEnqueueReadBuffer(queue, moved_buffer, CL_TRUE, 0, moved.size() * sizeof(float),
+                                   moved.data(), 0, nullptr, nullptr),
+               "clEnqueueReadBuffer");
+    for (cl_mem m : {u_buffer, turned_buffer, moves_buffer, moved_buffer}) {
+        clReleaseMemObject(m);
+    }
+    clReleaseKernel(kernel);
+    clReleaseProgram(program);
+    clReleaseCommandQueue(queue);
+    clReleaseContext(context);
+
+    int turn_mismatches = 0;
+    for (std::size_t i = 0; i < u.size(); ++i) {
+        const kernel::float2_cs r = kernel::turn_cos_sin(u[i]);
+        if (bits_of(r.c) != bits_of(turned[2 * i]) || bits_of(r.s) != bits_of(turned[2 * i + 1])) {
+            UNSCOPED_INFO("u " << u[i] << ": C++ " << r.c << ", " << r.s << "; OpenCL "
+                               << turned[2 * i] << ", " << turned[2 * i + 1]);
+            ++turn_mismatches;
+        }
+    }
+    CHECK(turn_mismatches == 0);
+    int move_mismatches = 0;
+    for (std::size_t i = 0; i < moves.size(); ++i) {
+        const glm::vec4 m = moves[i];
+        const float offset = kernel::offset_coordinate(m.x, m.y, m.z);
+        const float next = kernel::next_float_towards(m.x, m.y);
+        if (bits_of(offset) != bits_of(moved[2 * i]) ||
+            bits_of(next) != bits_of(moved[2 * i + 1])) {
+            UNSCOPED_INFO("p " << m.x << " n " << m.y << " distance " << m.z << ": C++ " << offset
+                               << ", " << next << "; OpenCL " << moved[2 * i] << ", "
+                               << moved[2 * i + 1]);
+            ++move_mismatches;
+        }
+    }
+    CHECK(move_mismatches == 0);
 }
 
 TEST_CASE("an unknown device index is an error", "[opencl]") {
