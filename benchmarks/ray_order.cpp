@@ -106,8 +106,7 @@ Cast cast(const SceneView& scene, const std::vector<Ray>& rays, int passes, int 
         }
         checksum = sum / repeats;
     }
-    std::sort(seconds.begin(), seconds.end());
-    return Cast{seconds[seconds.size() / 2], checksum};
+    return Cast{trac0r_bench::median(seconds), checksum};
 }
 
 void report(const char* set, const SceneView& scene, const std::vector<Ray>& pixel_order,

@@ -25,20 +25,18 @@
 
 namespace trac0r_bench {
 
-// Seconds of CPU time this process has used, over all its threads.
-inline double process_cpu_seconds() {
+inline double clock_seconds(clockid_t clock) {
     timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    clock_gettime(clock, &t);
     return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
+// Seconds of CPU time this process has used, over all its threads.
+inline double process_cpu_seconds() { return clock_seconds(CLOCK_PROCESS_CPUTIME_ID); }
+
 // Seconds of CPU time of the calling thread alone: for work timed on one
 // thread, which OpenMP's idle workers must not add to.
-inline double thread_cpu_seconds() {
-    timespec t;
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
+inline double thread_cpu_seconds() { return clock_seconds(CLOCK_THREAD_CPUTIME_ID); }
 
 // The cores that the "on N free cores" figures assume.
 inline int machine_cores() { return omp_get_num_procs(); }
