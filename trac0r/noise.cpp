@@ -40,8 +40,8 @@ namespace {
 // separable, a running window along rows then columns (O(1) per pixel).
 std::vector<double> neighbourhood_means(const std::vector<kernel::AccumPixel>& accumulator,
                                         int width, int height) {
-    const int radius = 2;
-    const auto window = [radius](int i, int n) {
+    constexpr int radius = 2;
+    const auto window = [](int i, int n) {
         return std::make_pair(std::max(0, i - radius), std::min(n - 1, i + radius));
     };
     std::vector<double> rows(accumulator.size());
