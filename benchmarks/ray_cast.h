@@ -12,14 +12,11 @@
 #include "trac0r/packed_scene.h"
 
 #ifdef TRAC0R_HAVE_OPENCL
-#include "trac0r/opencl_backend.h"
-#define CL_TARGET_OPENCL_VERSION 120
-#include <CL/cl.h>
+#include "trac0r/opencl_program.h"
 #endif
 
 #include <omp.h>
 
-#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -141,32 +138,11 @@ __kernel void cast_rays(__global const TriangleRecord* triangles,
 }
 )";
 
-// Casts ray sets on OpenCL device 0 with its own context and queue.
+// Casts ray sets on OpenCL device 0, on the queue the backends share, with
+// the renderer's build options for the scene's mask.
 class OpenClCaster {
   public:
-    OpenClCaster() {
-        cl_platform_id platform = nullptr;
-        cl_uint platforms = 0;
-        check(clGetPlatformIDs(1, &platform, &platforms), "clGetPlatformIDs");
-        if (platforms == 0) {
-            throw trac0r::OpenClError("no OpenCL platform");
-        }
-        check(clGetDeviceIDs(platform, CL_DEVICE_TYPE_ALL, 1, &device_, nullptr), "clGetDeviceIDs");
-        cl_int status = CL_SUCCESS;
-        context_ = clCreateContext(nullptr, 1, &device_, nullptr, nullptr, &status);
-        check(status, "clCreateContext");
-        queue_ = clCreateCommandQueue(context_, device_, 0, &status);
-        check(status, "clCreateCommandQueue");
-    }
-    ~OpenClCaster() {
-        for (cl_program p : programs_) {
-            clReleaseProgram(p);
-        }
-        clReleaseCommandQueue(queue_);
-        clReleaseContext(context_);
-    }
-    OpenClCaster(const OpenClCaster&) = delete;
-    OpenClCaster& operator=(const OpenClCaster&) = delete;
+    OpenClCaster() : cl_(trac0r::shared_opencl_queue(0)) {}
 
     CastResult cast(const trac0r::PackedScene& packed, const RaySet& rays, int passes) {
         cl_kernel kernel = make_kernel(packed.features);
@@ -175,7 +151,7 @@ class OpenClCaster {
             cl_int status = CL_SUCCESS;
             // OpenCL buffers may not be empty; nothing reads a dummy one.
             static const glm::vec4 dummy[5] = {};
-            cl_mem m = clCreateBuffer(context_, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+            cl_mem m = clCreateBuffer(cl_.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                                       bytes > 0 ? bytes : sizeof dummy,
                                       bytes > 0 ? const_cast<void*>(data) : (void*)dummy, &status);
             check(status, "clCreateBuffer");
@@ -192,8 +168,8 @@ class OpenClCaster {
         cl_mem origins = upload(rays.origins.data(), rays.size() * sizeof(glm::vec4));
         cl_mem directions = upload(rays.directions.data(), rays.size() * sizeof(glm::vec4));
         cl_int status = CL_SUCCESS;
-        cl_mem hit = clCreateBuffer(context_, CL_MEM_WRITE_ONLY, rays.size() * sizeof(cl_int) + 4,
-                                    nullptr, &status);
+        cl_mem hit = clCreateBuffer(cl_.context, CL_MEM_WRITE_ONLY,
+                                    rays.size() * sizeof(cl_int) + 4, nullptr, &status);
         check(status, "clCreateBuffer(hit)");
         buffers.push_back(hit);
         const cl_uint shape_count = static_cast<cl_uint>(packed.shapes.size());
@@ -216,14 +192,14 @@ class OpenClCaster {
             if (pass == 1) {
                 cpu_start = process_cpu_seconds();  // after the warm-up pass
             }
-            check(clEnqueueNDRangeKernel(queue_, kernel, 1, nullptr, &global, nullptr, 0, nullptr,
-                                         nullptr),
+            check(clEnqueueNDRangeKernel(cl_.queue, kernel, 1, nullptr, &global, nullptr, 0,
+                                         nullptr, nullptr),
                   "clEnqueueNDRangeKernel(cast_rays)");
-            check(clFinish(queue_), "clFinish");
+            check(clFinish(cl_.queue), "clFinish");
         }
         result.seconds = (process_cpu_seconds() - cpu_start) / passes / machine_cores();
         std::vector<cl_int> hits(rays.size());
-        check(clEnqueueReadBuffer(queue_, hit, CL_TRUE, 0, rays.size() * sizeof(cl_int),
+        check(clEnqueueReadBuffer(cl_.queue, hit, CL_TRUE, 0, rays.size() * sizeof(cl_int),
                                   hits.data(), 0, nullptr, nullptr),
               "clEnqueueReadBuffer(hit)");
         for (cl_int h : hits) {
@@ -245,30 +221,15 @@ class OpenClCaster {
     }
 
     cl_kernel make_kernel(std::uint32_t features) {
-        const std::string source = std::string(trac0r::opencl_kernel_source()) + cast_kernel_source;
-        const char* text = source.c_str();
+        cl_program program = trac0r::embedded_opencl_program(
+            0, cast_kernel_source, trac0r::opencl_build_options(features));
         cl_int status = CL_SUCCESS;
-        cl_program program = clCreateProgramWithSource(context_, 1, &text, nullptr, &status);
-        check(status, "clCreateProgramWithSource");
-        programs_.push_back(program);
-        char options[64];
-        std::snprintf(options, sizeof options, "-cl-std=CL1.2 -DT0_FEATURES=0x%xu", features);
-        if (clBuildProgram(program, 1, &device_, options, nullptr, nullptr) != CL_SUCCESS) {
-            std::size_t size = 0;
-            clGetProgramBuildInfo(program, device_, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
-            std::string log(size, '\0');
-            clGetProgramBuildInfo(program, device_, CL_PROGRAM_BUILD_LOG, size, &log[0], nullptr);
-            throw trac0r::OpenClError("cast_rays program build failed:\n" + log);
-        }
         cl_kernel kernel = clCreateKernel(program, "cast_rays", &status);
         check(status, "clCreateKernel(cast_rays)");
         return kernel;
     }
 
-    cl_device_id device_ = nullptr;
-    cl_context context_ = nullptr;
-    cl_command_queue queue_ = nullptr;
-    std::vector<cl_program> programs_;
+    trac0r::OpenClQueue cl_;
 };
 
 #endif  // TRAC0R_HAVE_OPENCL

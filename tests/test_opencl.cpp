@@ -8,12 +8,11 @@
 #include "trac0r/kernel/intersect.h"
 #include "trac0r/kernel/sampling.h"
 #include "trac0r/opencl_backend.h"
+#include "trac0r/opencl_program.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
 #include "test_support.h"
 
-#define CL_TARGET_OPENCL_VERSION 120
-#include <CL/cl.h>
 #include <sys/wait.h>
 
 #include <cfloat>
@@ -214,38 +213,18 @@ TEST_CASE("the quarter turn and the ray offset give the same floats on OpenCL as
         }
     }
 
-    cl_platform_id platform = nullptr;
-    cl_uint platforms = 0;
-    require_cl(clGetPlatformIDs(1, &platform, &platforms), "clGetPlatformIDs");
-    REQUIRE(platforms > 0);
-    cl_device_id device = nullptr;
-    require_cl(clGetDeviceIDs(platform, CL_DEVICE_TYPE_ALL, 1, &device, nullptr), "clGetDeviceIDs");
-    cl_int status = CL_SUCCESS;
-    cl_context context = clCreateContext(nullptr, 1, &device, nullptr, nullptr, &status);
-    require_cl(status, "clCreateContext");
-    cl_command_queue queue = clCreateCommandQueue(context, device, 0, &status);
-    require_cl(status, "clCreateCommandQueue");
-    const std::string source = std::string(opencl_kernel_source()) + helpers_kernel_source;
-    const char* text = source.c_str();
-    cl_program program = clCreateProgramWithSource(context, 1, &text, nullptr, &status);
-    require_cl(status, "clCreateProgramWithSource");
-    // The kernel is compiled for the built-in scene's mask, as the renderer
+    // Device 0's shared queue (no device: OpenClError fails the test). The
+    // kernel is compiled for the built-in scene's mask, as the renderer
     // would; the helpers do not depend on it.
-    char options[64];
-    std::snprintf(options, sizeof options, "-cl-std=CL1.2 -DT0_FEATURES=0x%xu",
-                  pack_scene(builtin_scene()).features);
-    if (clBuildProgram(program, 1, &device, options, nullptr, nullptr) != CL_SUCCESS) {
-        std::size_t size = 0;
-        clGetProgramBuildInfo(program, device, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
-        std::string log(size, '\0');
-        clGetProgramBuildInfo(program, device, CL_PROGRAM_BUILD_LOG, size, &log[0], nullptr);
-        FAIL("bit_helpers build failed:\n" << log);
-    }
+    const OpenClQueue cl = shared_opencl_queue(0);
+    cl_program program = embedded_opencl_program(
+        0, helpers_kernel_source, opencl_build_options(pack_scene(builtin_scene()).features));
+    cl_int status = CL_SUCCESS;
     cl_kernel kernel = clCreateKernel(program, "bit_helpers", &status);
     require_cl(status, "clCreateKernel");
 
     auto buffer = [&](cl_mem_flags flags, std::size_t bytes, void* data) {
-        cl_mem m = clCreateBuffer(context, flags, bytes, data, &status);
+        cl_mem m = clCreateBuffer(cl.context, flags, bytes, data, &status);
         require_cl(status, "clCreateBuffer");
         return m;
     };
@@ -265,23 +244,21 @@ TEST_CASE("the quarter turn and the ray offset give the same floats on OpenCL as
     require_cl(clSetKernelArg(kernel, 5, sizeof(cl_mem), &moved_buffer), "clSetKernelArg");
     const std::size_t global = std::max(u.size(), moves.size());
     require_cl(
-        clEnqueueNDRangeKernel(queue, kernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr),
+        clEnqueueNDRangeKernel(cl.queue, kernel, 1, nullptr, &global, nullptr, 0, nullptr, nullptr),
         "clEnqueueNDRangeKernel");
     std::vector<float> turned(2 * u.size());
     std::vector<float> moved(2 * moves.size());
-    require_cl(clEnqueueReadBuffer(queue, turned_buffer, CL_TRUE, 0, turned.size() * sizeof(float),
-                                   turned.data(), 0, nullptr, nullptr),
-               "clEnqueueReadBuffer");
-    require_cl(clEnqueueReadBuffer(queue, moved_buffer, CL_TRUE, 0, moved.size() * sizeof(float),
+    require_cl(
+        clEnqueueReadBuffer(cl.queue, turned_buffer, CL_TRUE, 0, turned.size() * sizeof(float),
+                            turned.data(), 0, nullptr, nullptr),
+        "clEnqueueReadBuffer");
+    require_cl(clEnqueueReadBuffer(cl.queue, moved_buffer, CL_TRUE, 0, moved.size() * sizeof(float),
                                    moved.data(), 0, nullptr, nullptr),
                "clEnqueueReadBuffer");
     for (cl_mem m : {u_buffer, turned_buffer, moves_buffer, moved_buffer}) {
         clReleaseMemObject(m);
     }
     clReleaseKernel(kernel);
-    clReleaseProgram(program);
-    clReleaseCommandQueue(queue);
-    clReleaseContext(context);
 
     int turn_mismatches = 0;
     for (std::size_t i = 0; i < u.size(); ++i) {

@@ -1,13 +1,13 @@
 #include "trac0r/opencl_backend.h"
 
-#define CL_TARGET_OPENCL_VERSION 120
-#include <CL/cl.h>
+#include "trac0r/opencl_program.h"
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <mutex>
+#include <utility>
 
 namespace trac0r {
 
@@ -84,14 +84,15 @@ std::string type_name(cl_device_id device) {
 }
 
 // One context and queue per device for the whole process, and the programs
-// built on it by build options (which hold the feature mask): PoCL takes
-// seconds to build one, so every backend and test shares them.
+// built on it, by appended source (empty for the renderer's own) and build
+// options (which hold the feature mask): PoCL takes seconds to build one, so
+// every backend, test and benchmark shares them.
 struct SharedDevice {
     cl_device_id device = nullptr;
     cl_context context = nullptr;
     cl_command_queue queue = nullptr;
     std::string description;
-    std::map<std::string, cl_program> programs;
+    std::map<std::pair<std::string, std::string>, cl_program> programs;
 };
 
 std::mutex shared_mutex;
@@ -133,14 +134,17 @@ std::string build_log(cl_program program, cl_device_id device) {
     return std::string(log.c_str());
 }
 
-cl_program get_program(SharedDevice& d, const std::string& options, double* build_seconds) {
+cl_program get_program(SharedDevice& d, const std::string& appended_source,
+                       const std::string& options, double* build_seconds) {
     *build_seconds = 0.0;
-    auto found = d.programs.find(options);
+    const auto key = std::make_pair(appended_source, options);
+    auto found = d.programs.find(key);
     if (found != d.programs.end()) {
         return found->second;
     }
     const auto start = std::chrono::steady_clock::now();
-    const char* source = opencl_kernel_source();
+    const std::string text = std::string(opencl_kernel_source()) + appended_source;
+    const char* source = text.c_str();
     cl_int status = CL_SUCCESS;
     cl_program program = clCreateProgramWithSource(d.context, 1, &source, nullptr, &status);
     check(status, "clCreateProgramWithSource");
@@ -153,7 +157,7 @@ cl_program get_program(SharedDevice& d, const std::string& options, double* buil
     }
     *build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    d.programs[options] = program;
+    d.programs[key] = program;
     return program;
 }
 
@@ -179,6 +183,29 @@ void release(cl_mem& m) {
 }
 
 }  // namespace
+
+OpenClQueue shared_opencl_queue(int device_index) {
+    std::lock_guard<std::mutex> lock(shared_mutex);
+    const SharedDevice& d = shared_device(device_index);
+    return {d.device, d.context, d.queue, d.description};
+}
+
+std::string opencl_build_options(std::uint32_t features) {
+    char mask[32];
+    std::snprintf(mask, sizeof mask, "0x%xu", features);
+    std::string options = std::string("-cl-std=CL1.2 -DT0_FEATURES=") + mask;
+    if (const char* extra = std::getenv("TRAC0R_OPENCL_OPTIONS")) {
+        options += std::string(" ") + extra;
+    }
+    return options;
+}
+
+cl_program embedded_opencl_program(int device_index, const std::string& appended_source,
+                                   const std::string& options) {
+    std::lock_guard<std::mutex> lock(shared_mutex);
+    double seconds = 0.0;
+    return get_program(shared_device(device_index), appended_source, options, &seconds);
+}
 
 std::vector<OpenClDeviceInfo> list_opencl_devices() {
     std::vector<OpenClDeviceInfo> out;
@@ -233,16 +260,11 @@ double OpenClBackend::last_build_seconds() const { return state_->build_seconds;
 std::string OpenClBackend::build_options() const { return state_->options; }
 
 void OpenClBackend::set_scene(const PackedScene& scene) {
-    char mask[32];
-    std::snprintf(mask, sizeof mask, "0x%xu", scene.features);
-    std::string options = std::string("-cl-std=CL1.2 -DT0_FEATURES=") + mask;
-    if (const char* extra = std::getenv("TRAC0R_OPENCL_OPTIONS")) {
-        options += std::string(" ") + extra;
-    }
+    const std::string options = opencl_build_options(scene.features);
     cl_program program = nullptr;
     {
         std::lock_guard<std::mutex> lock(shared_mutex);
-        program = get_program(*state_->device, options, &state_->build_seconds);
+        program = get_program(*state_->device, "", options, &state_->build_seconds);
     }
     if (state_->kernel) {
         clReleaseKernel(state_->kernel);

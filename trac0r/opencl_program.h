@@ -1,0 +1,46 @@
+// For code that runs kernels of its own beside render_frame (the ray-casting
+// benchmark, the bit-for-bit helpers test): the OpenCL context and queue that
+// every OpenClBackend of the process shares, and programs of the embedded
+// kernel source with more source appended, built once per (device, appended
+// source, options) and cached as the backend's own are. Unlike
+// opencl_backend.h this header needs the OpenCL headers.
+#ifndef TRAC0R_OPENCL_PROGRAM_H
+#define TRAC0R_OPENCL_PROGRAM_H
+
+#include "trac0r/opencl_backend.h"
+
+#ifndef CL_TARGET_OPENCL_VERSION
+#define CL_TARGET_OPENCL_VERSION 120
+#endif
+#include <CL/cl.h>
+
+#include <cstdint>
+#include <string>
+
+namespace trac0r {
+
+struct OpenClQueue {
+    cl_device_id device;
+    cl_context context;
+    cl_command_queue queue;
+    std::string description;  // "device (platform)"
+};
+
+// Device `device_index` (see list_opencl_devices), opened once per process.
+// Throws OpenClError when there is no such device.
+OpenClQueue shared_opencl_queue(int device_index);
+
+// The build options of the renderer's program for feature mask `features`:
+// the OpenCL C version, the mask, and $TRAC0R_OPENCL_OPTIONS.
+std::string opencl_build_options(std::uint32_t features);
+
+// opencl_kernel_source() followed by appended_source, built with options on
+// device `device_index`, or the program already built from the same. The
+// process keeps it (do not release it). Throws OpenClError with the build
+// log if it does not build.
+cl_program embedded_opencl_program(int device_index, const std::string& appended_source,
+                                   const std::string& options);
+
+}  // namespace trac0r
+
+#endif
