@@ -1,7 +1,8 @@
 // Error against run time: renders a scene with one or more configurations,
 // takes checkpoints at doubling samples per pixel, and at each reports the
 // wall time, RMSE, relative MSE and PSNR against a reference image, beside
-// the renderer's own estimate of the relative MSE (no reference needed).
+// the renderer's own estimate of the relative MSE (no reference needed),
+// and how long each configuration takes to the first one's final error.
 //
 //   build/benchmarks/bench_convergence [SCENE.json] [options]
 //
@@ -47,7 +48,9 @@ Renders SCENE.json (default: the built-in Cornell box) with each --config,
 with checkpoints at 1, 2, 4, ... samples per pixel (the configurations take
 turns frame by frame, so they share the machine's load alike), and prints at each the
 render time, RMSE, relative MSE and PSNR against a reference, and the
-renderer's own relative MSE estimate.
+renderer's own relative MSE estimate; then the fitted slopes and, with two
+or more configurations, the time each of the others takes to the first
+one's error at its last checkpoint.
 
   --config SPEC       a configuration, repeatable (default: backend=cpu):
                       comma-separated key=value of backend=cpu|opencl,
@@ -292,6 +295,26 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& y)
     return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
+// Where a configuration's relative MSE first falls to `target`: the
+// checkpoint before it and the one at or below it, interpolated on the
+// log-log curve (error, spp and time each taken as a power law between the
+// two). False if it never gets there, or is there at its first checkpoint
+// already (nothing to interpolate from).
+bool reaches(const std::vector<Checkpoint>& points, double target, double* spp, double* seconds) {
+    for (std::size_t i = 1; i < points.size(); ++i) {
+        const Checkpoint& a = points[i - 1];
+        const Checkpoint& b = points[i];
+        if (a.error.relative_mse > target && b.error.relative_mse <= target) {
+            const double f = std::log(target / a.error.relative_mse) /
+                             std::log(b.error.relative_mse / a.error.relative_mse);
+            *spp = a.spp * std::pow(static_cast<double>(b.spp) / a.spp, f);
+            *seconds = a.seconds * std::pow(b.seconds / a.seconds, f);
+            return true;
+        }
+    }
+    return false;
+}
+
 int run(const Options& o) {
     Scene scene = o.scene_path.empty() ? builtin_scene() : load_scene_file(o.scene_path);
     scene.render.width = o.width;
@@ -416,6 +439,64 @@ int run(const Options& o) {
     std::printf("\nFitted slopes (Monte Carlo: rel. MSE ~ time^-1, RMSE ~ time^-0.5):\n");
     for (const std::string& s : slopes) {
         std::printf("  %s\n", s.c_str());
+    }
+    // How long each other configuration takes to the first one's final
+    // error: the figure that says which is worth its cost per sample. The
+    // samples it needs come from the error curve, which the fixed seeds
+    // make the same on every run; the time, from its mean cost per sample
+    // over all its frames, which took turns with the first one's over the
+    // whole run, so that a slow spell of a shared machine falls on both
+    // alike (the time its checkpoints give covers only the run's start).
+    if (runs.size() > 1 && !runs[0].points.empty()) {
+        const auto cost = [](const Run& run) {
+            return run.seconds / static_cast<double>(run.renderer->frames());
+        };
+        const Checkpoint& last = runs[0].points.back();
+        const double target = last.error.relative_mse;
+        std::printf(
+            "\nTime to %s's relative MSE at its last checkpoint (%.4g at %ld spp): the samples "
+            "needed, interpolated on the log-log curve between the checkpoints either side, at "
+            "each configuration's mean cost per sample over the run:\n",
+            runs[0].config->label.c_str(), target, last.spp);
+        for (std::size_t k = 1; k < runs.size(); ++k) {
+            const Run& run = runs[k];
+            double spp = 0.0;
+            double seconds = 0.0;
+            const char* label = run.config->label.c_str();
+            if (run.points.empty()) {
+                std::printf("  %s: no checkpoint\n", label);
+            } else if (run.points.front().error.relative_mse <= target) {
+                std::printf("  %s: there by its first checkpoint (%ld spp)\n", label,
+                            run.points.front().spp);
+            } else if (reaches(run.points, target, &spp, &seconds)) {
+                // "2.00 x fewer", "2.00 x more" or `same`: this one against
+                // the first.
+                const auto compared = [](double first_over_this, const char* fewer,
+                                         const char* more, const char* same) {
+                    char text[48];
+                    if (std::fabs(first_over_this - 1.0) < 0.005) {
+                        return std::string(same);
+                    }
+                    const bool fewer_here = first_over_this >= 1.0;
+                    std::snprintf(text, sizeof text, "%.2f x %s",
+                                  fewer_here ? first_over_this : 1.0 / first_over_this,
+                                  fewer_here ? fewer : more);
+                    return std::string(text);
+                };
+                const double samples = last.spp / spp;
+                const double cost_ratio = cost(run) / cost(runs[0]);
+                std::printf(
+                    "  %s: %.0f spp (%s samples) at %.2f x the cost per sample: %s time "
+                    "(%.3f s against %.3f s; by its checkpoints' own times %.3f s, %s)\n",
+                    label, spp, compared(samples, "fewer", "more", "as many").c_str(), cost_ratio,
+                    compared(samples / cost_ratio, "less", "more", "the same").c_str(),
+                    spp * cost(run), last.spp * cost(runs[0]), seconds,
+                    compared(last.seconds / seconds, "less", "more", "the same").c_str());
+            } else {
+                std::printf("  %s: not reached by %ld spp (%.4g)\n", label, run.points.back().spp,
+                            run.points.back().error.relative_mse);
+            }
+        }
     }
     std::fprintf(stderr, "wrote %s\n", o.csv_path.c_str());
     return 0;
