@@ -3,8 +3,21 @@
 #include "trac0r/kernel/trace.h"
 
 #include <omp.h>
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
 
 namespace trac0r {
+
+#if defined(__SSE__)
+// MXCSR bit 15: flush to zero (denormal results); bit 6: denormals are
+// zero (denormal inputs).
+DenormalsAreZero::DenormalsAreZero() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | 0x8040u); }
+DenormalsAreZero::~DenormalsAreZero() { _mm_setcsr(saved_); }
+#else
+DenormalsAreZero::DenormalsAreZero() : saved_(0) {}
+DenormalsAreZero::~DenormalsAreZero() {}
+#endif
 
 CpuBackend::CpuBackend(int threads) : threads_(threads > 0 ? threads : omp_get_max_threads()) {}
 
@@ -32,15 +45,19 @@ void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t 
     const long tile = 8;
     const long tiles_x = (width + tile - 1) / tile;
     const long tile_count = tiles_x * ((height + tile - 1) / tile);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads_)
-    for (long t = 0; t < tile_count; ++t) {
-        const long x0 = (t % tiles_x) * tile;
-        const long y0 = (t / tiles_x) * tile;
-        for (long y = y0; y < y0 + tile && y < height; ++y) {
-            for (long x = x0; x < x0 + tile && x < width; ++x) {
-                kernel::render_pixel(&view, camera, accum,
-                                     static_cast<std::uint32_t>(y * width + x), seed, frame,
-                                     max_depth);
+#pragma omp parallel num_threads(threads_)
+    {
+        const DenormalsAreZero denormals;  // in every thread of the team
+#pragma omp for schedule(dynamic, 1)
+        for (long t = 0; t < tile_count; ++t) {
+            const long x0 = (t % tiles_x) * tile;
+            const long y0 = (t / tiles_x) * tile;
+            for (long y = y0; y < y0 + tile && y < height; ++y) {
+                for (long x = x0; x < x0 + tile && x < width; ++x) {
+                    kernel::render_pixel(&view, camera, accum,
+                                         static_cast<std::uint32_t>(y * width + x), seed, frame,
+                                         max_depth);
+                }
             }
         }
     }
