@@ -144,3 +144,31 @@ TEST_CASE("restart clears the accumulator", "[render]") {
     r.render_frame();
     REQUIRE(r.image().pixels == first.pixels);
 }
+
+namespace {
+
+// A denormal times one, computed at run time (volatile: not folded).
+float denormal_times_one() {
+    volatile float denormal = 1e-40f;
+    volatile float one = 1.0f;
+    return denormal * one;
+}
+
+}  // namespace
+
+TEST_CASE("the CPU backend's denormals-as-zero mode holds in its scope and is restored after",
+          "[render]") {
+#if !defined(__SSE__)
+    FAIL("DenormalsAreZero is implemented for x86 (SSE) only");
+#endif
+    REQUIRE(denormal_times_one() != 0.0f);
+    {
+        const DenormalsAreZero denormals;
+        CHECK(denormal_times_one() == 0.0f);
+    }
+    CHECK(denormal_times_one() != 0.0f);
+    // A render leaves the calling thread's mode as it found it.
+    Renderer r(furnace_scene(0.5f, 1.0f, 3), std::make_unique<CpuBackend>(2), 1);
+    r.render_frame();
+    CHECK(denormal_times_one() != 0.0f);
+}
