@@ -9,6 +9,7 @@
 #include "trac0r/kernel/trace.h"
 #include "timing.h"
 
+#include "trac0r/cpu_backend.h"
 #include "trac0r/packed_scene.h"
 
 #ifdef TRAC0R_HAVE_OPENCL
@@ -105,10 +106,15 @@ inline CastResult cast_cpu(const trac0r::PackedScene& packed, const RaySet& rays
         if (pass == 1) {
             cpu_start = process_cpu_seconds();  // after the warm-up pass
         }
-#pragma omp parallel for schedule(dynamic, 64)
-        for (long i = 0; i < n; ++i) {
-            const Ray ray = make_ray(xyz(rays.origins[i]), xyz(rays.directions[i]));
-            hit[i] = intersect_scene(&scene, &ray).triangle >= 0;
+#pragma omp parallel
+        {
+            // The floating-point mode the CPU backend renders in.
+            const trac0r::DenormalsAreZero denormals;
+#pragma omp for schedule(dynamic, 64)
+            for (long i = 0; i < n; ++i) {
+                const Ray ray = make_ray(xyz(rays.origins[i]), xyz(rays.directions[i]));
+                hit[i] = intersect_scene(&scene, &ray).triangle >= 0;
+            }
         }
     }
     result.seconds = (process_cpu_seconds() - cpu_start) / passes / machine_cores();

@@ -90,6 +90,7 @@ struct Cast {
 // The median over passes of one pass's thread CPU time per ray, each ray
 // cast `repeats` times in a row.
 Cast cast(const SceneView& scene, const std::vector<Ray>& rays, int passes, int repeats) {
+    const trac0r::DenormalsAreZero denormals;  // as the CPU backend renders
     std::vector<double> seconds;
     long checksum = 0;
     for (int pass = 0; pass <= passes; ++pass) {  // pass 0: warm-up
