@@ -3,6 +3,8 @@
 #include "trac0r/kernel/trace.h"
 
 #include <omp.h>
+
+#include <algorithm>
 #if defined(__SSE__)
 #include <xmmintrin.h>
 #endif
@@ -52,11 +54,25 @@ void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t 
         for (long t = 0; t < tile_count; ++t) {
             const long x0 = (t % tiles_x) * tile;
             const long y0 = (t / tiles_x) * tile;
-            for (long y = y0; y < y0 + tile && y < height; ++y) {
-                for (long x = x0; x < x0 + tile && x < width; ++x) {
-                    kernel::render_pixel(&view, camera, accum,
-                                         static_cast<std::uint32_t>(y * width + x), seed, frame,
-                                         max_depth);
+            const long x1 = std::min(x0 + tile, width);
+            const long y1 = std::min(y0 + tile, height);
+            // The tile's pixels in order, each one's camera ray made before
+            // the path of the pixel before it is traced.
+            kernel::PixelSample samples[2];
+            int current = 0;
+            std::uint32_t pixel = static_cast<std::uint32_t>(y0 * width + x0);
+            kernel::begin_pixel(camera, pixel, seed, frame, &samples[current]);
+            for (long y = y0; y < y1; ++y) {
+                for (long x = x0; x < x1; ++x) {
+                    const std::uint32_t this_pixel = pixel;
+                    const bool last = x + 1 == x1 && y + 1 == y1;
+                    if (!last) {
+                        pixel = static_cast<std::uint32_t>(x + 1 < x1 ? y * width + x + 1
+                                                                      : (y + 1) * width + x0);
+                        kernel::begin_pixel(camera, pixel, seed, frame, &samples[1 - current]);
+                    }
+                    kernel::finish_pixel(&view, accum, this_pixel, max_depth, &samples[current]);
+                    current = 1 - current;
                 }
             }
         }

@@ -224,17 +224,36 @@ T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng*
     return radiance;
 }
 
+// A pixel's sample in two halves, so that a loop over pixels can make the
+// next pixel's random numbers and camera ray while this one's path runs:
+// begin_pixel seeds the pixel's generator and makes its camera ray,
+// finish_pixel traces the path and accumulates it.
+typedef struct PixelSample {
+    Rng rng;
+    Ray ray;
+} PixelSample;
+
+T0_INLINE void begin_pixel(CameraRecord cam, t0_u32 pixel, t0_u64 seed, t0_u32 frame,
+                           PixelSample* s) {
+    rng_seed_pixel(&s->rng, seed, pixel, frame);
+    const t0_u32 x = pixel % cam.size.x;
+    const t0_u32 y = pixel / cam.size.x;
+    const float jitter_x = rng_float(&s->rng);
+    const float jitter_y = rng_float(&s->rng);
+    s->ray = camera_ray(cam, (float)x, (float)y, jitter_x, jitter_y);
+}
+
+T0_INLINE void finish_pixel(const SceneView* scene, T0_GLOBAL AccumPixel* accum, t0_u32 pixel,
+                            int max_depth, PixelSample* s) {
+    accumulate_sample(&accum[pixel], trace_path(scene, s->ray, max_depth, &s->rng));
+}
+
 // One sample of one pixel in one frame, accumulated.
 T0_INLINE void render_pixel(const SceneView* scene, CameraRecord cam, T0_GLOBAL AccumPixel* accum,
                             t0_u32 pixel, t0_u64 seed, t0_u32 frame, int max_depth) {
-    Rng rng;
-    rng_seed_pixel(&rng, seed, pixel, frame);
-    const t0_u32 x = pixel % cam.size.x;
-    const t0_u32 y = pixel / cam.size.x;
-    const float jitter_x = rng_float(&rng);
-    const float jitter_y = rng_float(&rng);
-    const Ray ray = camera_ray(cam, (float)x, (float)y, jitter_x, jitter_y);
-    accumulate_sample(&accum[pixel], trace_path(scene, ray, max_depth, &rng));
+    PixelSample s;
+    begin_pixel(cam, pixel, seed, frame, &s);
+    finish_pixel(scene, accum, pixel, max_depth, &s);
 }
 
 T0_NAMESPACE_END
