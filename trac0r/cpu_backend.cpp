@@ -56,8 +56,10 @@ void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t 
             const long y0 = (t / tiles_x) * tile;
             const long x1 = std::min(x0 + tile, width);
             const long y1 = std::min(y0 + tile, height);
-            // The tile's pixels in order, each one's camera ray made before
-            // the path of the pixel before it is traced.
+            // The tile's pixels in order, each one's random numbers and
+            // camera ray made before the path of the pixel before it is
+            // traced, so that their latency overlaps that path (README,
+            // "Each pixel's camera ray made ahead").
             kernel::PixelSample samples[2];
             int current = 0;
             std::uint32_t pixel = static_cast<std::uint32_t>(y0 * width + x0);
