@@ -451,6 +451,20 @@ int run(const Options& o) {
         const auto cost = [](const Run& run) {
             return run.seconds / static_cast<double>(run.renderer->frames());
         };
+        // "2.00 x fewer", "2.00 x more" or `same`: another configuration
+        // against the first.
+        const auto compared = [](double first_over_this, const char* fewer, const char* more,
+                                 const char* same) {
+            if (std::fabs(first_over_this - 1.0) < 0.005) {
+                return std::string(same);
+            }
+            const bool fewer_here = first_over_this >= 1.0;
+            char text[48];
+            std::snprintf(text, sizeof text, "%.2f x %s",
+                          fewer_here ? first_over_this : 1.0 / first_over_this,
+                          fewer_here ? fewer : more);
+            return std::string(text);
+        };
         const Checkpoint& last = runs[0].points.back();
         const double target = last.error.relative_mse;
         std::printf(
@@ -469,20 +483,6 @@ int run(const Options& o) {
                 std::printf("  %s: there by its first checkpoint (%ld spp)\n", label,
                             run.points.front().spp);
             } else if (reaches(run.points, target, &spp, &seconds)) {
-                // "2.00 x fewer", "2.00 x more" or `same`: this one against
-                // the first.
-                const auto compared = [](double first_over_this, const char* fewer,
-                                         const char* more, const char* same) {
-                    char text[48];
-                    if (std::fabs(first_over_this - 1.0) < 0.005) {
-                        return std::string(same);
-                    }
-                    const bool fewer_here = first_over_this >= 1.0;
-                    std::snprintf(text, sizeof text, "%.2f x %s",
-                                  fewer_here ? first_over_this : 1.0 / first_over_this,
-                                  fewer_here ? fewer : more);
-                    return std::string(text);
-                };
                 const double samples = last.spp / spp;
                 const double cost_ratio = cost(run) / cost(runs[0]);
                 std::printf(
