@@ -343,6 +343,25 @@ T0_INLINE t0_lanes packet_coordinate(T0_GLOBAL const TrianglePacket* p, int vert
     return lanes_load(&p->vertex[3 * vertex + axis]);
 }
 
+// One vertex of a packet's four triangles in the ray's frame: as
+// vertex_in_ray_frame, lane for lane (the same floats).
+typedef struct PacketVertex {
+    t0_lanes x;
+    t0_lanes y;
+    t0_lanes z;
+} PacketVertex;
+
+T0_INLINE PacketVertex packet_vertex_in_ray_frame(T0_GLOBAL const TrianglePacket* p, const Ray* ray,
+                                                  const RayLanes* l, int vertex) {
+    PacketVertex v;
+    v.z = lanes_sub(packet_coordinate(p, vertex, ray->kz), l->permuted_origin[2]);
+    v.x = lanes_sub(lanes_sub(packet_coordinate(p, vertex, ray->kx), l->permuted_origin[0]),
+                    lanes_mul(l->shear[0], v.z));
+    v.y = lanes_sub(lanes_sub(packet_coordinate(p, vertex, ray->ky), l->permuted_origin[1]),
+                    lanes_mul(l->shear[1], v.z));
+    return v;
+}
+
 // outside_exactly for triangle i of a packet, its vertices in the ray's
 // frame computed as the packet test computes them, lane i.
 T0_NOINLINE int packet_outside_exactly(T0_GLOBAL const TrianglePacket* p, const Ray* ray, int i) {
@@ -362,29 +381,12 @@ T0_NOINLINE int packet_outside_exactly(T0_GLOBAL const TrianglePacket* p, const 
 // with its barycentrics to u[i], v[i].
 T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray, const RayLanes* l,
                                t0_lanes t_max, float* t, float* u, float* v) {
-    const t0_lanes ox = l->permuted_origin[0];
-    const t0_lanes oy = l->permuted_origin[1];
-    const t0_lanes oz = l->permuted_origin[2];
-    const t0_lanes sx = l->shear[0];
-    const t0_lanes sy = l->shear[1];
-    const t0_lanes az = lanes_sub(packet_coordinate(p, 0, ray->kz), oz);
-    const t0_lanes bz = lanes_sub(packet_coordinate(p, 1, ray->kz), oz);
-    const t0_lanes cz = lanes_sub(packet_coordinate(p, 2, ray->kz), oz);
-    const t0_lanes ax =
-        lanes_sub(lanes_sub(packet_coordinate(p, 0, ray->kx), ox), lanes_mul(sx, az));
-    const t0_lanes ay =
-        lanes_sub(lanes_sub(packet_coordinate(p, 0, ray->ky), oy), lanes_mul(sy, az));
-    const t0_lanes bx =
-        lanes_sub(lanes_sub(packet_coordinate(p, 1, ray->kx), ox), lanes_mul(sx, bz));
-    const t0_lanes by =
-        lanes_sub(lanes_sub(packet_coordinate(p, 1, ray->ky), oy), lanes_mul(sy, bz));
-    const t0_lanes cx =
-        lanes_sub(lanes_sub(packet_coordinate(p, 2, ray->kx), ox), lanes_mul(sx, cz));
-    const t0_lanes cy =
-        lanes_sub(lanes_sub(packet_coordinate(p, 2, ray->ky), oy), lanes_mul(sy, cz));
-    const t0_lanes weight0 = lanes_sub(lanes_mul(cx, by), lanes_mul(cy, bx));
-    const t0_lanes weight1 = lanes_sub(lanes_mul(ax, cy), lanes_mul(ay, cx));
-    const t0_lanes weight2 = lanes_sub(lanes_mul(bx, ay), lanes_mul(by, ax));
+    const PacketVertex a = packet_vertex_in_ray_frame(p, ray, l, 0);
+    const PacketVertex b = packet_vertex_in_ray_frame(p, ray, l, 1);
+    const PacketVertex c = packet_vertex_in_ray_frame(p, ray, l, 2);
+    const t0_lanes weight0 = lanes_sub(lanes_mul(c.x, b.y), lanes_mul(c.y, b.x));
+    const t0_lanes weight1 = lanes_sub(lanes_mul(a.x, c.y), lanes_mul(a.y, c.x));
+    const t0_lanes weight2 = lanes_sub(lanes_mul(b.x, a.y), lanes_mul(b.y, a.x));
     const t0_lanes zero = lanes_splat(0.0f);
     // Outside where one weight is negative and another positive: where the
     // smallest is negative and the largest positive. (A NaN weight may be
@@ -398,8 +400,8 @@ T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray
         lanes_lt(lanes_mul(lanes_load(&p->area), l->parallel_det), lanes_abs(det));
     const t0_lanes inv_det = lanes_div(lanes_splat(1.0f), det);
     const t0_lanes distance =
-        lanes_mul(lanes_mul(lanes_add(lanes_add(lanes_mul(weight0, az), lanes_mul(weight1, bz)),
-                                      lanes_mul(weight2, cz)),
+        lanes_mul(lanes_mul(lanes_add(lanes_add(lanes_mul(weight0, a.z), lanes_mul(weight1, b.z)),
+                                      lanes_mul(weight2, c.z)),
                             l->shear[2]),
                   inv_det);
     const t0_mask ahead = mask_and(lanes_lt(zero, distance), lanes_lt(distance, t_max));
