@@ -38,13 +38,13 @@ Scene triangle_soup(int count, unsigned seed) {
     return scene;
 }
 
-// A scene the greedy collapse makes too deep: `levels` clusters of 32
+// A scene the optimal collapse makes too deep: `levels` clusters of 32
 // small triangles, each a quarter the size of the one before and beside
 // the rest of the scene, which lies in the corner at the origin. The SAH
 // splits a cluster from the rest at each level, and the cluster's subtree
-// is larger than the rest, so the greedy collapse spends a wide node's
-// lanes on the cluster and goes down the spine one binary level per node
-// (its depth is levels + 1). At 24 levels the smallest clusters are 1e-14
+// is larger than the rest, so the collapse spends a wide node's lanes on
+// the cluster and goes down the spine one binary level per node (its depth
+// is levels + 1). At 24 levels the smallest clusters are 1e-14
 // of the scene, far below the scales STABILITY.md covers: rays meet them
 // only on their way to the larger ones.
 Scene nested_clusters(int levels) {
@@ -214,6 +214,41 @@ TEST_CASE("the BVH is a valid tree over every triangle", "[bvh]") {
     check_tree(pack_scene(builtin_scene(), with(Accel::bvh)));
 }
 
+TEST_CASE("the collapse packs each small cluster into one packet", "[bvh]") {
+    // Eight clusters of four tiny triangles, far apart: the binary tree is
+    // split down to single triangles, and the cheapest wide tree is one
+    // node whose eight lanes are the clusters, each one packet (four
+    // single-triangle lanes would test the same box four times).
+    std::vector<AABB> bounds;
+    for (int cluster = 0; cluster < 8; ++cluster) {
+        const glm::vec3 corner(static_cast<float>(cluster % 2), static_cast<float>(cluster / 2 % 2),
+                               static_cast<float>(cluster / 4));
+        for (int i = 0; i < 4; ++i) {
+            AABB b;
+            b.extend(10.0f * corner + glm::vec3(0.01f * static_cast<float>(i)));
+            b.extend(10.0f * corner + glm::vec3(0.01f * static_cast<float>(i) + 0.05f));
+            bounds.push_back(b);
+        }
+    }
+    const Bvh bvh = build_bvh(bounds);
+    REQUIRE(bvh.nodes.size() == 1);
+    REQUIRE(bvh.depth == 1);
+    REQUIRE(bvh.leaves.size() == 8);
+    for (const BvhLeaf& leaf : bvh.leaves) {
+        REQUIRE(leaf.count == 4);
+        // A cluster's four triangles, whichever the order.
+        const std::uint32_t cluster = bvh.order[leaf.first] / 4;
+        for (std::uint32_t k = 0; k < 4; ++k) {
+            REQUIRE(bvh.order[leaf.first + k] / 4 == cluster);
+        }
+    }
+    // With leaves of at most two, each cluster takes two lanes: 16 lanes,
+    // so more than one node.
+    const Bvh pairs = build_bvh(bounds, 2);
+    REQUIRE(pairs.leaves.size() == 16);
+    REQUIRE(pairs.nodes.size() > 1);
+}
+
 TEST_CASE("a BVH over coincident triangles stays shallow", "[bvh]") {
     // All centroids equal: no SAH split exists, the builder must halve.
     Scene scene = triangle_soup(1, 1);
@@ -223,14 +258,14 @@ TEST_CASE("a BVH over coincident triangles stays shallow", "[bvh]") {
     check_tree(p);
 }
 
-TEST_CASE("a BVH the greedy collapse makes too deep is collapsed by levels", "[bvh]") {
+TEST_CASE("a BVH the optimal collapse makes too deep is collapsed by levels", "[bvh]") {
     const Scene scene = nested_clusters(24);
     const PackedScene p = pack_scene(scene, with(Accel::bvh));
     CAPTURE(p.bvh_depth);
     REQUIRE(p.bvh_by_levels);
     check_tree(p);
     REQUIRE(7 * p.bvh_depth + 1 <= T0_BVH_STACK_SIZE);
-    // Twelve levels: the greedy collapse is shallow enough, and is kept.
+    // Twelve levels: the optimal collapse is shallow enough, and is kept.
     REQUIRE_FALSE(pack_scene(nested_clusters(12), with(Accel::bvh)).bvh_by_levels);
 }
 

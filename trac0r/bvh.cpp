@@ -16,17 +16,12 @@ const int bin_count = 16;
 // inputs) they halve the list, so no path is longer than about this plus
 // log2(n) nodes and the kernel's fixed traversal stack always suffices.
 const int sah_depth_limit = 32;
-// Relative costs, for the SAH, of a binary node and of testing a packet of
-// up to four triangles: 1 : 4, chosen when nodes were 4-wide (a binary node
-// half a wide node, a packet test about two wide nodes' instructions). On
-// cornell.json, against 1 : 2, it splits pairs of walls that shared a
-// room-sized leaf box: 0.7 fewer packet tests per ray for 0.4 more nodes,
-// and 7 % fewer instructions a ray (README, "Performance"). With 8-wide
-// nodes (a binary node a third of one), 1 : 6 to 1 : 12 give the same
-// packet tests a bounce ray (1.62 to 1.63) and a few more nodes (2.22 to
-// 2.23 against 2.20), 1 : 2 many more packet tests (2.50): 1 : 4 stays.
-const float traversal_cost = 0.5f;
-const float intersection_cost = 2.0f;
+// What the collapse (Collapser) weighs, per unit of surface area: an 8-wide
+// node's test and a packet's. On cornell.json ratios from 1 : 4 to 4 : 1
+// give trees within 1 % of each other in packets and nodes a ray (an
+// instrumented copy of traverse_bvh), so the simplest stays.
+const float node_cost = 1.0f;
+const float packet_cost = 1.0f;
 
 float surface_area(const AABB& b) {
     if (b.empty()) {
@@ -36,9 +31,10 @@ float surface_area(const AABB& b) {
     return 2.0f * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
-// A node of the binary tree the SAH builds, before it is collapsed into
-// 8-wide nodes: an interior node's children are at first and first + 1,
-// a leaf holds count triangles from first.
+// A node of the binary tree the SAH builds, down to single triangles,
+// before it is collapsed into 8-wide nodes: an interior node's children are
+// at first and first + 1 (after it in the array), a leaf holds the
+// triangle at first (count 1).
 struct BinaryNode {
     AABB bounds;
     std::uint32_t first = 0;
@@ -57,16 +53,17 @@ struct Split {
     float cost = 0.0f;
 };
 
+// The binary tree by binned SAH, split down to single triangles: which of
+// its subtrees become leaves (packets of up to four) is the collapse's
+// choice, made with the wide nodes' costs.
 class Builder {
   public:
-    Builder(std::vector<BuildItem> items, int max_leaf_size)
-        : items_(std::move(items)), max_leaf_(max_leaf_size) {}
+    explicit Builder(std::vector<BuildItem> items) : items_(std::move(items)) {}
 
     // The binary tree (node 0 the root) and, in `order`, the items in leaf
     // order.
     std::vector<BinaryNode> build(std::vector<std::uint32_t>& order) {
-        nodes_.reserve(2 * items_.size() / static_cast<std::size_t>(std::max(1, max_leaf_ / 2)) +
-                       1);
+        nodes_.reserve(2 * items_.size());
         nodes_.emplace_back();
         build_node(0, 0, items_.size(), 1);
         order.clear();
@@ -78,14 +75,12 @@ class Builder {
     }
 
   private:
-    void set_node(std::size_t node, const AABB& bounds, std::uint32_t first, std::uint32_t count) {
-        nodes_[node].bounds = bounds;
-        nodes_[node].first = first;
-        nodes_[node].count = count;
-    }
-
     // The best binned SAH split of [begin, end), or axis -1 when no split
-    // is possible (all centroids in one point).
+    // is possible (all centroids in one point). The cost: each side's
+    // surface area times its triangles. (Counting packets of four instead,
+    // as when the binary tree's leaves were the wide tree's, makes the
+    // tree jump with the bin count: on cornell.json 1.44 packets a bounce
+    // ray with 16 bins, 2.53 with 32.)
     Split find_split(std::size_t begin, std::size_t end, const AABB& centroid_bounds) const {
         Split best;
         best.cost = std::numeric_limits<float>::max();
@@ -122,8 +117,8 @@ class Builder {
                 if (n == 0 || right_count[b + 1] == 0) {
                     continue;
                 }
-                const float cost = surface_area(acc) * packets(n) +
-                                   right_area[b + 1] * packets(right_count[b + 1]);
+                const float cost = surface_area(acc) * static_cast<float>(n) +
+                                   right_area[b + 1] * static_cast<float>(right_count[b + 1]);
                 if (cost < best.cost) {
                     best.cost = cost;
                     best.axis = axis;
@@ -133,9 +128,6 @@ class Builder {
         }
         return best;
     }
-
-    // What intersecting n triangles costs: one packet test per four.
-    static float packets(std::size_t n) { return static_cast<float>((n + 3) / 4); }
 
     static int bin_of(float c, float lo, float scale) {
         const int b = static_cast<int>((c - lo) * scale);
@@ -150,23 +142,17 @@ class Builder {
             centroid_bounds.extend(items_[i].centroid);
         }
         const std::size_t count = end - begin;
-        if (depth >= sah_depth_limit && count > static_cast<std::size_t>(max_leaf_)) {
+        if (count == 1) {
+            set_node(node, bounds, static_cast<std::uint32_t>(begin), 1u);
+            return;
+        }
+        if (depth >= sah_depth_limit) {
             return median_split(node, bounds, centroid_bounds, begin, end, depth);
         }
-        const Split split = count > 1 ? find_split(begin, end, centroid_bounds) : Split();
-        const float leaf_cost = intersection_cost * packets(count);
-        const float split_cost =
-            split.axis < 0 ? leaf_cost
-                           : traversal_cost + intersection_cost * split.cost / surface_area(bounds);
-        const bool must_split = count > static_cast<std::size_t>(max_leaf_);
-        if (split.axis < 0 && must_split) {
+        const Split split = find_split(begin, end, centroid_bounds);
+        if (split.axis < 0) {
             // Every centroid in one point: split the list in the middle.
             return make_children(node, bounds, begin, begin + count / 2, end, depth);
-        }
-        if (split.axis < 0 || (!must_split && split_cost >= leaf_cost)) {
-            set_node(node, bounds, static_cast<std::uint32_t>(begin),
-                     static_cast<std::uint32_t>(count));
-            return;
         }
         const auto middle = std::partition(
             items_.begin() + static_cast<std::ptrdiff_t>(begin),
@@ -177,6 +163,12 @@ class Builder {
             mid = begin + count / 2;  // rounding put everything on one side
         }
         make_children(node, bounds, begin, mid, end, depth);
+    }
+
+    void set_node(std::size_t node, const AABB& bounds, std::uint32_t first, std::uint32_t count) {
+        nodes_[node].bounds = bounds;
+        nodes_[node].first = first;
+        nodes_[node].count = count;
     }
 
     void median_split(std::size_t node, const AABB& bounds, const AABB& centroid_bounds,
@@ -206,7 +198,6 @@ class Builder {
 
     std::vector<BuildItem> items_;
     std::vector<BinaryNode> nodes_;
-    int max_leaf_;
 };
 
 // Lane `lane` of plane `plane` of a node (the layout kernel::node_plane reads).
@@ -214,16 +205,33 @@ void set_node_plane(kernel::BvhNode& n, int plane, int lane, float value) {
     n.bounds[2 * plane + lane / 4][lane % 4] = value;
 }
 
-// Collapses the binary tree into 8-wide nodes. Greedy: a wide node starts
-// from its binary node and opens the interior lane of largest surface area
-// (the one most rays enter) into its two children until it has eight lanes
-// or only leaves. Or by levels: a wide node's lanes are the binary nodes
-// three levels below one (or above, where a leaf comes first), so each wide
-// level takes three binary levels, which bounds the depth on any input.
+// Collapses the binary tree into 8-wide nodes whose leaves are packets of
+// up to max_leaf triangles. Optimal: the wide tree of least SAH cost that
+// the binary tree's subtrees can make (Ylitie, Karras and Laine 2017,
+// "Efficient incoherent ray traversal on GPUs through compressed wide
+// BVHs", section 4.1): by dynamic programming from the leaves up, each
+// binary subtree becomes a wide node, a leaf or several lanes of its
+// parent, whichever costs least. Or by levels: a wide node's lanes are the
+// binary nodes three levels below one (or above, where a subtree fits in a
+// leaf), so each wide level takes three binary levels, which bounds the
+// depth on any input.
 class Collapser {
   public:
-    Collapser(const std::vector<BinaryNode>& binary, bool greedy)
-        : binary_(binary), greedy_(greedy) {}
+    Collapser(const std::vector<BinaryNode>& binary, bool optimal, int max_leaf)
+        : binary_(binary), optimal_(optimal), max_leaf_(static_cast<std::uint32_t>(max_leaf)) {
+        const std::size_t count = binary_.size();
+        first_.assign(count, 0);
+        count_.assign(count, 0);
+        // Children come after their parents in the array.
+        for (std::size_t m = count; m-- > 0;) {
+            const BinaryNode& b = binary_[m];
+            first_[m] = b.count > 0 ? b.first : first_[b.first];
+            count_[m] = b.count > 0 ? b.count : count_[b.first] + count_[b.first + 1];
+        }
+        if (optimal_) {
+            plan();
+        }
+    }
 
     void collapse(Bvh& bvh) {
         wide_.emplace_back();
@@ -233,38 +241,103 @@ class Collapser {
     }
 
   private:
-    // The lanes of the wide node made from binary node b: lanes[0..count).
-    int choose_lanes(std::uint32_t b, std::uint32_t* lanes) const {
-        int lane_count = 0;
-        lanes[lane_count++] = b;
-        if (greedy_) {
-            while (lane_count < T0_BVH_WIDTH) {
-                int widest = -1;
-                float widest_area = -1.0f;
-                for (int i = 0; i < lane_count; ++i) {
-                    const BinaryNode& n = binary_[lanes[i]];
-                    if (n.count == 0 && surface_area(n.bounds) > widest_area) {
-                        widest = i;
-                        widest_area = surface_area(n.bounds);
+    struct Lane {
+        std::uint32_t b;  // binary node
+        bool leaf;        // its subtree's triangles as one packet
+    };
+
+    bool fits_leaf(std::uint32_t b) const { return count_[b] <= max_leaf_; }
+
+    // cost(n, i): the least SAH cost (area-weighted node and packet tests)
+    // of binary node n's subtree as at most i lanes (1 to 8) of a wide node.
+    float& cost(std::uint32_t n, int i) { return cost_[T0_BVH_WIDTH * n + (i - 1)]; }
+    // How that cost is had: for i = 1, 1 as a leaf, 0 as a wide node; for
+    // i > 1, 0 as with i - 1 lanes, else k: k lanes to the left child's
+    // subtree, i - k to the right one's.
+    std::uint8_t& how(std::uint32_t n, int i) { return how_[T0_BVH_WIDTH * n + (i - 1)]; }
+
+    void plan() {
+        const std::size_t count = binary_.size();
+        cost_.assign(T0_BVH_WIDTH * count, 0.0f);
+        how_.assign(T0_BVH_WIDTH * count, 0);
+        lanes_split_.assign(count, 0);
+        const float infinite = std::numeric_limits<float>::infinity();
+        for (std::size_t m = count; m-- > 0;) {
+            const std::uint32_t n = static_cast<std::uint32_t>(m);
+            const BinaryNode& b = binary_[n];
+            const float area = surface_area(b.bounds);
+            const float as_leaf = fits_leaf(n) ? area * packet_cost : infinite;
+            if (b.count > 0) {
+                for (int i = 1; i <= T0_BVH_WIDTH; ++i) {
+                    cost(n, i) = as_leaf;
+                    how(n, i) = i == 1 ? 1 : 0;
+                }
+                continue;
+            }
+            // split[j]: the subtree as j lanes, k of them the left child's.
+            float split[T0_BVH_WIDTH + 1];
+            std::uint8_t split_k[T0_BVH_WIDTH + 1];
+            for (int j = 2; j <= T0_BVH_WIDTH; ++j) {
+                split[j] = infinite;
+                split_k[j] = 1;
+                for (int k = 1; k < j; ++k) {
+                    const float c = cost(b.first, k) + cost(b.first + 1, j - k);
+                    if (c < split[j]) {
+                        split[j] = c;
+                        split_k[j] = static_cast<std::uint8_t>(k);
                     }
                 }
-                if (widest < 0) {
-                    break;  // only leaves
-                }
-                const std::uint32_t first = binary_[lanes[widest]].first;
-                lanes[widest] = first;
-                lanes[lane_count++] = first + 1;
             }
+            lanes_split_[n] = split_k[T0_BVH_WIDTH];
+            const float as_node = area * node_cost + split[T0_BVH_WIDTH];
+            cost(n, 1) = std::min(as_leaf, as_node);
+            how(n, 1) = as_leaf <= as_node ? 1 : 0;
+            for (int i = 2; i <= T0_BVH_WIDTH; ++i) {
+                const bool fewer = !(split[i] < cost(n, i - 1));
+                cost(n, i) = fewer ? cost(n, i - 1) : split[i];
+                how(n, i) = fewer ? 0 : split_k[i];
+            }
+        }
+    }
+
+    // Appends the lanes that binary node n's subtree makes with `budget`.
+    void gather(std::uint32_t n, int budget, Lane* lanes, int& lane_count) {
+        while (budget > 1 && how(n, budget) == 0) {
+            --budget;
+        }
+        if (budget == 1) {
+            lanes[lane_count++] = Lane{n, how(n, 1) == 1};
+            return;
+        }
+        const int k = how(n, budget);
+        gather(binary_[n].first, k, lanes, lane_count);
+        gather(binary_[n].first + 1, budget - k, lanes, lane_count);
+    }
+
+    // The lanes of the wide node made from binary node b: lanes[0..count).
+    int choose_lanes(std::uint32_t b, Lane* lanes) {
+        int lane_count = 0;
+        if (b == 0 && fits_leaf(0)) {
+            lanes[lane_count++] = Lane{0, true};  // the whole scene in one packet
             return lane_count;
         }
-        // 2^3 = T0_BVH_WIDTH: each round opens every interior lane.
-        for (int level = 0; level < 3; ++level) {
+        if (optimal_) {
+            const int k = lanes_split_[b];
+            gather(binary_[b].first, k, lanes, lane_count);
+            gather(binary_[b].first + 1, T0_BVH_WIDTH - k, lanes, lane_count);
+            return lane_count;
+        }
+        lanes[lane_count++] = Lane{binary_[b].first, fits_leaf(binary_[b].first)};
+        lanes[lane_count++] = Lane{binary_[b].first + 1, fits_leaf(binary_[b].first + 1)};
+        // Two more rounds (2^3 = T0_BVH_WIDTH): each opens every lane that
+        // is not a leaf.
+        for (int level = 1; level < 3; ++level) {
             const int before = lane_count;
             for (int i = 0; i < before; ++i) {
-                const BinaryNode& n = binary_[lanes[i]];
-                if (n.count == 0) {
-                    lanes[i] = n.first;
-                    lanes[lane_count++] = n.first + 1;
+                if (!lanes[i].leaf) {
+                    const std::uint32_t first = binary_[lanes[i].b].first;
+                    lanes[i] = Lane{first, fits_leaf(first)};
+                    lanes[lane_count++] = Lane{first + 1, fits_leaf(first + 1)};
                 }
             }
         }
@@ -274,7 +347,7 @@ class Collapser {
     // Fills wide node `wide` from binary node `b`; returns the depth of the
     // wide subtree, in nodes.
     int fill(std::size_t wide, std::uint32_t b) {
-        std::uint32_t lanes[T0_BVH_WIDTH];
+        Lane lanes[T0_BVH_WIDTH];
         const int lane_count = choose_lanes(b, lanes);
         kernel::BvhNode node;
         for (int plane = 0; plane < 6; ++plane) {
@@ -288,17 +361,17 @@ class Collapser {
         node.count[0] = node.count[1] = glm::uvec4(0u);
         std::vector<std::pair<int, std::uint32_t>> interior;  // (lane, binary node)
         for (int i = 0; i < lane_count; ++i) {
-            const BinaryNode& n = binary_[lanes[i]];
+            const std::uint32_t n = lanes[i].b;
             for (int axis = 0; axis < 3; ++axis) {
-                set_node_plane(node, 2 * axis, i, n.bounds.min[axis]);
-                set_node_plane(node, 2 * axis + 1, i, n.bounds.max[axis]);
+                set_node_plane(node, 2 * axis, i, binary_[n].bounds.min[axis]);
+                set_node_plane(node, 2 * axis + 1, i, binary_[n].bounds.max[axis]);
             }
-            if (n.count > 0) {
+            if (lanes[i].leaf) {
                 node.child[i / 4][i % 4] = T0_BVH_LEAF | static_cast<std::uint32_t>(leaves_.size());
-                node.count[i / 4][i % 4] = n.count;
-                leaves_.push_back(BvhLeaf{n.first, n.count});
+                node.count[i / 4][i % 4] = count_[n];
+                leaves_.push_back(BvhLeaf{first_[n], count_[n]});
             } else {
-                interior.emplace_back(i, lanes[i]);
+                interior.emplace_back(i, n);
             }
         }
         // Children nodes side by side, then their subtrees.
@@ -315,7 +388,16 @@ class Collapser {
     }
 
     const std::vector<BinaryNode>& binary_;
-    bool greedy_;
+    bool optimal_;
+    std::uint32_t max_leaf_;
+    // Per binary node: its subtree's triangles, count_ of them from first_.
+    std::vector<std::uint32_t> first_;
+    std::vector<std::uint32_t> count_;
+    std::vector<float> cost_;
+    std::vector<std::uint8_t> how_;
+    // Per binary node made a wide node: how many of its lanes are the left
+    // child's subtree's.
+    std::vector<std::uint8_t> lanes_split_;
     std::vector<kernel::BvhNode> wide_;
     std::vector<BvhLeaf> leaves_;
 };
@@ -337,14 +419,14 @@ Bvh build_bvh(const std::vector<AABB>& triangle_bounds, int max_leaf_size) {
     }
     Bvh bvh;
     const int leaf_size = std::min(std::max(1, max_leaf_size), 4);  // one packet
-    const std::vector<BinaryNode> binary = Builder(std::move(items), leaf_size).build(bvh.order);
+    const std::vector<BinaryNode> binary = Builder(std::move(items)).build(bvh.order);
     // The traversal stack holds at most seven entries per level, and one
-    // more for a moment (kernel/intersect.h). A greedy tree may be as deep
-    // as the binary one; where that is too deep, the collapse by levels
-    // divides the depth by three.
-    Collapser(binary, true).collapse(bvh);
+    // more for a moment (kernel/intersect.h). The optimal tree may be as
+    // deep as the binary one; where that is too deep, the collapse by
+    // levels divides the depth by three.
+    Collapser(binary, true, leaf_size).collapse(bvh);
     if (7 * bvh.depth + 1 > T0_BVH_STACK_SIZE) {
-        Collapser(binary, false).collapse(bvh);
+        Collapser(binary, false, leaf_size).collapse(bvh);
         bvh.by_levels = true;
     }
     if (7 * bvh.depth + 1 > T0_BVH_STACK_SIZE) {

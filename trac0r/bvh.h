@@ -1,6 +1,6 @@
 // A bounding volume hierarchy over triangles: a binary tree by binned SAH,
-// collapsed into the 8-wide node array both backends traverse
-// (kernel/intersect.h).
+// collapsed at least SAH cost into the 8-wide node array both backends
+// traverse (kernel/intersect.h).
 #ifndef TRAC0R_BVH_H
 #define TRAC0R_BVH_H
 
@@ -27,14 +27,15 @@ struct Bvh {
     // order[i]: which input triangle is the i-th in leaf order.
     std::vector<std::uint32_t> order;
     int depth = 0;  // longest path from the root to a node with only leaves, in nodes
-    // Collapsed by levels (three binary levels per node) because the greedy
-    // collapse was too deep for the traversal stack (bvh.cpp).
+    // Collapsed by levels (three binary levels per node) because the
+    // optimal collapse was too deep for the traversal stack (bvh.cpp).
     bool by_levels = false;
 };
 
-// Binned SAH (16 bins per axis) in O(n log n). At most `max_leaf_size`
-// triangles per leaf (1 to 4: one packet); fewer where the SAH says a split
-// does not pay. Throws std::invalid_argument for no triangles or too many.
+// Binned SAH (16 bins per axis) in O(n log n), down to single triangles,
+// then the collapse: at most `max_leaf_size` triangles per leaf (1 to 4:
+// one packet), fewer where the wide tree's SAH cost says so. Throws
+// std::invalid_argument for no triangles or too many.
 Bvh build_bvh(const std::vector<AABB>& triangle_bounds, int max_leaf_size = 4);
 
 }  // namespace trac0r
