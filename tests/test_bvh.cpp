@@ -249,6 +249,41 @@ TEST_CASE("the collapse packs each small cluster into one packet", "[bvh]") {
     REQUIRE(pairs.nodes.size() > 1);
 }
 
+TEST_CASE("the BVH is the same at every scale, also where float areas overflow", "[bvh]") {
+    // Scaled by a power of two every float of the build scales exactly, so
+    // the SAH must give the same tree; at 2^64 (1.8e19) the boxes' surface
+    // areas overflow a float, and a build that takes them in float finds
+    // every cost infinite (and made leaves of 150 triangles).
+    std::vector<AABB> unit;
+    std::vector<AABB> huge;
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    const float scale = 18446744073709551616.0f;  // 2^64
+    for (int i = 0; i < 300; ++i) {
+        const glm::vec3 c(u(rng), u(rng), u(rng));
+        const glm::vec3 size = 0.05f * glm::abs(glm::vec3(u(rng), u(rng), u(rng)));
+        AABB b;
+        b.extend(c);
+        b.extend(c + size);
+        unit.push_back(b);
+        AABB h;
+        h.extend(scale * c);
+        h.extend(scale * (c + size));
+        huge.push_back(h);
+    }
+    const Bvh a = build_bvh(unit);
+    const Bvh b = build_bvh(huge);
+    REQUIRE(b.order == a.order);
+    REQUIRE(b.nodes.size() == a.nodes.size());
+    REQUIRE(b.depth == a.depth);
+    REQUIRE(b.leaves.size() == a.leaves.size());
+    for (std::size_t i = 0; i < a.leaves.size(); ++i) {
+        REQUIRE(b.leaves[i].first == a.leaves[i].first);
+        REQUIRE(b.leaves[i].count == a.leaves[i].count);
+        REQUIRE(a.leaves[i].count <= 4);
+    }
+}
+
 TEST_CASE("a BVH over coincident triangles stays shallow", "[bvh]") {
     // All centroids equal: no SAH split exists, the builder must halve.
     Scene scene = triangle_soup(1, 1);

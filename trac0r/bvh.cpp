@@ -23,12 +23,15 @@ const int sah_depth_limit = 32;
 const float node_cost = 1.0f;
 const float packet_cost = 1.0f;
 
-float surface_area(const AABB& b) {
+// In double: a float area overflows for boxes wider than about 1e19, and
+// infinite costs would all tie; in double the SAH is the same at every
+// scale (exactly so under scaling by a power of two).
+double surface_area(const AABB& b) {
     if (b.empty()) {
-        return 0.0f;
+        return 0.0;
     }
-    const glm::vec3 d = b.max - b.min;
-    return 2.0f * (d.x * d.y + d.y * d.z + d.z * d.x);
+    const glm::dvec3 d = glm::dvec3(b.max) - glm::dvec3(b.min);
+    return 2.0 * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
 // A node of the binary tree the SAH builds, down to single triangles,
@@ -50,7 +53,7 @@ struct BuildItem {
 struct Split {
     int axis = -1;
     float position = 0.0f;  // centroid coordinate: left is < position
-    float cost = 0.0f;
+    double cost = 0.0;
 };
 
 // The binary tree by binned SAH, split down to single triangles: which of
@@ -83,7 +86,7 @@ class Builder {
     // ray with 16 bins, 2.53 with 32.)
     Split find_split(std::size_t begin, std::size_t end, const AABB& centroid_bounds) const {
         Split best;
-        best.cost = std::numeric_limits<float>::max();
+        best.cost = std::numeric_limits<double>::max();
         for (int axis = 0; axis < 3; ++axis) {
             const float lo = centroid_bounds.min[axis];
             const float extent = centroid_bounds.max[axis] - lo;
@@ -99,7 +102,7 @@ class Builder {
                 ++counts[b];
             }
             // Sweep from the right for the right-hand areas, then from the left.
-            float right_area[bin_count];
+            double right_area[bin_count];
             int right_count[bin_count];
             AABB acc;
             int n = 0;
@@ -117,8 +120,7 @@ class Builder {
                 if (n == 0 || right_count[b + 1] == 0) {
                     continue;
                 }
-                const float cost = surface_area(acc) * static_cast<float>(n) +
-                                   right_area[b + 1] * static_cast<float>(right_count[b + 1]);
+                const double cost = surface_area(acc) * n + right_area[b + 1] * right_count[b + 1];
                 if (cost < best.cost) {
                     best.cost = cost;
                     best.axis = axis;
@@ -262,10 +264,14 @@ class Collapser {
         how_.assign(T0_BVH_WIDTH * count, 0);
         lanes_split_.assign(count, 0);
         const float infinite = std::numeric_limits<float>::infinity();
+        // Areas over the root's (0 to 1), so that float costs suffice; all
+        // 0 when the root's is (every triangle in one point).
+        const double root_area = surface_area(binary_[0].bounds);
+        const double area_scale = root_area > 0.0 ? 1.0 / root_area : 0.0;
         for (std::size_t m = count; m-- > 0;) {
             const std::uint32_t n = static_cast<std::uint32_t>(m);
             const BinaryNode& b = binary_[n];
-            const float area = surface_area(b.bounds);
+            const float area = static_cast<float>(surface_area(b.bounds) * area_scale);
             const float as_leaf = fits_leaf(n) ? area * packet_cost : infinite;
             if (b.count > 0) {
                 for (int i = 1; i <= T0_BVH_WIDTH; ++i) {
@@ -290,8 +296,9 @@ class Collapser {
             }
             lanes_split_[n] = split_k[T0_BVH_WIDTH];
             const float as_node = area * node_cost + split[T0_BVH_WIDTH];
-            cost(n, 1) = std::min(as_leaf, as_node);
-            how(n, 1) = as_leaf <= as_node ? 1 : 0;
+            const bool leaf = fits_leaf(n) && as_leaf <= as_node;
+            cost(n, 1) = leaf ? as_leaf : as_node;
+            how(n, 1) = leaf ? 1 : 0;
             for (int i = 2; i <= T0_BVH_WIDTH; ++i) {
                 const bool fewer = !(split[i] < cost(n, i - 1));
                 cost(n, i) = fewer ? cost(n, i - 1) : split[i];
