@@ -32,7 +32,8 @@ struct Bvh {
     bool by_levels = false;
 };
 
-// Binned SAH (16 bins per axis) in O(n log n), down to single triangles,
+// Binned SAH (16 bins per axis; exact for 16 triangles or fewer) in
+// O(n log n), down to single triangles,
 // then the collapse: at most `max_leaf_size` triangles per leaf (1 to 4:
 // one packet), fewer where the wide tree's SAH cost says so. Throws
 // std::invalid_argument for no triangles or too many.
