@@ -161,6 +161,23 @@ void check_tree(const PackedScene& p) {
     REQUIRE(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
 }
 
+// Checks a Bvh as build_bvh returns it: every triangle in exactly one
+// leaf, leaves of 1 to max_leaf triangles, and a depth the traversal
+// stack holds.
+void check_leaves(const Bvh& bvh, std::size_t triangles, int max_leaf) {
+    REQUIRE(bvh.order.size() == triangles);
+    std::vector<int> seen(triangles, 0);
+    for (const BvhLeaf& leaf : bvh.leaves) {
+        REQUIRE(leaf.count >= 1);
+        REQUIRE(leaf.count <= static_cast<std::uint32_t>(max_leaf));
+        for (std::uint32_t k = 0; k < leaf.count; ++k) {
+            ++seen.at(bvh.order.at(leaf.first + k));
+        }
+    }
+    REQUIRE(std::all_of(seen.begin(), seen.end(), [](int s) { return s == 1; }));
+    REQUIRE(7 * bvh.depth + 1 <= T0_BVH_STACK_SIZE);
+}
+
 PackOptions with(Accel accel) {
     PackOptions o;
     o.accel = accel;
@@ -242,11 +259,41 @@ TEST_CASE("the collapse packs each small cluster into one packet", "[bvh]") {
             REQUIRE(bvh.order[leaf.first + k] / 4 == cluster);
         }
     }
-    // With leaves of at most two, each cluster takes two lanes: 16 lanes,
-    // so more than one node.
-    const Bvh pairs = build_bvh(bounds, 2);
-    REQUIRE(pairs.leaves.size() == 16);
-    REQUIRE(pairs.nodes.size() > 1);
+    // With leaves of at most two or three, each cluster takes two lanes
+    // (16 in all, so more than one node); of one, four.
+    for (int max_leaf : {1, 2, 3}) {
+        CAPTURE(max_leaf);
+        const Bvh small = build_bvh(bounds, max_leaf);
+        check_leaves(small, bounds.size(), max_leaf);
+        REQUIRE(small.leaves.size() == (max_leaf == 1 ? 32u : 16u));
+        REQUIRE(small.nodes.size() > 1);
+    }
+}
+
+TEST_CASE("a BVH over boxes without area stays shallow", "[bvh]") {
+    // Degenerate triangles' boxes: points scattered in a cube, and points
+    // on a line (the root's box has no area either). Their costs all tie at
+    // 0 unless the collapse gives them a floor; ties take fewer lanes, so
+    // without it every node had two lanes and the tree was as deep as the
+    // binary one (12 levels for 4,096 points, against 4 to 5).
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (int line = 0; line < 2; ++line) {
+        CAPTURE(line);
+        std::vector<AABB> bounds;
+        for (int i = 0; i < 4096; ++i) {
+            const glm::vec3 p =
+                line ? glm::vec3(u(rng), 0.0f, 0.0f) : glm::vec3(u(rng), u(rng), u(rng));
+            AABB b;
+            b.extend(p);
+            bounds.push_back(b);
+        }
+        const Bvh bvh = build_bvh(bounds);
+        check_leaves(bvh, bounds.size(), 4);
+        CAPTURE(bvh.depth);
+        REQUIRE(!bvh.by_levels);
+        REQUIRE(bvh.depth <= 6);
+    }
 }
 
 TEST_CASE("the BVH is the same at every scale, also where float areas overflow", "[bvh]") {
@@ -302,6 +349,19 @@ TEST_CASE("a BVH the optimal collapse makes too deep is collapsed by levels", "[
     REQUIRE(7 * p.bvh_depth + 1 <= T0_BVH_STACK_SIZE);
     // Twelve levels: the optimal collapse is shallow enough, and is kept.
     REQUIRE_FALSE(pack_scene(nested_clusters(12), with(Accel::bvh)).bvh_by_levels);
+    // Forty levels (down to 1e-24 of the scene: build_bvh alone, the
+    // packer would take such triangles for degenerate): the binary tree
+    // reaches SAH depth 32 and halves below it, and the collapse by levels
+    // still fits the stack.
+    const Scene forty = nested_clusters(40);
+    std::vector<AABB> bounds;
+    for (const Triangle& t : forty.shapes[0].triangles) {
+        bounds.push_back(t.bounds());
+    }
+    const Bvh deep = build_bvh(bounds);
+    CAPTURE(deep.depth);
+    REQUIRE(deep.by_levels);
+    check_leaves(deep, bounds.size(), 4);
 }
 
 TEST_CASE("BVH traversal finds the same nearest hit as testing every triangle", "[bvh]") {

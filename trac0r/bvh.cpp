@@ -3,6 +3,7 @@
 #include "trac0r/kernel/intersect.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -175,9 +176,13 @@ class Builder {
         return best;
     }
 
+    // Clamped before the conversion, which is undefined for NaN and for
+    // floats out of int's range (an extent near 0 or above FLT_MAX makes
+    // scale infinite or 0).
     static int bin_of(float c, float lo, float scale) {
-        const int b = static_cast<int>((c - lo) * scale);
-        return std::min(std::max(b, 0), bin_count - 1);
+        const float f = (c - lo) * scale;
+        return f > 0.0f ? (f < static_cast<float>(bin_count) ? static_cast<int>(f) : bin_count - 1)
+                        : 0;
     }
 
     void build_node(std::size_t node, std::size_t begin, std::size_t end, int depth) {
@@ -199,6 +204,13 @@ class Builder {
         if (split.axis < 0) {
             // Every centroid in one point: split the list in the middle.
             return make_children(node, bounds, begin, begin + count / 2, end, depth);
+        }
+        if (!(split.cost > 0.0)) {
+            // No area to tell the splits apart (boxes without area, as of
+            // points on a line; the first would win every time, and the
+            // tree would be a spine): halve along the centroids' widest
+            // axis.
+            return median_split(node, bounds, centroid_bounds, begin, end, depth);
         }
         const auto middle = std::partition(
             items_.begin() + static_cast<std::ptrdiff_t>(begin),
@@ -296,11 +308,15 @@ class Collapser {
 
     // cost(n, i): the least SAH cost (area-weighted node and packet tests)
     // of binary node n's subtree as at most i lanes (1 to 8) of a wide node.
-    float& cost(std::uint32_t n, int i) { return cost_[T0_BVH_WIDTH * n + (i - 1)]; }
+    float& cost(std::uint32_t n, int i) {
+        return cost_[T0_BVH_WIDTH * std::size_t{n} + static_cast<std::size_t>(i - 1)];
+    }
     // How that cost is had: for i = 1, 1 as a leaf, 0 as a wide node; for
     // i > 1, 0 as with i - 1 lanes, else k: k lanes to the left child's
     // subtree, i - k to the right one's.
-    std::uint8_t& how(std::uint32_t n, int i) { return how_[T0_BVH_WIDTH * n + (i - 1)]; }
+    std::uint8_t& how(std::uint32_t n, int i) {
+        return how_[T0_BVH_WIDTH * std::size_t{n} + static_cast<std::size_t>(i - 1)];
+    }
 
     void plan() {
         const std::size_t count = binary_.size();
@@ -308,14 +324,20 @@ class Collapser {
         how_.assign(T0_BVH_WIDTH * count, 0);
         lanes_split_.assign(count, 0);
         const float infinite = std::numeric_limits<float>::infinity();
-        // Areas over the root's (0 to 1), so that float costs suffice; all
-        // 0 when the root's is (every triangle in one point).
+        // Areas over the root's (0 to 1), so that float costs suffice, and
+        // at least min_area: where boxes have no area (points, segments, a
+        // scene in one plane's line), or one that underflows, costs would
+        // all tie at 0 and ties take fewer lanes, two a node, as deep as the
+        // binary tree; with the floor, such subtrees take the fewest node
+        // and packet tests.
         const double root_area = surface_area(binary_[0].bounds);
         const double area_scale = root_area > 0.0 ? 1.0 / root_area : 0.0;
+        const double min_area = std::ldexp(1.0, -100);
         for (std::size_t m = count; m-- > 0;) {
             const std::uint32_t n = static_cast<std::uint32_t>(m);
             const BinaryNode& b = binary_[n];
-            const float area = static_cast<float>(surface_area(b.bounds) * area_scale);
+            const float area =
+                static_cast<float>(std::max(surface_area(b.bounds) * area_scale, min_area));
             const float as_leaf = fits_leaf(n) ? area * packet_cost : infinite;
             if (b.count > 0) {
                 for (int i = 1; i <= T0_BVH_WIDTH; ++i) {
