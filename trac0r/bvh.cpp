@@ -105,31 +105,13 @@ class Builder {
                 bins[b].extend(items_[i].bounds);
                 ++counts[b];
             }
-            // Sweep from the right for the right-hand areas, then from the left.
-            double right_area[bin_count];
-            int right_count[bin_count];
-            AABB acc;
-            int n = 0;
-            for (int b = bin_count - 1; b > 0; --b) {
-                acc.extend(bins[b]);
-                n += counts[b];
-                right_area[b] = surface_area(acc);
-                right_count[b] = n;
-            }
-            acc = AABB();
-            n = 0;
-            for (int b = 0; b < bin_count - 1; ++b) {
-                acc.extend(bins[b]);
-                n += counts[b];
-                if (n == 0 || right_count[b + 1] == 0) {
-                    continue;
-                }
-                const double cost = surface_area(acc) * n + right_area[b + 1] * right_count[b + 1];
-                if (cost < best.cost) {
-                    best.cost = cost;
-                    best.axis = axis;
-                    best.position = lo + (b + 1) / scale;
-                }
+            double cost = 0.0;
+            const int cut = cheapest_cut(
+                bins, counts, bin_count, [](int) { return true; }, &cost);
+            if (cut > 0 && cost < best.cost) {
+                best.cost = cost;
+                best.axis = axis;
+                best.position = lo + cut / scale;
             }
         }
         return best;
@@ -143,7 +125,8 @@ class Builder {
         best.cost = std::numeric_limits<double>::max();
         const int count = static_cast<int>(end - begin);
         std::uint32_t sorted[bin_count];
-        double right_area[bin_count];
+        AABB boxes[bin_count];
+        const int ones[bin_count] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
         for (int axis = 0; axis < 3; ++axis) {
             for (int i = 0; i < count; ++i) {
                 sorted[i] = static_cast<std::uint32_t>(begin) + static_cast<std::uint32_t>(i);
@@ -151,26 +134,56 @@ class Builder {
             std::sort(sorted, sorted + count, [&](std::uint32_t a, std::uint32_t b) {
                 return items_[a].centroid[axis] < items_[b].centroid[axis];
             });
-            AABB acc;
-            for (int i = count - 1; i > 0; --i) {
-                acc.extend(items_[sorted[i]].bounds);
-                right_area[i] = surface_area(acc);
+            for (int i = 0; i < count; ++i) {
+                boxes[i] = items_[sorted[i]].bounds;
             }
-            acc = AABB();
-            for (int i = 0; i + 1 < count; ++i) {
-                acc.extend(items_[sorted[i]].bounds);
-                const float here = items_[sorted[i]].centroid[axis];
-                const float next = items_[sorted[i + 1]].centroid[axis];
-                if (!(here < next)) {
-                    continue;  // a split must put these two on one side
-                }
-                const double cost =
-                    surface_area(acc) * (i + 1) + right_area[i + 1] * (count - i - 1);
-                if (cost < best.cost) {
-                    best.cost = cost;
-                    best.axis = axis;
-                    best.position = next;  // left: centroids below it
-                }
+            // A split must put items with the same centroid on one side.
+            auto centroid = [&](int i) { return items_[sorted[i]].centroid[axis]; };
+            double cost = 0.0;
+            const int cut = cheapest_cut(
+                boxes, ones, count, [&](int i) { return centroid(i - 1) < centroid(i); }, &cost);
+            if (cut > 0 && cost < best.cost) {
+                best.cost = cost;
+                best.axis = axis;
+                best.position = centroid(cut);  // left: centroids below it
+            }
+        }
+        return best;
+    }
+
+    // The cheapest cut of `count` (at most bin_count) buckets in a row along
+    // an axis, bucket i the box boxes[i] of triangles[i] triangles, into a
+    // left and a right side, each costing its surface area times its
+    // triangles: the right side's first bucket (1 to count - 1; the first
+    // of equal costs), its cost in *cost, or 0 where no cut leaves
+    // triangles on both sides with allowed(first bucket).
+    template <typename Allowed>
+    static int cheapest_cut(const AABB* boxes, const int* triangles, int count, Allowed allowed,
+                            double* cost) {
+        // Sweep from the right for the right-hand areas, then from the left.
+        double right_area[bin_count];
+        int right_triangles[bin_count];
+        AABB acc;
+        int n = 0;
+        for (int i = count - 1; i > 0; --i) {
+            acc.extend(boxes[i]);
+            n += triangles[i];
+            right_area[i] = surface_area(acc);
+            right_triangles[i] = n;
+        }
+        acc = AABB();
+        n = 0;
+        int best = 0;
+        for (int i = 1; i < count; ++i) {
+            acc.extend(boxes[i - 1]);
+            n += triangles[i - 1];
+            if (n == 0 || right_triangles[i] == 0 || !allowed(i)) {
+                continue;
+            }
+            const double c = surface_area(acc) * n + right_area[i] * right_triangles[i];
+            if (best == 0 || c < *cost) {
+                *cost = c;
+                best = i;
             }
         }
         return best;
