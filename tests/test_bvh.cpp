@@ -320,6 +320,7 @@ TEST_CASE("the BVH is the same at every scale, also where float areas overflow",
     }
     const Bvh a = build_bvh(unit);
     const Bvh b = build_bvh(huge);
+    check_leaves(a, unit.size(), 4);
     REQUIRE(b.order == a.order);
     REQUIRE(b.nodes.size() == a.nodes.size());
     REQUIRE(b.depth == a.depth);
@@ -327,7 +328,6 @@ TEST_CASE("the BVH is the same at every scale, also where float areas overflow",
     for (std::size_t i = 0; i < a.leaves.size(); ++i) {
         REQUIRE(b.leaves[i].first == a.leaves[i].first);
         REQUIRE(b.leaves[i].count == a.leaves[i].count);
-        REQUIRE(a.leaves[i].count <= 4);
     }
 }
 
