@@ -1,6 +1,6 @@
 #include "trac0r/cpu_backend.h"
 
-#include "trac0r/kernel/trace.h"
+#include "trac0r/kernel/tile.h"
 
 #include <omp.h>
 
@@ -56,27 +56,8 @@ void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t 
             const long y0 = (t / tiles_x) * tile;
             const long x1 = std::min(x0 + tile, width);
             const long y1 = std::min(y0 + tile, height);
-            // The tile's pixels in order, each one's random numbers and
-            // camera ray made before the path of the pixel before it is
-            // traced, so that their latency overlaps that path (README,
-            // "Each pixel's camera ray made ahead").
-            kernel::PixelSample samples[2];
-            int current = 0;
-            std::uint32_t pixel = static_cast<std::uint32_t>(y0 * width + x0);
-            kernel::begin_pixel(camera, pixel, seed, frame, &samples[current]);
-            for (long y = y0; y < y1; ++y) {
-                for (long x = x0; x < x1; ++x) {
-                    const std::uint32_t this_pixel = pixel;
-                    const bool last = x + 1 == x1 && y + 1 == y1;
-                    if (!last) {
-                        pixel = static_cast<std::uint32_t>(x + 1 < x1 ? y * width + x + 1
-                                                                      : (y + 1) * width + x0);
-                        kernel::begin_pixel(camera, pixel, seed, frame, &samples[1 - current]);
-                    }
-                    kernel::finish_pixel(&view, accum, this_pixel, max_depth, &samples[current]);
-                    current = 1 - current;
-                }
-            }
+            kernel::render_tile(&view, camera, accum, seed, frame, max_depth, x0, y0, x1, y1,
+                                width);
         }
     }
 }

@@ -1,0 +1,91 @@
+#!/bin/bash
+# Two versions of the kernel headers (trac0r/kernel) timed side by side in
+# one process, on one thread: frames of A and B alternated, and the median
+# and quartiles over the pairs of B's frame time over A's, with whether the
+# two accumulated the same image. Resolves a few tenths of a per cent, where
+# alternated runs of two builds resolve a few per cent (README,
+# "Performance").
+#
+#   benchmarks/ab_kernels.sh A B [SCENE.json] [--accel flat|bvh]
+#       [--integrator naive|nee] [--pairs N] [--size W H]
+#
+# A and B: git revisions (HEAD, main~2, a commit) or directories that hold
+# trac0r/kernel (. is the working tree). Defaults: scenes/cornell.json, bvh,
+# naive, 150 pairs after one warm-up pair, 200 x 150. Both versions must
+# have trac0r/kernel/tile.h and lay out the packed buffers as this tree packs
+# them (checked). Compiled with the Release flags (and -march=native where
+# the build has TRAC0R_NATIVE=ON) against the library in build/ (or
+# $TRAC0R_BUILD): build it first.
+set -euo pipefail
+usage() { sed -n '2,/^set -euo/{/^set -euo/d;s/^# \{0,1\}//;p}' "$0"; }
+case "${1:-}" in
+    -h | --help) usage; exit 0 ;;
+esac
+if [ $# -lt 2 ]; then
+    echo "ab_kernels.sh: expected two versions, A and B (see --help)" >&2
+    exit 2
+fi
+a=$1
+b=$2
+shift 2
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${TRAC0R_BUILD:-$root/build}
+if [ ! -f "$build/libtrac0r.a" ] || [ ! -f "$build/CMakeCache.txt" ]; then
+    echo "ab_kernels.sh: no library in $build: build the project first (or set TRAC0R_BUILD)" >&2
+    exit 1
+fi
+cxx=${CXX:-g++}
+flags=(-O3 -DNDEBUG -ffp-contract=off -std=c++14 -Wall -Wextra)
+if grep -q '^TRAC0R_NATIVE:BOOL=ON' "$build/CMakeCache.txt"; then
+    flags+=(-march=native)
+fi
+libs=(-ltinyobjloader)
+if grep -q '^TRAC0R_OPENCL:BOOL=ON' "$build/CMakeCache.txt"; then
+    libs+=(-lOpenCL)
+fi
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# The kernel headers of version $1 into $work/$2/trac0r/kernel, in namespace
+# trac0r::kernel_$2.
+fetch() {
+    local version=$1 name=$2
+    mkdir -p "$work/$name/trac0r"
+    if [ -d "$version" ]; then
+        if [ ! -d "$version/trac0r/kernel" ]; then
+            echo "ab_kernels.sh: $version has no trac0r/kernel" >&2
+            exit 2
+        fi
+        cp -r "$version/trac0r/kernel" "$work/$name/trac0r/"
+    elif git -C "$root" rev-parse --verify --quiet "$version^{commit}" >/dev/null; then
+        git -C "$root" archive "$version" trac0r/kernel | tar -x -C "$work/$name"
+    else
+        echo "ab_kernels.sh: '$version' is neither a directory nor a git revision" >&2
+        exit 2
+    fi
+    if [ ! -f "$work/$name/trac0r/kernel/tile.h" ]; then
+        echo "ab_kernels.sh: $version has no trac0r/kernel/tile.h (it predates this tool)" >&2
+        exit 2
+    fi
+    sed -i "s/^\(    namespace \)kernel {/\1kernel_$name {/" "$work/$name/trac0r/kernel/compat.h"
+    if ! grep -q "namespace kernel_$name {" "$work/$name/trac0r/kernel/compat.h"; then
+        echo "ab_kernels.sh: could not rename the kernel namespace in $version's compat.h" >&2
+        exit 1
+    fi
+}
+fetch "$a" a
+fetch "$b" b
+echo "ab_kernels.sh: compiling A ($a) and B ($b)" >&2
+"$cxx" "${flags[@]}" -I"$work/a" -DAB_NAMESPACE=kernel_a -c "$root/benchmarks/ab_kernels/variant.cpp" \
+    -o "$work/a.o" &
+pid_a=$!
+"$cxx" "${flags[@]}" -I"$work/b" -DAB_NAMESPACE=kernel_b -c "$root/benchmarks/ab_kernels/variant.cpp" \
+    -o "$work/b.o" &
+pid_b=$!
+"$cxx" "${flags[@]}" -I"$root" -isystem /usr/include/stb -c "$root/benchmarks/ab_kernels/main.cpp" \
+    -o "$work/main.o"
+wait $pid_a
+wait $pid_b
+"$cxx" -fopenmp "$work/main.o" "$work/a.o" "$work/b.o" "$build/libtrac0r.a" "${libs[@]}" \
+    -o "$work/ab_kernels"
+"$work/ab_kernels" "$@"

@@ -1,0 +1,165 @@
+// Two versions of the kernel headers timed side by side in one process:
+// frames of version A and version B alternated on one thread (ABBA order),
+// each frame's thread CPU time taken, and the ratio B / A of each pair
+// reported as the median and quartiles over the pairs. A slow spell of the
+// machine then slows both frames of a pair, and not one build's runs, so
+// the ratio resolves differences of a few tenths of a per cent (README,
+// "Performance") where alternated runs of two builds resolve a few per
+// cent. Built and run by benchmarks/ab_kernels.sh, which compiles
+// variant.cpp once for each version.
+#include "../cli.h"
+#include "../timing.h"
+
+#include "trac0r/cpu_backend.h"
+#include "trac0r/scene_loader.h"
+
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+extern "C" void kernel_a_frame(const void*, const void*, void*, std::uint64_t, std::uint32_t, int);
+extern "C" void kernel_b_frame(const void*, const void*, void*, std::uint64_t, std::uint32_t, int);
+extern "C" void kernel_a_sizes(std::size_t*);
+extern "C" void kernel_b_sizes(std::size_t*);
+
+namespace {
+
+struct Options {
+    std::string scene = "scenes/cornell.json";
+    trac0r::Accel accel = trac0r::Accel::bvh;
+    trac0r::Integrator integrator = trac0r::Integrator::naive;
+    int pairs = 150;
+    int width = 200;
+    int height = 150;
+};
+
+// The options after A and B (benchmarks/ab_kernels.sh, which has the usage).
+void parse(int argc, char** argv, Options& o) {
+    bool have_scene = false;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        auto value = [&](const std::string& flag) {
+            if (i + 1 >= argc) {
+                throw trac0r_bench::UsageError(flag + ": expected a value");
+            }
+            return std::string(argv[++i]);
+        };
+        try {
+            if (a == "--accel") {
+                o.accel = trac0r::parse_accel(value(a));
+                if (o.accel == trac0r::Accel::automatic) {
+                    throw std::invalid_argument("expected flat or bvh");
+                }
+            } else if (a == "--integrator") {
+                o.integrator = trac0r::parse_integrator(value(a));
+            } else if (a == "--pairs") {
+                o.pairs = static_cast<int>(trac0r_bench::parse_long(a, value(a), 1, 100000));
+            } else if (a == "--size") {
+                o.width = static_cast<int>(trac0r_bench::parse_long(a, value(a), 1, 16384));
+                o.height = static_cast<int>(trac0r_bench::parse_long(a, value(a), 1, 16384));
+            } else if (!a.empty() && a[0] != '-' && !have_scene) {
+                o.scene = a;
+                have_scene = true;
+            } else {
+                throw trac0r_bench::UsageError("unexpected argument '" + a +
+                                               "' (see benchmarks/ab_kernels.sh --help)");
+            }
+        } catch (const std::invalid_argument& e) {
+            throw trac0r_bench::UsageError(a + ": " + e.what());
+        }
+    }
+}
+
+void check_layouts() {
+    const char* const names[] = {"SceneView",  "TriangleRecord", "ShapeRecord",
+                                 "MaterialRecord", "BvhNode",     "TrianglePacket",
+                                 "LightRecord", "CameraRecord",   "AccumPixel"};
+    const std::size_t here[] = {sizeof(trac0r::kernel::SceneView),
+                                sizeof(trac0r::kernel::TriangleRecord),
+                                sizeof(trac0r::kernel::ShapeRecord),
+                                sizeof(trac0r::kernel::MaterialRecord),
+                                sizeof(trac0r::kernel::BvhNode),
+                                sizeof(trac0r::kernel::TrianglePacket),
+                                sizeof(trac0r::kernel::LightRecord),
+                                sizeof(trac0r::kernel::CameraRecord),
+                                sizeof(trac0r::kernel::AccumPixel)};
+    std::size_t a[9];
+    std::size_t b[9];
+    kernel_a_sizes(a);
+    kernel_b_sizes(b);
+    for (int i = 0; i < 9; ++i) {
+        if (a[i] != here[i] || b[i] != here[i]) {
+            throw std::runtime_error(std::string(names[i]) + " is " + std::to_string(a[i]) +
+                                     " bytes in A and " + std::to_string(b[i]) +
+                                     " in B, but this tree packs " + std::to_string(here[i]) +
+                                     ": the versions must share the buffer layouts");
+        }
+    }
+}
+
+double quantile(std::vector<double> v, double q) {
+    std::sort(v.begin(), v.end());
+    return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5)];
+}
+
+int run(const Options& o) {
+    check_layouts();
+    const trac0r::Scene scene = trac0r::load_scene_file(o.scene);
+    trac0r::PackOptions pack;
+    pack.accel = o.accel;
+    pack.integrator = o.integrator;
+    const trac0r::PackedScene packed = trac0r::pack_scene(scene, pack);
+    const trac0r::kernel::SceneView view = packed.view();
+    const trac0r::kernel::CameraRecord camera =
+        trac0r::make_camera_record(scene.camera, o.width, o.height);
+    const std::size_t pixels = static_cast<std::size_t>(o.width) * static_cast<std::size_t>(o.height);
+    std::vector<trac0r::kernel::AccumPixel> accum_a(pixels, trac0r::kernel::AccumPixel{});
+    std::vector<trac0r::kernel::AccumPixel> accum_b(pixels, trac0r::kernel::AccumPixel{});
+    const trac0r::DenormalsAreZero denormals;  // as the CPU backend renders
+    std::vector<double> seconds_a;
+    std::vector<double> seconds_b;
+    std::vector<double> ratios;
+    for (int pair = 0; pair <= o.pairs; ++pair) {  // pair 0: warm-up
+        const std::uint32_t frame = static_cast<std::uint32_t>(pair);
+        double a = 0.0;
+        double b = 0.0;
+        for (int k = 0; k < 2; ++k) {
+            const bool run_a = (k == 0) == (pair % 2 == 0);  // AB, BA, AB, ...
+            const double start = trac0r_bench::thread_cpu_seconds();
+            if (run_a) {
+                kernel_a_frame(&view, &camera, accum_a.data(), 1, frame, scene.render.max_depth);
+                a = trac0r_bench::thread_cpu_seconds() - start;
+            } else {
+                kernel_b_frame(&view, &camera, accum_b.data(), 1, frame, scene.render.max_depth);
+                b = trac0r_bench::thread_cpu_seconds() - start;
+            }
+        }
+        if (pair > 0) {
+            seconds_a.push_back(a);
+            seconds_b.push_back(b);
+            ratios.push_back(b / a);
+        }
+    }
+    const bool same = std::memcmp(accum_a.data(), accum_b.data(),
+                                  pixels * sizeof(trac0r::kernel::AccumPixel)) == 0;
+    std::printf(
+        "%s, %s, %s, %d x %d, %d pairs on one thread: A %.3f ms, B %.3f ms a frame (medians); "
+        "B / A %.4f (quartiles %.4f to %.4f); images %s\n",
+        o.scene.c_str(), trac0r::to_string(o.accel), trac0r::to_string(o.integrator), o.width,
+        o.height, o.pairs, 1e3 * trac0r_bench::median(seconds_a),
+        1e3 * trac0r_bench::median(seconds_b), trac0r_bench::median(ratios),
+        quantile(ratios, 0.25), quantile(ratios, 0.75),
+        same ? "the same bit for bit" : "DIFFERENT");
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    return trac0r_bench::run_main("ab_kernels", [&] {
+        Options o;
+        parse(argc, argv, o);
+        return run(o);
+    });
+}

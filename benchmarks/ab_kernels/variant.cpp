@@ -1,0 +1,45 @@
+// One version of the kernel headers, compiled by benchmarks/ab_kernels.sh
+// with its namespace renamed (AB_NAMESPACE: trac0r::kernel_a or
+// trac0r::kernel_b), so that two versions link into one program. Exports a
+// frame on one thread, tile by tile as the CPU backend renders it
+// (kernel/tile.h), and the sizes of the buffer structs, which must be the
+// ones the program packs.
+#include "trac0r/kernel/tile.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+#define AB_CAT2(a, b) a##b
+#define AB_CAT(a, b) AB_CAT2(a, b)
+
+namespace k = trac0r::AB_NAMESPACE;
+
+extern "C" void AB_CAT(AB_NAMESPACE, _frame)(const void* scene, const void* camera, void* accum,
+                                             std::uint64_t seed, std::uint32_t frame,
+                                             int max_depth) {
+    const k::SceneView view = *static_cast<const k::SceneView*>(scene);
+    const k::CameraRecord cam = *static_cast<const k::CameraRecord*>(camera);
+    const long width = static_cast<long>(cam.size.x);
+    const long height = static_cast<long>(cam.size.y);
+    const long tile = 8;  // as CpuBackend::render_frame
+    for (long y0 = 0; y0 < height; y0 += tile) {
+        for (long x0 = 0; x0 < width; x0 += tile) {
+            k::render_tile(&view, cam, static_cast<k::AccumPixel*>(accum), seed, frame, max_depth,
+                           x0, y0, std::min(x0 + tile, width), std::min(y0 + tile, height),
+                           width);
+        }
+    }
+}
+
+extern "C" void AB_CAT(AB_NAMESPACE, _sizes)(std::size_t* out) {
+    out[0] = sizeof(k::SceneView);
+    out[1] = sizeof(k::TriangleRecord);
+    out[2] = sizeof(k::ShapeRecord);
+    out[3] = sizeof(k::MaterialRecord);
+    out[4] = sizeof(k::BvhNode);
+    out[5] = sizeof(k::TrianglePacket);
+    out[6] = sizeof(k::LightRecord);
+    out[7] = sizeof(k::CameraRecord);
+    out[8] = sizeof(k::AccumPixel);
+}
