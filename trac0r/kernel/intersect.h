@@ -584,20 +584,23 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
             if (mask != 0) {
                 const int first = lowest_set_bit(mask);
                 const int rest = mask & (mask - 1);
-                if (rest == 0) {
+                if (T0_ONE_CHILD_APART && rest == 0) {
                     // One child entered (most nodes): no sort.
                     child = node_child(n, first);
                     continue;
                 }
                 if ((rest & (rest - 1)) == 0) {
-                    // Two: the farther waits.
-                    const int second = lowest_set_bit(rest);
+                    // Two: the farther waits. Or one (T0_ONE_CHILD_APART
+                    // 0), taken as two of the same child: it is written
+                    // above the top of the stack and not counted, and the
+                    // next push overwrites it.
+                    const int second = lowest_set_bit(rest != 0 ? rest : mask);
                     const int first_nearer = entry[first] <= entry[second];
                     const int near = first_nearer ? first : second;
                     const int far = first_nearer ? second : first;
                     stack_child[top] = node_child(n, far);
                     stack_entry[top] = entry[far];
-                    ++top;
+                    top += rest != 0 ? 1 : 0;
                     child = node_child(n, near);
                     continue;
                 }
