@@ -61,6 +61,15 @@ T0_INLINE float choose_by_bits(int condition, float a, float b) {
 // one with two (traverse_bvh): yes here, PoCL's frames were 2 to 4 % slower
 // with the two taken together; not in C++ (below).
 #define T0_ONE_CHILD_APART 1
+// Component k (0, 1, 2) of a vector that is not in a buffer, the axis of
+// a's largest component (the lower axis on a tie), and the axis after k
+// (0 1 2 to 1 2 0): choices here, which LLVM makes selects; in C++ memory
+// and arithmetic (below).
+T0_INLINE float component3(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
+T0_INLINE int largest_axis(float3 a) {
+    return a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
+}
+T0_INLINE int next_axis(int k) { return k == 2 ? 0 : k + 1; }
 // Component k (0, 1, 2) of a vector in a buffer, read as a scalar: vector
 // types have no run-time component index in OpenCL C.
 T0_INLINE float buffer_component(__global const float4* v, int k) {
@@ -227,6 +236,18 @@ inline int is_finite_f(float f) { return std::isfinite(f) ? 1 : 0; }
 // farther child is pushed without being counted: one branch less to
 // mispredict, 1.2 % of a BVH frame on cornell.json (README, "Performance").
 #define T0_ONE_CHILD_APART 0
+// component3, largest_axis and next_axis (see the OpenCL side) without a
+// branch: GCC made the choices branches, on a ray's axes, which for bounce
+// rays are anyone's guess; 2.5 % of a BVH frame of cornell.json (README,
+// "Performance"). PoCL's frames were 5 % slower with these forms.
+inline float component3(float3 v, int k) { return glm::value_ptr(v)[k]; }
+inline int largest_axis(float3 a) {
+    const int xy = a.x >= a.y ? 1 : 0;
+    const int xz = a.x >= a.z ? 1 : 0;
+    const int yz = a.y >= a.z ? 1 : 0;
+    return 2 - 2 * (xy & xz) - ((1 - xy) & yz);
+}
+inline int next_axis(int k) { return (9 >> (2 * k)) & 3; }
 // glm's own view of a vector as an array of its components.
 inline float buffer_component(const float4* v, int k) { return glm::value_ptr(*v)[k]; }
 inline t0_u32 buffer_uint_component(const uint4* v, int k) { return glm::value_ptr(*v)[k]; }

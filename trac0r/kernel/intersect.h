@@ -48,8 +48,6 @@ T0_INLINE float nudged_divisor(float d) {
     return is_parallel_component(d) ? copysign(1e-30f, d) : d;
 }
 
-// Component k (0, 1, 2) of a vector that is not in a buffer.
-T0_INLINE float component3(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
 
 T0_INLINE Ray make_ray(float3 origin, float3 direction) {
     Ray r;
@@ -64,9 +62,9 @@ T0_INLINE Ray make_ray(float3 origin, float3 direction) {
                 inv);
     r.inv_direction = make_float3(inv[0], inv[1], inv[2]);
     const float3 a = vabs3(direction);
-    r.kz = a.x >= a.y ? (a.x >= a.z ? 0 : 2) : (a.y >= a.z ? 1 : 2);
-    r.kx = r.kz == 2 ? 0 : r.kz + 1;
-    r.ky = r.kx == 2 ? 0 : r.kx + 1;
+    r.kz = largest_axis(a);
+    r.kx = next_axis(r.kz);
+    r.ky = next_axis(r.kx);
     // d[kz] is the largest component, never nudged: inv[kz] = 1 / d[kz].
     const float inv_dz = inv[r.kz];
     r.shear = make_float3(component3(direction, r.kx) * inv_dz,
