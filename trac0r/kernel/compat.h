@@ -239,7 +239,8 @@ inline int is_finite_f(float f) { return std::isfinite(f) ? 1 : 0; }
 // component3, largest_axis and next_axis (see the OpenCL side) without a
 // branch: GCC made the choices branches, on a ray's axes, which for bounce
 // rays are anyone's guess; 2.5 % of a BVH frame of cornell.json (README,
-// "Performance"). PoCL's frames were 5 % slower with these forms.
+// "Performance"). PoCL's frames were 6 % slower with the arithmetic
+// largest axis, so OpenCL keeps the choices.
 inline float component3(float3 v, int k) { return glm::value_ptr(v)[k]; }
 inline int largest_axis(float3 a) {
     const int xy = a.x >= a.y ? 1 : 0;
