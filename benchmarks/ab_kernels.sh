@@ -46,8 +46,7 @@ fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# The kernel headers of version $1 into $work/$2/trac0r/kernel, in namespace
-# trac0r::kernel_$2.
+# The kernel headers of version $1 into $work/$2/trac0r/kernel.
 fetch() {
     local version=$1 name=$2
     mkdir -p "$work/$name/trac0r"
@@ -67,25 +66,39 @@ fetch() {
         echo "ab_kernels.sh: $version has no trac0r/kernel/tile.h (it predates this tool)" >&2
         exit 2
     fi
-    sed -i "s/^\(    namespace \)kernel {/\1kernel_$name {/" "$work/$name/trac0r/kernel/compat.h"
-    if ! grep -q "namespace kernel_$name {" "$work/$name/trac0r/kernel/compat.h"; then
+}
+
+# Version $1's headers as namespace trac0r::kernel_$2$3, compiled with its
+# code 16 x $3 bytes further on (variant.cpp).
+compile() {
+    local version=$1 name=$2 layout=$3
+    local dir=$work/$name$layout
+    cp -r "$work/$name" "$dir"
+    sed -i "s/^\(    namespace \)kernel {/\1kernel_$name$layout {/" "$dir/trac0r/kernel/compat.h"
+    if ! grep -q "namespace kernel_$name$layout {" "$dir/trac0r/kernel/compat.h"; then
         echo "ab_kernels.sh: could not rename the kernel namespace in $version's compat.h" >&2
         exit 1
     fi
+    "$cxx" "${flags[@]}" -fno-toplevel-reorder -I"$dir" -DAB_NAMESPACE="kernel_$name$layout" \
+        -DAB_PAD=$((64 + 16 * layout)) -c "$root/benchmarks/ab_kernels/variant.cpp" \
+        -o "$work/$name$layout.o"
 }
+
 fetch "$a" a
 fetch "$b" b
-echo "ab_kernels.sh: compiling A ($a) and B ($b)" >&2
-"$cxx" "${flags[@]}" -I"$work/a" -DAB_NAMESPACE=kernel_a -c "$root/benchmarks/ab_kernels/variant.cpp" \
-    -o "$work/a.o" &
-pid_a=$!
-"$cxx" "${flags[@]}" -I"$work/b" -DAB_NAMESPACE=kernel_b -c "$root/benchmarks/ab_kernels/variant.cpp" \
-    -o "$work/b.o" &
-pid_b=$!
+echo "ab_kernels.sh: compiling A ($a) and B ($b), each at four code offsets" >&2
+pids=()
+for layout in 0 1 2 3; do
+    compile "$a" a $layout &
+    pids+=($!)
+    compile "$b" b $layout &
+    pids+=($!)
+done
 "$cxx" "${flags[@]}" -I"$root" -isystem /usr/include/stb -c "$root/benchmarks/ab_kernels/main.cpp" \
     -o "$work/main.o"
-wait $pid_a
-wait $pid_b
-"$cxx" -fopenmp "$work/main.o" "$work/a.o" "$work/b.o" "$build/libtrac0r.a" "${libs[@]}" \
+for pid in "${pids[@]}"; do
+    wait "$pid"
+done
+"$cxx" -fopenmp "$work/main.o" "$work"/a?.o "$work"/b?.o "$build/libtrac0r.a" "${libs[@]}" \
     -o "$work/ab_kernels"
 "$work/ab_kernels" "$@"

@@ -1,7 +1,11 @@
 // Two versions of the kernel headers timed side by side in one process:
-// frames of version A and version B alternated on one thread (ABBA order),
+// frames of version A and version B alternated on one thread (AB, then BA),
 // each frame's thread CPU time taken, and the ratio B / A of each pair
-// reported as the median and quartiles over the pairs. A slow spell of the
+// reported as the median and quartiles over the pairs. Each version is
+// linked four times, its code 0, 16, 32 and 48 bytes further on, and the
+// pairs take the four in turn: where a hot loop falls against the
+// processor's 64-byte fetch blocks moved frame times by 2 % where the code
+// itself did not change. A slow spell of the
 // machine then slows both frames of a pair, and not one build's runs, so
 // the ratio resolves differences of a few tenths of a per cent (README,
 // "Performance") where alternated runs of two builds resolve a few per
@@ -18,12 +22,33 @@
 #include <string>
 #include <vector>
 
-extern "C" void kernel_a_frame(const void*, const void*, void*, std::uint64_t, std::uint32_t, int);
-extern "C" void kernel_b_frame(const void*, const void*, void*, std::uint64_t, std::uint32_t, int);
-extern "C" void kernel_a_sizes(std::size_t*);
-extern "C" void kernel_b_sizes(std::size_t*);
+// Each version compiled at four offsets (variant.cpp, AB_PAD): kernel_a0
+// to kernel_a3, kernel_b0 to kernel_b3.
+#define AB_VERSION(name)                                                                   \
+    extern "C" void name##_frame(const void*, const void*, void*, std::uint64_t, std::uint32_t, \
+                                 int);                                                      \
+    extern "C" void name##_sizes(std::size_t*);
+AB_VERSION(kernel_a0)
+AB_VERSION(kernel_a1)
+AB_VERSION(kernel_a2)
+AB_VERSION(kernel_a3)
+AB_VERSION(kernel_b0)
+AB_VERSION(kernel_b1)
+AB_VERSION(kernel_b2)
+AB_VERSION(kernel_b3)
 
 namespace {
+
+typedef void (*FrameFunction)(const void*, const void*, void*, std::uint64_t, std::uint32_t, int);
+typedef void (*SizesFunction)(std::size_t*);
+const int layouts = 4;
+const FrameFunction frames_a[layouts] = {kernel_a0_frame, kernel_a1_frame, kernel_a2_frame,
+                                         kernel_a3_frame};
+const FrameFunction frames_b[layouts] = {kernel_b0_frame, kernel_b1_frame, kernel_b2_frame,
+                                         kernel_b3_frame};
+const SizesFunction sizes[2 * layouts] = {kernel_a0_sizes, kernel_a1_sizes, kernel_a2_sizes,
+                                          kernel_a3_sizes, kernel_b0_sizes, kernel_b1_sizes,
+                                          kernel_b2_sizes, kernel_b3_sizes};
 
 struct Options {
     std::string scene = "scenes/cornell.json";
@@ -84,16 +109,16 @@ void check_layouts() {
                                 sizeof(trac0r::kernel::LightRecord),
                                 sizeof(trac0r::kernel::CameraRecord),
                                 sizeof(trac0r::kernel::AccumPixel)};
-    std::size_t a[9];
-    std::size_t b[9];
-    kernel_a_sizes(a);
-    kernel_b_sizes(b);
-    for (int i = 0; i < 9; ++i) {
-        if (a[i] != here[i] || b[i] != here[i]) {
-            throw std::runtime_error(std::string(names[i]) + " is " + std::to_string(a[i]) +
-                                     " bytes in A and " + std::to_string(b[i]) +
-                                     " in B, but this tree packs " + std::to_string(here[i]) +
-                                     ": the versions must share the buffer layouts");
+    for (int v = 0; v < 2 * layouts; ++v) {
+        std::size_t got[9];
+        sizes[v](got);
+        for (int i = 0; i < 9; ++i) {
+            if (got[i] != here[i]) {
+                throw std::runtime_error(std::string(names[i]) + " is " + std::to_string(got[i]) +
+                                         " bytes in " + (v < layouts ? "A" : "B") +
+                                         ", but this tree packs " + std::to_string(here[i]) +
+                                         ": the versions must share the buffer layouts");
+            }
         }
     }
 }
@@ -120,36 +145,47 @@ int run(const Options& o) {
     std::vector<double> seconds_a;
     std::vector<double> seconds_b;
     std::vector<double> ratios;
-    for (int pair = 0; pair <= o.pairs; ++pair) {  // pair 0: warm-up
-        const std::uint32_t frame = static_cast<std::uint32_t>(pair);
+    std::vector<double> layout_ratios[layouts];
+    for (int pair = -layouts; pair < o.pairs; ++pair) {  // one warm-up pair a layout
+        const int layout = (pair + layouts) % layouts;
+        const std::uint32_t frame = static_cast<std::uint32_t>(pair + layouts);
         double a = 0.0;
         double b = 0.0;
         for (int k = 0; k < 2; ++k) {
-            const bool run_a = (k == 0) == (pair % 2 == 0);  // AB, BA, AB, ...
+            const bool run_a = (k == 0) == ((pair + layouts) / layouts % 2 == 0);  // AB, BA, ...
             const double start = trac0r_bench::thread_cpu_seconds();
             if (run_a) {
-                kernel_a_frame(&view, &camera, accum_a.data(), 1, frame, scene.render.max_depth);
+                frames_a[layout](&view, &camera, accum_a.data(), 1, frame, scene.render.max_depth);
                 a = trac0r_bench::thread_cpu_seconds() - start;
             } else {
-                kernel_b_frame(&view, &camera, accum_b.data(), 1, frame, scene.render.max_depth);
+                frames_b[layout](&view, &camera, accum_b.data(), 1, frame, scene.render.max_depth);
                 b = trac0r_bench::thread_cpu_seconds() - start;
             }
         }
-        if (pair > 0) {
+        if (pair >= 0) {
             seconds_a.push_back(a);
             seconds_b.push_back(b);
             ratios.push_back(b / a);
+            layout_ratios[layout].push_back(b / a);
         }
     }
     const bool same = std::memcmp(accum_a.data(), accum_b.data(),
                                   pixels * sizeof(trac0r::kernel::AccumPixel)) == 0;
+    std::string per_layout;
+    for (int l = 0; l < layouts; ++l) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%s%.4f", l == 0 ? "" : ", ",
+                      layout_ratios[l].empty() ? 0.0 : trac0r_bench::median(layout_ratios[l]));
+        per_layout += text;
+    }
     std::printf(
         "%s, %s, %s, %d x %d, %d pairs on one thread: A %.3f ms, B %.3f ms a frame (medians); "
-        "B / A %.4f (quartiles %.4f to %.4f); images %s\n",
+        "B / A %.4f (quartiles %.4f to %.4f; at code offsets 0, 16, 32, 48 bytes: %s); "
+        "images %s\n",
         o.scene.c_str(), trac0r::to_string(o.accel), trac0r::to_string(o.integrator), o.width,
         o.height, o.pairs, 1e3 * trac0r_bench::median(seconds_a),
         1e3 * trac0r_bench::median(seconds_b), trac0r_bench::median(ratios),
-        quantile(ratios, 0.25), quantile(ratios, 0.75),
+        quantile(ratios, 0.25), quantile(ratios, 0.75), per_layout.c_str(),
         same ? "the same bit for bit" : "DIFFERENT");
     return 0;
 }

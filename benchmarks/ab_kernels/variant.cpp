@@ -1,9 +1,17 @@
 // One version of the kernel headers, compiled by benchmarks/ab_kernels.sh
-// with its namespace renamed (AB_NAMESPACE: trac0r::kernel_a or
-// trac0r::kernel_b), so that two versions link into one program. Exports a
+// with its namespace renamed (AB_NAMESPACE: trac0r::kernel_a0 to kernel_a3,
+// kernel_b0 to kernel_b3), so that two versions, each at four code offsets
+// (AB_PAD), link into one program. Exports a
 // frame on one thread, tile by tile as the CPU backend renders it
 // (kernel/tile.h), and the sizes of the buffer structs, which must be the
 // ones the program packs.
+// AB_PAD bytes of padding ahead of this version's code (the script builds
+// each version at several such offsets, so that where the linker happens to
+// put a hot loop does not decide a comparison).
+#define AB_STR2(x) #x
+#define AB_STR(x) AB_STR2(x)
+__asm__(".text\n.p2align 6\n.skip " AB_STR(AB_PAD) ", 0xcc\n");
+
 #include "trac0r/kernel/tile.h"
 
 #include <algorithm>
