@@ -2,9 +2,11 @@
 # Two versions of the kernel headers (trac0r/kernel) timed side by side in
 # one process, on one thread: frames of A and B alternated, and the median
 # and quartiles over the pairs of B's frame time over A's, with whether the
-# two accumulated the same image. Resolves a few tenths of a per cent, where
-# alternated runs of two builds resolve a few per cent (README,
-# "Performance").
+# two accumulated the same image. Each version is linked at four code
+# offsets, which the pairs take in turn, so that where the linker puts a hot
+# loop does not decide the comparison. A version against itself gives
+# medians within half a per cent of 1, where alternated runs of two builds
+# differ by a few per cent (README, "Performance").
 #
 #   benchmarks/ab_kernels.sh A B [SCENE.json] [--accel flat|bvh]
 #       [--integrator naive|nee] [--pairs N] [--size W H]
