@@ -31,6 +31,15 @@ inline long parse_long(const std::string& flag, const std::string& text, long lo
     return v;
 }
 
+// The value after flag argv[*i] (advancing *i past it), or a UsageError
+// naming flag.
+inline std::string flag_value(int argc, char** argv, int* i, const std::string& flag) {
+    if (*i + 1 >= argc) {
+        throw UsageError(flag + ": expected a value");
+    }
+    return std::string(argv[++*i]);
+}
+
 // Runs body (which returns the exit code) and turns its exceptions into one
 // line on stderr, prefixed with the program's name.
 template <typename Body>

@@ -48,10 +48,7 @@ bool parse(int argc, char** argv, Options& o) {
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&](const std::string& flag) {
-            if (i + 1 >= argc) {
-                throw trac0r_bench::UsageError(flag + ": expected a value");
-            }
-            return std::string(argv[++i]);
+            return trac0r_bench::flag_value(argc, argv, &i, flag);
         };
         if (a == "-h" || a == "--help") {
             return false;
