@@ -13,6 +13,7 @@
 // variant.cpp once for each version.
 #include "../cli.h"
 #include "../timing.h"
+#include "buffers.h"
 
 #include "trac0r/cpu_backend.h"
 #include "trac0r/scene_loader.h"
@@ -94,22 +95,17 @@ void parse(int argc, char** argv, Options& o) {
 }
 
 void check_layouts() {
-    const char* const names[] = {"SceneView",  "TriangleRecord", "ShapeRecord",
-                                 "MaterialRecord", "BvhNode",     "TrianglePacket",
-                                 "LightRecord", "CameraRecord",   "AccumPixel"};
-    const std::size_t here[] = {sizeof(trac0r::kernel::SceneView),
-                                sizeof(trac0r::kernel::TriangleRecord),
-                                sizeof(trac0r::kernel::ShapeRecord),
-                                sizeof(trac0r::kernel::MaterialRecord),
-                                sizeof(trac0r::kernel::BvhNode),
-                                sizeof(trac0r::kernel::TrianglePacket),
-                                sizeof(trac0r::kernel::LightRecord),
-                                sizeof(trac0r::kernel::CameraRecord),
-                                sizeof(trac0r::kernel::AccumPixel)};
+#define AB_NAME(type) #type,
+#define AB_SIZE(type) sizeof(trac0r::kernel::type),
+    const char* const names[] = {AB_BUFFERS(AB_NAME)};
+    const std::size_t here[] = {AB_BUFFERS(AB_SIZE)};
+#undef AB_NAME
+#undef AB_SIZE
+    const std::size_t count = sizeof here / sizeof here[0];
     for (int v = 0; v < 2 * layouts; ++v) {
-        std::size_t got[9];
+        std::size_t got[count];
         sizes[v](got);
-        for (int i = 0; i < 9; ++i) {
+        for (std::size_t i = 0; i < count; ++i) {
             if (got[i] != here[i]) {
                 throw std::runtime_error(std::string(names[i]) + " is " + std::to_string(got[i]) +
                                          " bytes in " + (v < layouts ? "A" : "B") +

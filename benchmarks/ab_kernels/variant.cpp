@@ -14,6 +14,8 @@ __asm__(".text\n.p2align 6\n.skip " AB_STR(AB_PAD) ", 0xcc\n");
 
 #include "trac0r/kernel/tile.h"
 
+#include "buffers.h"
+
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
@@ -41,13 +43,7 @@ extern "C" void AB_CAT(AB_NAMESPACE, _frame)(const void* scene, const void* came
 }
 
 extern "C" void AB_CAT(AB_NAMESPACE, _sizes)(std::size_t* out) {
-    out[0] = sizeof(k::SceneView);
-    out[1] = sizeof(k::TriangleRecord);
-    out[2] = sizeof(k::ShapeRecord);
-    out[3] = sizeof(k::MaterialRecord);
-    out[4] = sizeof(k::BvhNode);
-    out[5] = sizeof(k::TrianglePacket);
-    out[6] = sizeof(k::LightRecord);
-    out[7] = sizeof(k::CameraRecord);
-    out[8] = sizeof(k::AccumPixel);
+#define AB_SIZE(type) *out++ = sizeof(k::type);
+    AB_BUFFERS(AB_SIZE)
+#undef AB_SIZE
 }
