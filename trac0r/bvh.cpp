@@ -126,7 +126,8 @@ class Builder {
         const int count = static_cast<int>(end - begin);
         std::uint32_t sorted[bin_count];
         AABB boxes[bin_count];
-        const int ones[bin_count] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+        int ones[bin_count];  // one triangle an item
+        std::fill(ones, ones + bin_count, 1);
         for (int axis = 0; axis < 3; ++axis) {
             for (int i = 0; i < count; ++i) {
                 sorted[i] = static_cast<std::uint32_t>(begin) + static_cast<std::uint32_t>(i);
