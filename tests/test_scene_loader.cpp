@@ -18,6 +18,7 @@
 
 using namespace trac0r;
 using Catch::Matchers::Contains;
+using Catch::Matchers::EndsWith;
 using Catch::Matchers::Equals;
 using Catch::Matchers::StartsWith;
 
@@ -294,6 +295,25 @@ TEST_CASE("scene errors: a value of the wrong JSON type", "[scene_loader]") {
                StartsWith("test.json: /camera: expected a camera object"));
     CHECK_THAT(scene_error(with_shape(R"({"type": "mesh", "file": 7, "material": "white"})")),
                StartsWith("test.json: /shapes/0/file: expected the path of an OBJ file, got 7"));
+}
+
+TEST_CASE("scene errors: a deeply nested or huge value is described in short", "[scene_loader]") {
+    // The description stops at 80 characters without building (or recursing
+    // through) the rest: nested 100,000 deep, it once overflowed the stack.
+    const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+    const std::string message = scene_error(deep);
+    CHECK_THAT(message,
+               StartsWith("test.json: (top level): expected a JSON object") && EndsWith("[[[..."));
+    CHECK(message.size() < 200);
+    CHECK_THAT(scene_error(R"({"materials": )" + deep + R"(, "shapes": [)" + plane_shape + "]}"),
+               StartsWith("test.json: /materials: expected a non-empty object"));
+    std::string wide = "[0";
+    for (int i = 0; i < 100000; ++i) {
+        wide += ", 0";
+    }
+    CHECK(
+        scene_error(scene_json(white_material, plane_shape, R"("camera": )" + wide + "]")).size() <
+        200);
 }
 
 TEST_CASE("scene errors: an unknown key", "[scene_loader]") {

@@ -101,20 +101,27 @@ struct Location {
 
 // JSON text of a value as a person would write it ("[1, -2]"), cut short so
 // that a whole misplaced object does not flood the message.
-void append_description(const json& value, std::string& out) {
+// Appends value's JSON text to out, stopping once out is longer than
+// limit: the text of a value nested ten thousand deep, or of a huge array,
+// is never built in full (nor recursed through: each level adds a
+// character, so the depth stays below limit).
+void append_description(const json& value, std::size_t limit, std::string& out) {
+    if (out.size() > limit) {
+        return;
+    }
     if (value.is_array()) {
         out += '[';
-        for (std::size_t i = 0; i < value.size(); ++i) {
+        for (std::size_t i = 0; i < value.size() && out.size() <= limit; ++i) {
             out += i == 0 ? "" : ", ";
-            append_description(value[i], out);
+            append_description(value[i], limit, out);
         }
         out += ']';
     } else if (value.is_object()) {
         out += '{';
-        for (auto it = value.begin(); it != value.end(); ++it) {
+        for (auto it = value.begin(); it != value.end() && out.size() <= limit; ++it) {
             out += it == value.begin() ? "" : ", ";
             out += json(it.key()).dump() + ": ";
-            append_description(it.value(), out);
+            append_description(it.value(), limit, out);
         }
         out += '}';
     } else {
@@ -125,7 +132,7 @@ void append_description(const json& value, std::string& out) {
 std::string describe(const json& value) {
     const std::size_t max_length = 80;
     std::string text;
-    append_description(value, text);
+    append_description(value, max_length, text);
     return text.size() <= max_length ? text : text.substr(0, max_length - 3) + "...";
 }
 
