@@ -406,6 +406,27 @@ TEST_CASE("scene errors: numbers out of range", "[scene_loader]") {
         parse(with_material(R"("m": {"type": "emissive", "color": [2, 2, 2], "emittance": 1})")));
 }
 
+TEST_CASE("scene errors: a shape none of whose triangles survive in float", "[scene_loader]") {
+    // Each number is in range, but the triangles are not: at x = z = 1, a plane
+    // 1e-20 wide has its vertices all rounded to the same floats (zero
+    // area), and 3e38 plus the radius is above float's largest. The shape
+    // would silently vanish.
+    const std::string expected =
+        "none of the shape's 2 triangles can be rendered: in float arithmetic each has zero area";
+    CHECK_THAT(
+        scene_error(scene_json(
+            white_material,
+            plane_shape + R"(, {"type": "plane", "size": [1e-20, 1e-20], "position": [1, 0, 1],
+                                         "material": "white"})")),
+        StartsWith("test.json: /shapes/1: " + expected));
+    CHECK_THAT(scene_error(with_shape(R"({"type": "icosphere", "radius": 1e38,
+                                         "position": [3e38, 0, 0], "material": "white"})")),
+               StartsWith("test.json: /shapes/0: none of the shape's 320 triangles"));
+    // Some triangles left: the shape stays (pack_scene counts the others).
+    CHECK_NOTHROW(
+        parse(with_shape(R"({"type": "plane", "size": [1e-5, 1e-5], "material": "white"})")));
+}
+
 TEST_CASE("scene errors: a camera that cannot form an image", "[scene_loader]") {
     CHECK_THAT(scene_error(with_extra(R"("camera": {"direction": [0, 1, 0]})")),
                StartsWith("test.json: /camera: ") && Contains("parallel"));

@@ -1,6 +1,7 @@
 #include "trac0r/geometry.h"
 
 #include <cfloat>
+#include <cmath>
 
 namespace trac0r {
 
@@ -31,6 +32,18 @@ AABB Triangle::bounds() const {
     b.extend(v1);
     b.extend(v2);
     return b;
+}
+
+namespace {
+
+bool finite(const glm::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+}  // namespace
+
+bool usable_triangle(const Triangle& t) {
+    return finite(t.v0) && finite(t.v1) && finite(t.v2) && t.area > 0.0f && std::isfinite(t.area);
 }
 
 }  // namespace trac0r

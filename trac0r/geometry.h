@@ -39,6 +39,11 @@ struct Triangle {
     AABB bounds() const;
 };
 
+// Whether the renderer can use t: finite vertices and a non-zero, finite
+// area. pack_scene leaves the others out (and counts them); the scene
+// loader refuses a shape that has none of its triangles left.
+bool usable_triangle(const Triangle& t);
+
 }  // namespace trac0r
 
 #endif

@@ -13,14 +13,6 @@ namespace trac0r {
 
 namespace {
 
-bool finite(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-bool usable_triangle(const Triangle& t) {
-    return finite(t.v0) && finite(t.v1) && finite(t.v2) && t.area > 0.0f && std::isfinite(t.area);
-}
-
 kernel::TriangleRecord pack_triangle(const Triangle& t, unsigned material, unsigned shape) {
     // The vertices themselves, not v0 and edges: v0 + (v1 - v0) need not
     // round back to v1, and the watertight test needs every triangle that

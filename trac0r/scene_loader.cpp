@@ -100,11 +100,10 @@ struct Location {
 }
 
 // JSON text of a value as a person would write it ("[1, -2]"), cut short so
-// that a whole misplaced object does not flood the message.
-// Appends value's JSON text to out, stopping once out is longer than
-// limit: the text of a value nested ten thousand deep, or of a huge array,
-// is never built in full (nor recursed through: each level adds a
-// character, so the depth stays below limit).
+// that a whole misplaced object does not flood the message: appended to
+// out until out is longer than limit, so the text of a value nested ten
+// thousand deep, or of a huge array, is never built in full (nor recursed
+// through: each level adds a character, so the depth stays below limit).
 void append_description(const json& value, std::size_t limit, std::string& out) {
     if (out.size() > limit) {
         return;
@@ -548,6 +547,15 @@ std::vector<Shape> read_shapes(const json& value, const Location& at, const Shap
     std::vector<Shape> shapes;
     for (std::size_t i = 0; i < value.size(); ++i) {
         shapes.push_back(read_shape(value[i], at.index(i), context));
+        // Each number was in range, but the triangles are made in float: a
+        // shape of size 1e-20, or at 3e38, would silently vanish.
+        const std::vector<Triangle>& triangles = shapes.back().triangles;
+        if (std::none_of(triangles.begin(), triangles.end(), usable_triangle)) {
+            fail(at.index(i), "none of the shape's " + std::to_string(triangles.size()) +
+                                  " triangles can be rendered: in float arithmetic each has zero "
+                                  "area or a vertex that is not finite (its size, scale or "
+                                  "position is too small or too large)");
+        }
     }
     return shapes;
 }
