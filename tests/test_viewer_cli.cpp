@@ -116,6 +116,43 @@ TEST_CASE("--target-error stops at the requested estimated noise", "[cli]") {
     REQUIRE(capped.output.find("wrote cli_t.pfm") != std::string::npos);
 }
 
+TEST_CASE("an output that is a directory is refused before the render", "[cli]") {
+    const std::string dir = "cli_dir.png";
+    std::remove(dir.c_str());
+    REQUIRE(system(("mkdir -p " + dir).c_str()) == 0);
+    const Run r = run_viewer("--headless --width 8 --height 6 --spp 1 --output " + dir);
+    INFO(r.output);
+    CHECK(r.exit_code == 2);
+    CHECK(r.output == "trac0r_viewer: --output cli_dir.png: cannot be written (is a directory)\n");
+    REQUIRE(system(("rmdir " + dir).c_str()) == 0);
+}
+
+TEST_CASE("a time limit shorter than one frame still renders one sample", "[cli]") {
+    const Run r =
+        run_viewer("--headless --width 16 --height 12 --seconds 1e-30 --output cli_s.pfm");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    REQUIRE(r.output.find("rendered 1 spp") != std::string::npos);
+    const trac0r::Image image = trac0r::read_pfm("cli_s.pfm");
+    float largest = 0.0f;
+    for (const auto& p : image.pixels) {
+        largest = std::max(largest, std::max(p.x, std::max(p.y, p.z)));
+    }
+    CHECK(largest > 0.0f);  // the built-in scene's lamp, at least
+}
+
+TEST_CASE("a scene with nothing that emits renders, with a warning", "[cli]") {
+    const std::string scene = "cli_dark.json";
+    std::ofstream(scene) << R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},
+        "shapes": [{"type": "plane", "size": [1, 1], "material": "white"}]})";
+    const Run r = run_viewer(scene + " --headless --width 8 --height 6 --spp 1 --output cli_d.png");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.output.find("warning: no shape has an emissive material") != std::string::npos);
+    const Run lit = run_viewer("--headless --width 8 --height 6 --spp 1 --output cli_d.png");
+    CHECK(lit.output.find("warning") == std::string::npos);
+}
+
 TEST_CASE("--help lists the options and exits 0", "[cli]") {
     const Run r = run_viewer("--help");
     REQUIRE(r.exit_code == 0);
@@ -142,6 +179,10 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
         {"--headless --benchmark 3 --spp 8", "--benchmark: renders exactly N frames"},
         {"--replay .", "--replay .: cannot open the file"},
         {"no_such_scene.json --headless --output x.png", "no_such_scene.json"},
+        // Checked before the render, which would otherwise be lost.
+        {"--headless --output no_such_dir/x.png",
+         "--output no_such_dir/x.png: cannot be written (directory no_such_dir does not exist)"},
+        {"--headless --output . --output x.pfm", "--output .: expected a .png or .pfm"},
     };
     for (const Case& c : cases) {
         CAPTURE(c.args);

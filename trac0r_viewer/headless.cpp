@@ -167,7 +167,9 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
         const double elapsed = seconds_since(start);
         const bool spp_done = target_spp > 0 && spp >= target_spp;
         const bool time_done = options.seconds > 0.0 && elapsed >= options.seconds;
-        if (spp_done || time_done || error_reached) {
+        // At least one sample, however short the time: an image of none
+        // would be black.
+        if (spp > 0 && (spp_done || time_done || error_reached)) {
             break;
         }
         renderer.render_frame();

@@ -8,6 +8,9 @@
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -19,6 +22,26 @@ namespace {
 
 using trac0r_viewer::Options;
 using trac0r_viewer::UsageError;
+
+// Why path cannot be written, or "" if it can (as far as can be told
+// without writing it): checked before rendering, so that a long render is
+// not lost to a typo in the directory.
+std::string unwritable_reason(const std::string& path) {
+    struct stat info;
+    if (stat(path.c_str(), &info) == 0) {
+        if (S_ISDIR(info.st_mode)) {
+            return "is a directory";
+        }
+        return access(path.c_str(), W_OK) == 0 ? "" : "exists and is not writable";
+    }
+    const std::string::size_type slash = path.find_last_of('/');
+    const std::string dir =
+        slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
+    if (stat(dir.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) {
+        return "directory " + dir + " does not exist";
+    }
+    return access(dir.c_str(), W_OK | X_OK) == 0 ? "" : "directory " + dir + " is not writable";
+}
 
 // Checks combinations of flags that each parse fine alone.
 void check_options(const Options& o) {
@@ -52,6 +75,10 @@ void check_options(const Options& o) {
     for (const std::string& f : o.outputs) {
         if (!trac0r::is_supported_image_path(f)) {
             throw UsageError("--output " + f + ": expected a .png or .pfm file name");
+        }
+        const std::string reason = unwritable_reason(f);
+        if (!reason.empty()) {
+            throw UsageError("--output " + f + ": cannot be written (" + reason + ")");
         }
     }
 }
@@ -170,11 +197,20 @@ int main(int argc, char** argv) {
         trac0r::PackOptions pack;
         pack.accel = trac0r::parse_accel(options.accel);
         pack.integrator = trac0r::parse_integrator(options.integrator);
+        bool warned_dark = false;
         const auto make_renderer = [&] {
             auto renderer = std::make_unique<trac0r::Renderer>(scene, make_backend(options),
                                                                options.seed, pack);
             if (options.verbose) {
                 print_verbose(*renderer, options);
+            }
+            // Not an error (a scene may be built up light by light), but
+            // nothing else would say why the image stays black.
+            if ((renderer->packed().features & T0_FEATURE_EMITTANCE) == 0u && !warned_dark) {
+                std::fprintf(stderr,
+                             "trac0r_viewer: warning: no shape has an emissive material, so "
+                             "nothing emits light and the image will be black\n");
+                warned_dark = true;
             }
             return renderer;
         };
