@@ -245,8 +245,9 @@ TEST_CASE("scene errors: JSON syntax, with line and column", "[scene_loader]") {
     const std::string text = "{\n  \"materials\": {\n    \"white\": {\"type\": \"diffuse\",}\n";
     CHECK_THAT(scene_error(text), StartsWith("test.json:3:33: JSON syntax error: "));
     CHECK_THAT(scene_error(""), StartsWith("test.json:1:1: JSON syntax error: "));
-    CHECK_THAT(scene_error(R"({"render": {"width": 1e400}})"),
-               StartsWith("test.json: ") && Contains("not finite"));
+    CHECK_THAT(scene_error("{\"render\": {\"height\": \"1e999\",\n  \"width\": 1e400}}"),
+               Equals("test.json:2:12: JSON number is not finite: number overflow parsing "
+                      "'1e400'"));
 }
 
 TEST_CASE("scene errors: a missing required key", "[scene_loader]") {
@@ -464,4 +465,62 @@ TEST_CASE("scene files: errors name the file; meshes are relative to it", "[scen
         REQUIRE_THROWS_WITH(load_scene_file(path), StartsWith(path + ": /shapes/0/file: ") &&
                                                        Contains(dir.path() + "/missing.obj"));
     }
+}
+
+TEST_CASE("OBJ meshes: mistakes are named by file and line", "[scene_loader]") {
+    TempDir dir;
+    const std::string scene = dir.write(
+        "mesh.json", with_shape(R"({"type": "mesh", "file": "m.obj", "material": "white"})"));
+    const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    // The message after the scene's "/shapes/0/file: ", for an OBJ file.
+    const auto obj_error = [&](const std::string& obj) {
+        dir.write("m.obj", obj);
+        try {
+            load_scene_file(scene);
+        } catch (const SceneError& e) {
+            const std::string prefix = scene + ": /shapes/0/file: ";
+            const std::string message = e.what();
+            REQUIRE_THAT(message, StartsWith(prefix));
+            return message.substr(prefix.size());
+        }
+        FAIL("no SceneError for OBJ: " << obj);
+        return std::string();
+    };
+    const std::string obj = dir.path() + "/m.obj";
+    // tinyobjloader alone read each of these as something else, silently.
+    CHECK(obj_error("v 0 0 x\nv 1 0 0\nv 0 1 0\nf 1 2 3\n") ==
+          obj + ":1: expected a vertex coordinate finite in float, got 'x'");
+    CHECK_THAT(obj_error("v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n"),
+               StartsWith(obj + ":2: ") && EndsWith("got 'nan'"));
+    CHECK_THAT(obj_error(triangle + "v 0 0 1e39\nf 1 2 4\n"),
+               StartsWith(obj + ":4: ") && EndsWith("got '1e39'"));
+    CHECK(obj_error("v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n") ==
+          obj + ":1: expected a vertex as 'v x y z' (with an optional w, or r g b), got 2 values");
+    CHECK_THAT(obj_error(triangle + "f 1 2 3.5\n"),
+               StartsWith(obj + ":4: expected a face vertex") && EndsWith("got '3.5'"));
+    CHECK_THAT(obj_error(triangle + "f 1 2 4294967299\n"),
+               StartsWith(obj + ":4: expected a face vertex"));
+    CHECK(obj_error(triangle + "f 1 2 3\nf 1 2\n") ==
+          obj + ":5: expected a face of at least 3 vertices, got 2");
+    CHECK(
+        obj_error(triangle + "f -1 -2 -4\n") ==
+        obj +
+            ":4: face refers to vertex -4 (counted back from the 3 vertices before it), before the first");
+    CHECK(obj_error(triangle + "f 1 2 3\n\nf 1 2 7\n") ==
+          obj + ":6: face refers to vertex 7, but the file has 3 vertices");
+    REQUIRE(system(("mkdir " + obj + ".d").c_str()) == 0);
+    const std::string dir_scene = dir.write(
+        "dir.json", with_shape(R"({"type": "mesh", "file": "m.obj.d", "material": "white"})"));
+    CHECK_THROWS_WITH(load_scene_file(dir_scene),
+                      EndsWith("m.obj.d: cannot read OBJ mesh: it is a directory"));
+    REQUIRE(system(("rmdir " + obj + ".d").c_str()) == 0);
+
+    // What OBJ files hold besides: comments (also after a face, which
+    // tinyobjloader refused), texture and normal indices, vertex colours,
+    // relative and forward references, polygons, other statements.
+    dir.write("m.obj",
+              "# a comment\nf 1/1 2/1/1 3//1 # late\nv 0 0 0 # first\nv 1 0 0 1 0 0\n"
+              "v 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\ng part\nusemtl x\ns off\n"
+              "f -4 -3 -2 -1\n");
+    CHECK(load_scene_file(scene).shapes[0].triangles.size() == 3);
 }

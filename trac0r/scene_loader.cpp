@@ -48,6 +48,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -681,6 +682,33 @@ std::string without_exception_id(const std::string& what) {
     return what.compare(0, 1, "[") == 0 && end != std::string::npos ? what.substr(end + 2) : what;
 }
 
+// The byte offset (0-based) of the first number in JSON text, outside
+// strings, that is beyond double's range, or npos: where nlohmann's number
+// overflow is, which it does not say.
+std::size_t overflowing_number_offset(const std::string& text) {
+    bool in_string = false;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if (in_string) {
+            if (c == '\\') {
+                ++i;
+            } else if (c == '"') {
+                in_string = false;
+            }
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '-' || (c >= '0' && c <= '9')) {
+            const std::size_t end = text.find_first_of(",]} \t\r\n", i);
+            const std::string number = text.substr(i, end == std::string::npos ? end : end - i);
+            if (std::isinf(std::strtod(number.c_str(), nullptr))) {
+                return i;
+            }
+            i += number.size() - 1;
+        }
+    }
+    return std::string::npos;
+}
+
 json parse_json(const std::string& text, const std::string& origin) {
     DuplicateKeyCheck duplicate_keys(origin);
     const json::parser_callback_t callback = [&duplicate_keys](int, json::parse_event_t event,
@@ -694,7 +722,10 @@ json parse_json(const std::string& text, const std::string& origin) {
                          ": JSON syntax error: " + syntax_error_detail(e.what()));
     } catch (const json::out_of_range& e) {
         // A number beyond double range ("1e400"); nlohmann gives no position.
-        throw SceneError(origin + ": JSON number is not finite: " + without_exception_id(e.what()));
+        const std::size_t at = overflowing_number_offset(text);
+        const std::string where = at == std::string::npos ? "" : ":" + text_position(text, at + 1);
+        throw SceneError(origin + where +
+                         ": JSON number is not finite: " + without_exception_id(e.what()));
     }
 }
 

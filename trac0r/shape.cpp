@@ -4,8 +4,18 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <array>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <cstring>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 
@@ -133,6 +143,147 @@ Shape make_icosphere(const glm::vec3& position, const glm::vec3& orientation, fl
                       model_matrix(position, orientation, glm::vec3(radius)), material);
 }
 
+namespace {
+
+// The OBJ checks that tinyobjloader leaves out: it reads "x", "nan" or a
+// missing coordinate as 0, "3.5" as the index 3, a face of two vertices as
+// nothing, and an index past 2^31 as another index. Only v and f lines are
+// checked (the only ones the mesh uses); each error is "path:line: ...".
+// It also takes out comments, which tinyobjloader refuses after a face
+// ("zero value for face index"), and hands it the text.
+class ObjChecker {
+  public:
+    explicit ObjChecker(const std::string& path) : path_(path) {}
+
+    // The file's text without comments, once every line is checked.
+    std::string checked_text() {
+        struct stat info;
+        if (stat(path_.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+            throw std::runtime_error(path_ + ": cannot read OBJ mesh: it is a directory");
+        }
+        std::ifstream in(path_);
+        if (!in) {
+            throw std::runtime_error(path_ + ": cannot read OBJ mesh: " + std::strerror(errno));
+        }
+        std::string text;
+        std::string line;
+        while (std::getline(in, line)) {
+            ++line_number_;
+            line.erase(std::min(line.find('#'), line.size()));
+            check_line(line);
+            text += line;
+            text += '\n';
+        }
+        if (in.bad()) {
+            throw std::runtime_error(path_ + ": cannot read OBJ mesh: read error at line " +
+                                     std::to_string(line_number_ + 1));
+        }
+        if (largest_index_ > vertex_count_) {
+            fail_at(largest_index_line_, "face refers to vertex " + std::to_string(largest_index_) +
+                                             ", but the file has " + std::to_string(vertex_count_) +
+                                             " vertices");
+        }
+        return text;
+    }
+
+  private:
+    [[noreturn]] void fail_at(long line, const std::string& message) const {
+        throw std::runtime_error(path_ + ":" + std::to_string(line) + ": " + message);
+    }
+
+    // The line's words (comment taken out): the keyword, then args_.
+    void check_line(const std::string& line) {
+        const std::size_t end = line.size();
+        std::size_t at = 0;
+        std::string keyword;
+        args_.clear();
+        while (at < end) {
+            while (at < end && std::isspace(static_cast<unsigned char>(line[at]))) {
+                ++at;
+            }
+            const std::size_t start = at;
+            while (at < end && !std::isspace(static_cast<unsigned char>(line[at]))) {
+                ++at;
+            }
+            if (at > start) {
+                if (keyword.empty()) {
+                    keyword = line.substr(start, at - start);
+                    if (keyword != "v" && keyword != "f") {
+                        return;  // a statement the mesh does not use
+                    }
+                } else {
+                    args_.push_back(line.substr(start, at - start));
+                }
+            }
+        }
+        if (keyword == "v") {
+            check_vertex(args_);
+        } else if (keyword == "f") {
+            check_face(args_);
+        }
+    }
+
+    // x y z, and optionally w or a colour (r g b), all finite in float (a
+    // number below float's smallest reads as 0, which is fine).
+    void check_vertex(const std::vector<std::string>& args) {
+        if (args.size() != 3 && args.size() != 4 && args.size() != 6) {
+            const std::string count = std::to_string(args.size());
+            fail_at(line_number_,
+                    "expected a vertex as 'v x y z' (with an optional w, or r g b), got " + count +
+                        " values");
+        }
+        for (const std::string& a : args) {
+            char* end = nullptr;
+            const float value = std::strtof(a.c_str(), &end);
+            if (end == a.c_str() || *end != '\0' || !std::isfinite(value)) {
+                const std::string expected = "expected a vertex coordinate finite in float";
+                fail_at(line_number_, expected + ", got '" + a + "'");
+            }
+        }
+        ++vertex_count_;
+    }
+
+    // At least three vertex references v, v/vt, v//vn or v/vt/vn; v is an
+    // integer, from 1 up or (relative) from -1 down, of a vertex the file
+    // has.
+    void check_face(const std::vector<std::string>& args) {
+        if (args.size() < 3) {
+            fail_at(line_number_,
+                    "expected a face of at least 3 vertices, got " + std::to_string(args.size()));
+        }
+        for (const std::string& a : args) {
+            const std::string v = a.substr(0, a.find('/'));
+            char* end = nullptr;
+            errno = 0;
+            const long index = std::strtol(v.c_str(), &end, 10);
+            if (v.empty() || *end != '\0' || errno == ERANGE || index == 0 || index > 2147483647L ||
+                index < -2147483647L) {
+                const std::string expected =
+                    "expected a face vertex as v, v/vt, v//vn or v/vt/vn with v a non-zero integer";
+                fail_at(line_number_, expected + ", got '" + a + "'");
+            }
+            if (index < 0 && -index > vertex_count_) {
+                fail_at(line_number_, "face refers to vertex " + v + " (counted back from the " +
+                                          std::to_string(vertex_count_) +
+                                          " vertices before it), before the first");
+            }
+            if (index > largest_index_) {
+                largest_index_ = index;  // a vertex may come after: checked at the end
+                largest_index_line_ = line_number_;
+            }
+        }
+    }
+
+    std::string path_;
+    long line_number_ = 0;
+    long vertex_count_ = 0;
+    long largest_index_ = 0;
+    long largest_index_line_ = 0;
+    std::vector<std::string> args_;
+};
+
+}  // namespace
+
 Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
                     const glm::vec3& orientation, const glm::vec3& scale, int material) {
     tinyobj::attrib_t attrib;
@@ -140,11 +291,10 @@ Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
     std::vector<tinyobj::material_t> materials;
     std::string warn;
     std::string err;
-    const std::string base_dir = path.substr(0, path.find_last_of('/') + 1);
+    std::istringstream text(ObjChecker(path).checked_text());
     // Materials of the OBJ are ignored (the scene file assigns one), so no
-    // .mtl is needed; triangulate polygons.
-    if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, path.c_str(), base_dir.c_str(),
-                          true)) {
+    // .mtl is read; triangulate polygons.
+    if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &text, nullptr, true)) {
         throw std::runtime_error(path + ": cannot read OBJ mesh" + (err.empty() ? "" : ": " + err));
     }
     const std::size_t vertex_count = attrib.vertices.size() / 3;
