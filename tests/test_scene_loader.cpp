@@ -352,6 +352,22 @@ TEST_CASE("scene errors: a key given twice", "[scene_loader]") {
                StartsWith("test.json: /shapes/1/type: duplicate key"));
 }
 
+TEST_CASE("scene errors: long names and lists are cut short", "[scene_loader]") {
+    std::string materials = white_material;
+    for (int i = 0; i < 30; ++i) {
+        materials += ", \"m" + std::to_string(i) + R"(": {"type": "diffuse", "color": [1, 1, 1]})";
+    }
+    const std::string unknown =
+        scene_error(scene_json(materials, R"({"type": "plane", "size": [1, 1], "material": "x"})"));
+    CHECK_THAT(unknown, StartsWith("test.json: /shapes/0/material: unknown material \"x\" (known "
+                                   "materials: \"m0\", \"m1\", ") &&
+                            EndsWith(" and 11 more)"));
+    const std::string key(100000, 'k');
+    const std::string long_key = scene_error(with_extra("\"" + key + "\": 1"));
+    CHECK_THAT(long_key, StartsWith("test.json: /kkk") && Contains("...: unknown key"));
+    CHECK(long_key.size() < 300);
+}
+
 TEST_CASE("scene errors: unknown names and types", "[scene_loader]") {
     CHECK_THAT(scene_error(with_shape(R"({"type": "plane", "size": [1, 1], "material": "whte"})")),
                Equals("test.json: /shapes/0/material: unknown material \"whte\" (known "

@@ -17,10 +17,12 @@ const char* camera_problem(const Camera& camera) {
         return "camera.position must be finite";
     }
     if (!finite(camera.direction) || glm::length(camera.direction) == 0.0f) {
-        return "camera.direction must be a finite, non-zero vector";
+        return "camera.direction must be a finite vector whose length is not zero in float "
+               "(a component above about 1e-19)";
     }
     if (!finite(camera.world_up) || glm::length(camera.world_up) == 0.0f) {
-        return "camera.world_up must be a finite, non-zero vector";
+        return "camera.world_up must be a finite vector whose length is not zero in float "
+               "(a component above about 1e-19)";
     }
     const glm::vec3 right = glm::cross(camera.world_up, camera.direction);
     if (glm::length(right) <=

@@ -96,7 +96,13 @@ struct Location {
 };
 
 [[noreturn]] void fail(const Location& at, const std::string& message) {
-    const std::string where = at.pointer.empty() ? "(top level)" : at.pointer;
+    // A key may be any string, 100,000 characters say: cut short, as a
+    // value is (describe).
+    const std::size_t max_length = 120;
+    std::string where = at.pointer.empty() ? "(top level)" : at.pointer;
+    if (where.size() > max_length) {
+        where = where.substr(0, max_length - 3) + "...";
+    }
     throw SceneError(at.origin + ": " + where + ": " + message);
 }
 
@@ -468,8 +474,15 @@ int read_material_reference(const ObjectReader& o, const ShapeContext& context) 
     }
     const auto found = context.material_index.find(value.get<std::string>());
     if (found == context.material_index.end()) {
-        fail(at, "unknown material " + describe(value) +
-                     " (known materials: " + join(context.material_names, "\"") + ")");
+        // The first names only: a scene may have thousands.
+        const std::size_t shown = 20;
+        const std::vector<std::string>& names = context.material_names;
+        const std::vector<std::string> first(names.begin(),
+                                             names.begin() + std::min(shown, names.size()));
+        const std::string more =
+            names.size() > shown ? " and " + std::to_string(names.size() - shown) + " more" : "";
+        fail(at, "unknown material " + describe(value) + " (known materials: " + join(first, "\"") +
+                     more + ")");
     }
     return found->second;
 }

@@ -11,9 +11,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <memory>
+#include <new>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -70,6 +72,14 @@ void check_options(const Options& o) {
         throw UsageError(
             "--replay: scripts the interactive window; it does not go with "
             "--headless or --benchmark");
+    }
+    if (o.headless && o.given.count("--exposure") != 0 &&
+        std::none_of(o.outputs.begin(), o.outputs.end(), [](const std::string& f) {
+            return f.size() >= 4 && f.compare(f.size() - 4, 4, ".png") == 0;
+        })) {
+        throw UsageError(
+            "--exposure: scales the tone mapping of PNG outputs (and the window); no --output is "
+            "a .png");
     }
     // Checked before rendering, not after.
     for (const std::string& f : o.outputs) {
@@ -190,6 +200,11 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (options.list_devices) {
+            if (options.given.size() > 1 || !options.scene_path.empty()) {
+                throw UsageError(
+                    "--list-devices: lists the OpenCL devices and exits; it goes "
+                    "with no other option or scene");
+            }
             return list_devices();
         }
         check_options(options);
@@ -232,6 +247,11 @@ int main(int argc, char** argv) {
         return 2;
     } catch (const trac0r::SceneError& e) {
         std::fprintf(stderr, "trac0r_viewer: %s\n", e.what());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr,
+                     "trac0r_viewer: error: out of memory (the scene's triangles and tree, and "
+                     "48 bytes a pixel for the accumulator: try a smaller --width and --height)\n");
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "trac0r_viewer: error: %s\n", e.what());

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 
 namespace trac0r_viewer {
@@ -149,6 +150,12 @@ Options parse_options(int argc, const char* const* argv) {
                                                    {"-h", &o.help}};
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
+        // Every option but --output (which may name several files) at most
+        // once: a second value would silently replace the first.
+        if ((switches.count(arg) != 0 || with_value.count(arg) != 0) &&
+            !o.given.insert(arg == "-h" ? "--help" : arg).second && arg != "--output") {
+            throw UsageError(arg + ": given more than once");
+        }
         const auto sw = switches.find(arg);
         if (sw != switches.end()) {
             *sw->second = true;

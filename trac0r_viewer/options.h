@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <stdexcept>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,7 @@ struct Options {
     bool verbose = false;
     bool list_devices = false;
     bool help = false;
+    std::set<std::string> given;  // the options on the command line (-h as --help)
 };
 
 // A bad command line: the message names the flag and what was expected.
