@@ -1,10 +1,14 @@
 // Shared by the benchmark programs' command lines: the usage error, an
-// integer with its allowed range, and main's exit codes (2 for the command
-// line, 1 for everything else), as trac0r_viewer has them.
+// integer or a number with its allowed range, the values after a flag, and
+// main's exit codes (2 for the command line, 1 for everything else), as
+// trac0r_viewer has them.
 #ifndef TRAC0R_BENCHMARKS_CLI_H
 #define TRAC0R_BENCHMARKS_CLI_H
 
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -15,18 +19,33 @@ struct UsageError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
-// text as an integer in [lo, hi], or a UsageError naming flag.
+// text as an integer in [lo, hi], or a UsageError naming flag. The whole
+// text: no sign but a leading '-', no spaces, no trailing characters.
 inline long parse_long(const std::string& flag, const std::string& text, long lo, long hi) {
-    std::size_t used = 0;
-    long v = 0;
-    try {
-        v = std::stol(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (text.empty() || used != text.size() || v < lo || v > hi) {
+    errno = 0;
+    char* end = nullptr;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    const bool digits_first =
+        !text.empty() && (text[0] == '-' || (text[0] >= '0' && text[0] <= '9'));
+    if (!digits_first || *end != '\0' || errno != 0 || v < lo || v > hi) {
         throw UsageError(flag + ": expected an integer in [" + std::to_string(lo) + ", " +
                          std::to_string(hi) + "], got '" + text + "'");
+    }
+    return v;
+}
+
+// text as a finite number in [lo, hi], or a UsageError naming flag; the
+// whole text, as parse_long.
+inline double parse_number(const std::string& flag, const std::string& text, double lo, double hi) {
+    errno = 0;
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    const bool digits_first =
+        !text.empty() && (text[0] == '-' || text[0] == '.' || (text[0] >= '0' && text[0] <= '9'));
+    if (!digits_first || *end != '\0' || errno != 0 || !std::isfinite(v) || v < lo || v > hi) {
+        char range[64];
+        std::snprintf(range, sizeof range, "[%g, %g]", lo, hi);
+        throw UsageError(flag + ": expected a number in " + range + ", got '" + text + "'");
     }
     return v;
 }
@@ -39,6 +58,20 @@ inline std::string flag_value(int argc, char** argv, int* i, const std::string& 
     }
     return std::string(argv[++*i]);
 }
+
+// The two integers in [1, max] after flag argv[*i] (`--size W H`),
+// advancing *i past them, or a UsageError naming flag.
+inline void size_values(int argc, char** argv, int* i, const std::string& flag, long max,
+                        int* width, int* height) {
+    if (*i + 2 >= argc) {
+        throw UsageError(flag + ": expected two values, W H");
+    }
+    *width = static_cast<int>(parse_long(flag + " W", argv[*i + 1], 1, max));
+    *height = static_cast<int>(parse_long(flag + " H", argv[*i + 2], 1, max));
+    *i += 2;
+}
+
+inline bool is_help(const std::string& arg) { return arg == "-h" || arg == "--help"; }
 
 // Runs body (which returns the exit code) and turns its exceptions into one
 // line on stderr, prefixed with the program's name.
