@@ -1,27 +1,90 @@
 // Tone-maps a linear PFM to PNG exactly as trac0r_viewer --output does.
 //
 //   build/benchmarks/tonemap IN.pfm OUT.png [EXPOSURE]
+#include "cli.h"
+
 #include "trac0r/image_io.h"
 
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
-#include <cstdlib>
-#include <exception>
+#include <string>
+#include <vector>
+
+namespace {
+
+using trac0r_bench::UsageError;
+
+const char* const usage = R"(Usage: tonemap IN.pfm OUT.png [EXPOSURE]
+
+Tone-maps the linear RGB image IN.pfm to the 8-bit sRGB image OUT.png, as
+trac0r_viewer --output does for a .png: each channel times EXPOSURE, clamped
+to [0, 1], then the sRGB curve.
+
+  IN.pfm      a linear PFM image (e.g. trac0r_viewer --output x.pfm)
+  OUT.png     the PNG to write (a name ending in .png; not IN.pfm itself)
+  EXPOSURE    a number in [1e-06, 1e+06] (default 1)
+  -h, --help  this text
+)";
+
+const double min_exposure = 1e-6;
+const double max_exposure = 1e6;
+
+bool ends_with_png(const std::string& path) {
+    if (path.size() <= 4) {
+        return false;
+    }
+    std::string tail = path.substr(path.size() - 4);
+    std::transform(tail.begin(), tail.end(), tail.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return tail == ".png";
+}
+
+// The same file: the same name, or (where both exist) the same device and
+// inode, as a link or another spelling of the path gives.
+bool same_file(const std::string& a, const std::string& b) {
+    struct stat sa;
+    struct stat sb;
+    return a == b || (stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 &&
+                      sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino);
+}
+
+int run(int argc, char** argv) {
+    std::vector<std::string> args;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (trac0r_bench::is_help(a)) {
+            std::fputs(usage, stdout);
+            return 0;
+        }
+        if (a.size() > 2 && a.compare(0, 2, "--") == 0) {
+            throw UsageError(a + ": unknown option (see --help)");
+        }
+        args.push_back(a);
+    }
+    if (args.size() < 2 || args.size() > 3) {
+        throw UsageError("expected IN.pfm OUT.png [EXPOSURE], got " + std::to_string(args.size()) +
+                         " argument" + (args.size() == 1 ? "" : "s") + " (see --help)");
+    }
+    const std::string& in = args[0];
+    const std::string& out = args[1];
+    if (same_file(in, out)) {
+        throw UsageError("OUT.png '" + out + "' is the input file: it would be overwritten");
+    }
+    if (!ends_with_png(out)) {
+        throw UsageError("OUT.png '" + out + "': expected a file name ending in .png");
+    }
+    const float exposure = args.size() == 3 ? static_cast<float>(trac0r_bench::parse_number(
+                                                  "EXPOSURE", args[2], min_exposure, max_exposure))
+                                            : 1.0f;
+    trac0r::write_png(out, trac0r::read_pfm(in), exposure);
+    return 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 3 || argc > 4) {
-        std::fprintf(stderr, "usage: tonemap IN.pfm OUT.png [EXPOSURE]\n");
-        return 2;
-    }
-    const float exposure = argc == 4 ? static_cast<float>(std::atof(argv[3])) : 1.0f;
-    if (!(exposure > 0.0f)) {
-        std::fprintf(stderr, "tonemap: EXPOSURE: expected a positive number, got '%s'\n", argv[3]);
-        return 2;
-    }
-    try {
-        trac0r::write_png(argv[2], trac0r::read_pfm(argv[1]), exposure);
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "tonemap: %s\n", e.what());
-        return 1;
-    }
-    return 0;
+    return trac0r_bench::run_main("tonemap", [&] { return run(argc, argv); });
 }
