@@ -8,6 +8,7 @@
 // Prints a Markdown table of paths per second on the machine's cores, from
 // CPU time (benchmarks/timing.h); PackedScene's auto_bvh_min_triangles comes
 // from it.
+#include "cli.h"
 #include "timing.h"
 
 #include "trac0r/cpu_backend.h"
@@ -17,7 +18,6 @@
 #endif
 
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -25,6 +25,44 @@
 using namespace trac0r;
 
 namespace {
+
+const char* const usage = R"(Usage: bench_accel_crossover [--frames N] [--size W H]
+
+Paths per second of the flat list and the BVH, side by side, on scenes of
+growing triangle count (the built-in Cornell box's walls and lamp plus a
+grid of 0 to 20 x 20 small boxes), on the CPU backend and, in a build with
+OpenCL, on OpenCL device 0; prints a Markdown table.
+
+  --frames N    timed frames after one warm-up, in [1, 100000] (default 30)
+  --size W H    resolution, each in [1, 16384] (default 200 x 150)
+  -h, --help    this text
+)";
+
+struct Options {
+    int frames = 30;
+    int width = 200;
+    int height = 150;
+};
+
+// false for --help.
+bool parse(int argc, char** argv, Options& o) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (trac0r_bench::is_help(a)) {
+            return false;
+        } else if (a == "--frames") {
+            o.frames = static_cast<int>(trac0r_bench::parse_long(
+                a, trac0r_bench::flag_value(argc, argv, &i, a), 1, 100000));
+        } else if (a == "--size") {
+            trac0r_bench::size_values(argc, argv, &i, a, 16384, &o.width, &o.height);
+        } else if (!a.empty() && a[0] == '-') {
+            throw trac0r_bench::UsageError(a + ": unknown option (see --help)");
+        } else {
+            throw trac0r_bench::UsageError("unexpected argument '" + a + "' (see --help)");
+        }
+    }
+    return true;
+}
 
 // The built-in scene's six walls and lamp, plus boxes x boxes small boxes.
 Scene box_grid(int boxes) {
@@ -47,28 +85,10 @@ Scene box_grid(int boxes) {
     return scene;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    int frames = 30;
-    int width = 200;
-    int height = 150;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (a == "--frames" && i + 1 < argc) {
-            frames = std::atoi(argv[++i]);
-        } else if (a == "--size" && i + 2 < argc) {
-            width = std::atoi(argv[++i]);
-            height = std::atoi(argv[++i]);
-        } else {
-            std::fprintf(stderr, "usage: bench_accel_crossover [--frames N] [--size W H]\n");
-            return 2;
-        }
-    }
-    if (frames < 1 || width < 1 || height < 1) {
-        std::fprintf(stderr, "bench_accel_crossover: --frames and --size must be positive\n");
-        return 2;
-    }
+int run(const Options& o) {
+    const int frames = o.frames;
+    const int width = o.width;
+    const int height = o.height;
     std::vector<std::unique_ptr<Backend>> backends;
     backends.emplace_back(new CpuBackend());
 #ifdef TRAC0R_HAVE_OPENCL
@@ -112,4 +132,17 @@ int main(int argc, char** argv) {
         std::fflush(stdout);
     }
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    return trac0r_bench::run_main("bench_accel_crossover", [&] {
+        Options o;
+        if (!parse(argc, argv, o)) {
+            std::fputs(usage, stdout);
+            return 0;
+        }
+        return run(o);
+    });
 }
