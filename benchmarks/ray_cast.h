@@ -94,9 +94,13 @@ struct CastResult {
 };
 
 // Casts `rays` through `packed` on the CPU: `passes` timed passes after one
-// warm-up, OpenMP threads as CpuBackend uses them.
+// warm-up, OpenMP threads as CpuBackend uses them. An empty set (a scene
+// with no triangles has no bounces) takes no time and hits nothing.
 inline CastResult cast_cpu(const trac0r::PackedScene& packed, const RaySet& rays, int passes) {
     using namespace trac0r::kernel;
+    if (rays.size() == 0) {
+        return CastResult{};
+    }
     const SceneView scene = packed.view();
     const long n = static_cast<long>(rays.size());
     std::vector<int> hit(rays.size());
@@ -150,7 +154,12 @@ class OpenClCaster {
   public:
     OpenClCaster() : cl_(trac0r::shared_opencl_queue(0)) {}
 
+    // An empty set is not launched: no time, no hits (reading back zero
+    // bytes is CL_INVALID_VALUE).
     CastResult cast(const trac0r::PackedScene& packed, const RaySet& rays, int passes) {
+        if (rays.size() == 0) {
+            return CastResult{};
+        }
         cl_kernel kernel = make_kernel(packed.features);
         std::vector<cl_mem> buffers;
         auto upload = [&](const void* data, std::size_t bytes) {
