@@ -11,6 +11,7 @@
 // switched off, and each timed build gets a unique dummy define so the
 // process-wide program cache cannot answer it either: build times are real
 // compiles.
+#include "cli.h"
 #include "ray_cast.h"
 #include "timing.h"
 
@@ -32,6 +33,8 @@ using namespace trac0r;
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using trac0r_bench::parse_long;
+using trac0r_bench::UsageError;
 
 struct Config {
     int frames = 5;
@@ -39,6 +42,7 @@ struct Config {
     int height = 600;
     std::vector<Accel> accels = {Accel::flat, Accel::bvh};
     std::vector<std::string> scenes;
+    bool default_scenes = false;  // none given: scenes/*.json, from the working directory
     bool help = false;
 };
 
@@ -47,10 +51,12 @@ const char* usage = R"(Usage: bench_backends [options] [SCENE.json ...]
 Paths per second of the CPU (OpenMP) and OpenCL backends with each
 acceleration structure, rays per second of ray casting alone, and OpenCL
 program build times, for each scene (default: scenes/cornell.json and
-scenes/cornell_diffuse.json), as Markdown tables.
+scenes/cornell_diffuse.json, relative to the working directory: run from
+the repository root), as Markdown tables.
 
-  --frames N            timed frames (and ray casting passes) after one warm-up (default 5)
-  --width W --height H  resolution (default 800 x 600)
+  --frames N            timed frames (and ray casting passes) after one warm-up,
+                        in [1, 100000] (default 5)
+  --width W --height H  resolution, each in [1, 16384] (default 800 x 600)
   --accel LIST          structures to compare, of flat, bvh, auto (default flat,bvh)
   -h, --help            this text
 )";
@@ -64,8 +70,8 @@ std::vector<Accel> parse_accels(const std::string& list) {
         try {
             out.push_back(parse_accel(name));
         } catch (const std::invalid_argument&) {
-            throw std::invalid_argument("--accel: unknown structure '" + name +
-                                        "' (expected a list of flat, bvh, auto)");
+            throw UsageError("--accel: unknown structure '" + name +
+                             "' (expected a list of flat, bvh, auto)");
         }
         start = comma + 1;
     }
@@ -76,38 +82,47 @@ Config parse(int argc, char** argv) {
     Config c;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        auto value = [&]() {
-            if (i + 1 >= argc) {
-                throw std::invalid_argument(a + ": expected a value");
-            }
-            return std::atoi(argv[++i]);
-        };
-        if (a == "-h" || a == "--help") {
+        const auto value = [&]() { return trac0r_bench::flag_value(argc, argv, &i, a); };
+        if (trac0r_bench::is_help(a)) {
             c.help = true;
         } else if (a == "--frames") {
-            c.frames = value();
+            c.frames = static_cast<int>(parse_long(a, value(), 1, 100000));
         } else if (a == "--accel") {
-            if (i + 1 >= argc) {
-                throw std::invalid_argument(a + ": expected a value");
-            }
-            c.accels = parse_accels(argv[++i]);
+            c.accels = parse_accels(value());
         } else if (a == "--width") {
-            c.width = value();
+            c.width = static_cast<int>(parse_long(a, value(), 1, 16384));
         } else if (a == "--height") {
-            c.height = value();
+            c.height = static_cast<int>(parse_long(a, value(), 1, 16384));
         } else if (!a.empty() && a[0] == '-') {
-            throw std::invalid_argument(a + ": unknown option (see --help)");
+            throw UsageError(a + ": unknown option (see --help)");
         } else {
             c.scenes.push_back(a);
         }
     }
-    if (c.frames < 1 || c.width < 1 || c.height < 1) {
-        throw std::invalid_argument("--frames, --width and --height must be positive");
-    }
     if (c.scenes.empty()) {
         c.scenes = {"scenes/cornell.json", "scenes/cornell_diffuse.json"};
+        c.default_scenes = true;
     }
     return c;
+}
+
+// Every scene of the command line, loaded before anything is printed; a
+// default scene that is not there says where it was looked for.
+std::vector<Scene> load_scenes(const Config& config) {
+    std::vector<Scene> scenes;
+    for (const std::string& path : config.scenes) {
+        try {
+            scenes.push_back(load_scene_file(path));
+        } catch (const SceneError& e) {
+            if (!config.default_scenes) {
+                throw;
+            }
+            throw SceneError(std::string(e.what()) +
+                             " (the default scenes are relative to the working directory: run "
+                             "from the repository root, or give scene paths)");
+        }
+    }
+    return scenes;
 }
 
 // Median of three real builds of the program for `features`.
@@ -141,9 +156,21 @@ double median_build_seconds(const Scene& scene, const PackedScene& packed, std::
     return trac0r_bench::median(seconds);
 }
 
+// A table cell: millions of rays per second, or "no rays" for an empty set
+// (a scene with no triangles, or one whose primary rays all miss or hit a
+// lamp, has no bounces).
+std::string mrays_per_second(const trac0r_bench::RaySet& rays, const trac0r_bench::CastResult& r) {
+    if (rays.size() == 0) {
+        return "no rays";
+    }
+    char cell[32];
+    std::snprintf(cell, sizeof cell, "%.2f", rays.size() / r.seconds * 1e-6);
+    return cell;
+}
+
 // Rays per second of ray casting alone: the same rays (made once from the
 // BVH scene) through each structure on each backend.
-void print_ray_table(const Config& config) {
+void print_ray_table(const Config& config, const std::vector<Scene>& scenes) {
     std::printf(
         "\nRays per second of ray casting alone (nearest hit, no shading), %d x %d: "
         "one jittered primary ray per pixel, and one cosine-distributed diffuse "
@@ -153,8 +180,9 @@ void print_ray_table(const Config& config) {
     std::printf("| scene | backend | accel | primary Mrays/s | diffuse bounce Mrays/s |\n");
     std::printf("| --- | --- | --- | --- | --- |\n");
     trac0r_bench::OpenClCaster opencl;
-    for (const std::string& path : config.scenes) {
-        const Scene scene = load_scene_file(path);
+    for (std::size_t s = 0; s < scenes.size(); ++s) {
+        const std::string& path = config.scenes[s];
+        const Scene& scene = scenes[s];
         PackOptions bvh_options;
         bvh_options.accel = Accel::bvh;
         const kernel::CameraRecord camera =
@@ -181,10 +209,10 @@ void print_ray_table(const Config& config) {
                     }
                 }
                 first = false;
-                std::printf("| %s | %s | %s | %.2f | %.2f |\n", path.c_str(),
+                std::printf("| %s | %s | %s | %s | %s |\n", path.c_str(),
                             backend == 0 ? "cpu" : "opencl", to_string(accel),
-                            rays.primary.size() / r[0].seconds * 1e-6,
-                            rays.bounce.size() / r[1].seconds * 1e-6);
+                            mrays_per_second(rays.primary, r[0]).c_str(),
+                            mrays_per_second(rays.bounce, r[1]).c_str());
                 std::fflush(stdout);
             }
         }
@@ -194,13 +222,14 @@ void print_ray_table(const Config& config) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    try {
+    return trac0r_bench::run_main("bench_backends", [&] {
         setenv("POCL_KERNEL_CACHE", "0", 1);
         const Config config = parse(argc, argv);
         if (config.help) {
             std::fputs(usage, stdout);
             return 0;
         }
+        const std::vector<Scene> scenes = load_scenes(config);
         const std::uint32_t all_materials = T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE |
                                             T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
                                             T0_FEATURE_EMITTANCE;
@@ -221,8 +250,9 @@ int main(int argc, char** argv) {
         std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
         const double pixels = static_cast<double>(config.width) * config.height;
         std::string ratios;
-        for (const std::string& path : config.scenes) {
-            Scene scene = load_scene_file(path);
+        for (std::size_t s = 0; s < scenes.size(); ++s) {
+            const std::string& path = config.scenes[s];
+            Scene scene = scenes[s];
             scene.render.width = config.width;
             scene.render.height = config.height;
             for (Accel accel : config.accels) {
@@ -303,13 +333,14 @@ int main(int argc, char** argv) {
                 "CPU ms of a flat and of a BVH frame):\n\n%s",
                 config.frames, ratios.c_str());
         }
-        print_ray_table(config);
+        print_ray_table(config, scenes);
         std::printf(
             "\nOpenCL program build time, to the end of the first (8 x 8) launch, "
             "median of 3 real compiles:\n\n");
         std::printf("| scene | mask | build s |\n| --- | --- | --- |\n");
-        for (const std::string& path : config.scenes) {
-            const Scene scene = load_scene_file(path);
+        for (std::size_t s = 0; s < scenes.size(); ++s) {
+            const std::string& path = config.scenes[s];
+            const Scene& scene = scenes[s];
             const PackedScene packed = pack_scene(scene);
             const std::uint32_t masks[] = {packed.features, packed.features | all_materials};
             for (int i = 0; i < 2; ++i) {
@@ -324,8 +355,5 @@ int main(int argc, char** argv) {
             }
         }
         return 0;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "bench_backends: %s\n", e.what());
-        return 1;
-    }
+    });
 }
