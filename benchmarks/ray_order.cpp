@@ -30,10 +30,19 @@ const char* const usage =
     "Usage: bench_ray_order [SCENE.json] [--size W H] [--passes N]\n"
     "\n"
     "Casts the primary and diffuse-bounce rays of SCENE (default\n"
-    "scenes/cornell.json) at W x H (default 800 x 600) through its BVH on one\n"
-    "thread, in pixel order, shuffled, sorted by direction octant (within runs\n"
-    "of 64 rays, as a tile's paths, and over the whole set), and each ray twice\n"
-    "in a row; prints a ray's time, the median of N passes (default 7).\n";
+    "scenes/cornell.json, relative to the working directory) at W x H (default\n"
+    "800 x 600; at least 4096 pixels, e.g. 64 x 64, each side at most 16384)\n"
+    "through its BVH on one thread, in pixel order, shuffled, sorted by\n"
+    "direction octant (within runs of 64 rays, as a tile's paths, and over the\n"
+    "whole set), and each ray twice in a row; prints a ray's time, the median of\n"
+    "N passes (N in [1, 1000], default 7). A set of fewer than 4096 rays is too\n"
+    "short a pass to time on one thread: its rows say so.\n";
+
+// Fewer rays than this make a pass of tens of microseconds, which the
+// thread's CPU clock and the machine's interrupts time no better than to
+// some tens of per cent (the second-of-two-casts difference came out
+// negative at 1 x 1).
+const std::size_t min_rays_to_time = 4096;
 
 struct Options {
     std::string scene = "scenes/cornell.json";
@@ -50,13 +59,18 @@ bool parse(int argc, char** argv, Options& o) {
         auto value = [&](const std::string& flag) {
             return trac0r_bench::flag_value(argc, argv, &i, flag);
         };
-        if (a == "-h" || a == "--help") {
+        if (trac0r_bench::is_help(a)) {
             return false;
         } else if (a == "--size") {
-            o.width =
-                static_cast<int>(trac0r_bench::parse_long("--size", value("--size"), 1, 16384));
-            o.height =
-                static_cast<int>(trac0r_bench::parse_long("--size", value("--size"), 1, 16384));
+            trac0r_bench::size_values(argc, argv, &i, a, 16384, &o.width, &o.height);
+            const long pixels = static_cast<long>(o.width) * o.height;
+            if (pixels < static_cast<long>(min_rays_to_time)) {
+                throw trac0r_bench::UsageError(
+                    "--size " + std::to_string(o.width) + " " + std::to_string(o.height) + ": " +
+                    std::to_string(pixels) + " pixels, expected at least " +
+                    std::to_string(min_rays_to_time) +
+                    " (e.g. 64 x 64): fewer rays are too short a pass to time");
+            }
         } else if (a == "--passes") {
             o.passes =
                 static_cast<int>(trac0r_bench::parse_long("--passes", value("--passes"), 1, 1000));
@@ -109,6 +123,11 @@ Cast cast(const SceneView& scene, const std::vector<Ray>& rays, int passes, int 
 
 void report(const char* set, const SceneView& scene, const std::vector<Ray>& pixel_order,
             int passes) {
+    if (pixel_order.size() < min_rays_to_time) {
+        std::printf("| %s | (%zu rays: too few to time, under %zu) | | |\n", set,
+                    pixel_order.size(), min_rays_to_time);
+        return;
+    }
     std::vector<Ray> shuffled = pixel_order;
     std::mt19937 engine(1);
     std::shuffle(shuffled.begin(), shuffled.end(), engine);
@@ -125,6 +144,11 @@ void report(const char* set, const SceneView& scene, const std::vector<Ray>& pix
         if (c.checksum != base.checksum) {
             throw std::runtime_error(std::string(set) + ", " + order +
                                      ": other hits than in pixel order");
+        }
+        if (!(c.seconds_per_ray > 0.0)) {
+            // Only the difference of two timings can be: noise larger than it.
+            std::printf("| %s | %s | (under the timing noise) | |\n", set, order);
+            return;
         }
         std::printf("| %s | %s | %.1f | %.3f |\n", set, order, 1e9 * c.seconds_per_ray,
                     c.seconds_per_ray / base.seconds_per_ray);
@@ -145,6 +169,12 @@ int run(const Options& o) {
     PackOptions options;
     options.accel = Accel::bvh;
     const PackedScene packed = pack_scene(scene, options);
+    if (packed.triangles.empty()) {
+        throw std::runtime_error(o.scene +
+                                 ": the scene has no triangles (degenerate ones dropped: " +
+                                 std::to_string(packed.dropped_degenerate_triangles) +
+                                 "): every ray would miss, there is nothing to time");
+    }
     const CameraRecord camera = make_camera_record(scene.camera, o.width, o.height);
     const trac0r_bench::RaySets sets = trac0r_bench::make_ray_sets(packed, camera);
     auto rays_of = [](const trac0r_bench::RaySet& set) {
