@@ -21,14 +21,18 @@
 #endif
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <cstring>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -54,17 +58,21 @@ one's error at its last checkpoint.
 
   --config SPEC       a configuration, repeatable (default: backend=cpu):
                       comma-separated key=value of backend=cpu|opencl,
-                      accel=flat|bvh|auto, max_depth=N, integrator=naive|nee
+                      accel=flat|bvh|auto, max_depth=N, integrator=naive|nee,
+                      each key at most once
                       e.g. --config backend=opencl --config backend=cpu,max_depth=2
   --max-spp N         last checkpoint (default 1024)
   --seconds S         no new checkpoint once a configuration has rendered S s
-                      (on free cores, as in the table)
+                      (on free cores, as in the table), S in [1e-06, 1e+09]
   --width W --height H  resolution (default 200 x 150)
   --reference FILE    reference image (.pfm, the same resolution); default:
                       rendered on the CPU with another seed at --reference-spp
                       and cached in --cache
-  --reference-spp N   samples per pixel of a rendered reference (default 16 x --max-spp)
-  --cache DIR         where rendered references are kept (default convergence_cache)
+  --reference-spp N   samples per pixel of a rendered reference (default 16 x --max-spp);
+                      not with --reference
+  --cache DIR         where rendered references are kept (default convergence_cache;
+                      created if missing, its parent must exist; checked before
+                      anything renders)
   --csv FILE          write the checkpoints as CSV (default convergence.csv)
   -h, --help          this text
 )";
@@ -85,20 +93,43 @@ struct Options {
     int width = 200;
     int height = 150;
     std::string reference_path;
-    long reference_spp = 0;
+    long reference_spp = 0;  // 0: not given
     std::string cache_dir = "convergence_cache";
     std::string csv_path = "convergence.csv";
 };
 
+// spec split at its commas, every part kept (an empty one too).
+std::vector<std::string> split_commas(const std::string& spec) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = spec.find(',', start);
+        parts.push_back(spec.substr(start, comma - start));
+        if (comma == std::string::npos) {
+            return parts;
+        }
+        start = comma + 1;
+    }
+}
+
 Config parse_config(const std::string& spec) {
+    if (spec.empty()) {
+        throw UsageError("--config: expected comma-separated key=value (e.g. backend=cpu), got ''");
+    }
     Config c;
-    std::stringstream parts(spec);
-    std::string part;
-    while (std::getline(parts, part, ',')) {
+    std::set<std::string> seen;
+    for (const std::string& part : split_commas(spec)) {
         const std::size_t eq = part.find('=');
         const std::string key = part.substr(0, eq);
         const std::string value = eq == std::string::npos ? "" : part.substr(eq + 1);
         const std::string where = "--config " + spec + ": " + key;
+        if (part.empty()) {
+            throw UsageError("--config " + spec +
+                             ": an empty key=value (two commas, or one at an end)");
+        }
+        if (!seen.insert(key).second) {
+            throw UsageError("--config " + spec + ": key '" + key + "' given twice");
+        }
         if (key == "backend" && (value == "cpu" || value == "opencl")) {
             c.backend = value;
         } else if (key == "accel" && (value == "flat" || value == "bvh" || value == "auto")) {
@@ -135,7 +166,7 @@ Options parse_options(int argc, char** argv) {
             }
             return argv[++i];
         };
-        if (a == "-h" || a == "--help") {
+        if (trac0r_bench::is_help(a)) {
             std::fputs(usage, stdout);
             std::exit(0);
         } else if (a == "--config") {
@@ -149,12 +180,7 @@ Options parse_options(int argc, char** argv) {
         } else if (a == "--height") {
             o.height = static_cast<int>(parse_long(a, value(), 1, 16384));
         } else if (a == "--seconds") {
-            const std::string v = value();
-            char* end = nullptr;
-            o.seconds = std::strtod(v.c_str(), &end);
-            if (v.empty() || *end != '\0' || !(o.seconds > 0.0)) {
-                throw UsageError(a + ": expected a positive number, got '" + v + "'");
-            }
+            o.seconds = trac0r_bench::parse_number(a, value(), 1e-6, 1e9);
         } else if (a == "--reference") {
             o.reference_path = value();
         } else if (a == "--cache") {
@@ -171,6 +197,10 @@ Options parse_options(int argc, char** argv) {
     }
     if (o.configs.empty()) {
         o.configs.push_back(parse_config("backend=cpu"));
+    }
+    if (o.reference_spp != 0 && !o.reference_path.empty()) {
+        throw UsageError("--reference-spp: only for a rendered reference; --reference " +
+                         o.reference_path + " gives the reference image");
     }
     if (o.reference_spp == 0) {
         o.reference_spp = 16 * o.max_spp;
@@ -220,6 +250,41 @@ struct Reference {
     double own_rel_mse;
 };
 
+// The cache's file name of the rendered reference, without its extension.
+std::string cached_reference_base(const Options& o) {
+    const std::string text =
+        o.scene_path.empty() ? std::string(builtin_scene_json()) : read_text(o.scene_path);
+    const std::string stem =
+        o.scene_path.empty()
+            ? "builtin"
+            : o.scene_path.substr(o.scene_path.find_last_of('/') + 1,
+                                  o.scene_path.rfind('.') - o.scene_path.find_last_of('/') - 1);
+    return o.cache_dir + "/" + stem + "-" + text_hash(text) + "-" + std::to_string(o.width) + "x" +
+           std::to_string(o.height) + "-" + std::to_string(o.reference_spp) + "spp";
+}
+
+bool reference_is_cached(const Options& o) {
+    const std::string base = cached_reference_base(o);
+    return file_exists(base + ".pfm") && file_exists(base + ".relmse");
+}
+
+// The cache directory, made if missing, and writable: checked before the
+// reference renders, which can take longer than the run itself.
+void prepare_cache_dir(const std::string& dir) {
+    if (mkdir(dir.c_str(), 0755) != 0 && errno != EEXIST) {
+        throw std::runtime_error("--cache " + dir + ": cannot create the directory (" +
+                                 std::strerror(errno) + ")");
+    }
+    struct stat st;
+    if (stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+        throw std::runtime_error("--cache " + dir + ": not a directory");
+    }
+    if (access(dir.c_str(), W_OK | X_OK) != 0) {
+        throw std::runtime_error("--cache " + dir + ": cannot write in the directory (" +
+                                 std::strerror(errno) + ")");
+    }
+}
+
 Reference reference_image(const Options& o, const Scene& scene) {
     if (!o.reference_path.empty()) {
         Reference ref{read_pfm(o.reference_path), 0.0};
@@ -233,16 +298,7 @@ Reference reference_image(const Options& o, const Scene& scene) {
                      o.reference_path.c_str());
         return ref;
     }
-    const std::string text =
-        o.scene_path.empty() ? std::string(builtin_scene_json()) : read_text(o.scene_path);
-    const std::string stem =
-        o.scene_path.empty()
-            ? "builtin"
-            : o.scene_path.substr(o.scene_path.find_last_of('/') + 1,
-                                  o.scene_path.rfind('.') - o.scene_path.find_last_of('/') - 1);
-    const std::string base = o.cache_dir + "/" + stem + "-" + text_hash(text) + "-" +
-                             std::to_string(o.width) + "x" + std::to_string(o.height) + "-" +
-                             std::to_string(o.reference_spp) + "spp";
+    const std::string base = cached_reference_base(o);
     const std::string pfm = base + ".pfm";
     const std::string noise_file = base + ".relmse";
     if (file_exists(pfm) && file_exists(noise_file)) {
@@ -264,9 +320,6 @@ Reference reference_image(const Options& o, const Scene& scene) {
         }
     }
     Reference ref{r.image(), estimate_relative_mse(r.accumulator(), o.width, o.height)};
-    if (mkdir(o.cache_dir.c_str(), 0755) != 0 && !file_exists(o.cache_dir)) {
-        throw std::runtime_error(o.cache_dir + ": cannot create the cache directory");
-    }
     write_pfm(pfm, ref.image);
     std::ofstream(noise_file) << ref.own_rel_mse << "\n";
     return ref;
@@ -319,12 +372,16 @@ int run(const Options& o) {
     Scene scene = o.scene_path.empty() ? builtin_scene() : load_scene_file(o.scene_path);
     scene.render.width = o.width;
     scene.render.height = o.height;
-    const Reference ref = reference_image(o, scene);
-
+    // Where the results go, checked before the reference renders.
+    if (o.reference_path.empty() && !reference_is_cached(o)) {
+        prepare_cache_dir(o.cache_dir);
+    }
     std::ofstream csv(o.csv_path);
     if (!csv) {
-        throw std::runtime_error(o.csv_path + ": cannot write");
+        throw std::runtime_error("--csv " + o.csv_path + ": cannot write");
     }
+    const Reference ref = reference_image(o, scene);
+
     csv << "config,spp,seconds,rmse,rel_mse,psnr,estimated_rel_mse,reference_rel_mse,"
            "wall_seconds\n";
     std::printf("scene %s, %dx%d, reference %s (its own rel. MSE %.2g)\n\n",
