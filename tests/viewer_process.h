@@ -1,5 +1,6 @@
-// Running trac0r_viewer as a child process, for the tests of what a user
-// sees of it: its exit code, its stdout and its stderr, kept apart.
+// Running trac0r_viewer (or a benchmark program) as a child process, for
+// the tests of what a user sees of it: its exit code, its stdout and its
+// stderr, kept apart.
 #ifndef TRAC0R_TESTS_VIEWER_PROCESS_H
 #define TRAC0R_TESTS_VIEWER_PROCESS_H
 
@@ -27,15 +28,15 @@ inline std::string read_text_file(const std::string& path) {
 }
 
 // `prefix` goes before the program (e.g. "cd dir &&" or "env -u DISPLAY");
-// a viewer that hangs is killed after `seconds`, and reads as exit code 124.
-inline ViewerRun run_viewer_process(const std::string& args, const std::string& prefix = "",
-                                    int seconds = 120) {
+// a program that hangs is killed after `seconds`, and reads as exit code 124.
+inline ViewerRun run_process(const std::string& program, const std::string& args,
+                             const std::string& prefix = "", int seconds = 120) {
     // Absolute: the prefix may change directory.
     char cwd[4096];
     const std::string err_path = std::string(getcwd(cwd, sizeof cwd) ? cwd : ".") +
                                  "/viewer_process_stderr_" + std::to_string(getpid()) + ".txt";
-    const std::string command = prefix + " timeout " + std::to_string(seconds) + " " +
-                                TRAC0R_VIEWER + " " + args + " 2>" + err_path;
+    const std::string command = prefix + " timeout " + std::to_string(seconds) + " " + program +
+                                " " + args + " 2>" + err_path;
     FILE* pipe = popen(command.c_str(), "r");
     ViewerRun run{-1, "", ""};
     if (!pipe) {
@@ -51,6 +52,11 @@ inline ViewerRun run_viewer_process(const std::string& args, const std::string& 
     run.err = read_text_file(err_path);
     std::remove(err_path.c_str());
     return run;
+}
+
+inline ViewerRun run_viewer_process(const std::string& args, const std::string& prefix = "",
+                                    int seconds = 120) {
+    return run_process(TRAC0R_VIEWER, args, prefix, seconds);
 }
 
 }  // namespace trac0r_test

@@ -1,0 +1,184 @@
+// The benchmark programs' command lines as a user meets them: --help, and
+// bad input refused with one message that names the flag or argument, exit
+// 2 for the command line and 1 for other failures, before any timing starts.
+// Every run here stops at its check (seconds), none times anything.
+#include <catch2/catch.hpp>
+
+#include "viewer_process.h"
+
+#include "trac0r/image_io.h"
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+using trac0r_test::ViewerRun;
+
+namespace {
+
+ViewerRun run_benchmark(const std::string& program, const std::string& args,
+                        const std::string& prefix = "") {
+    return trac0r_test::run_process(std::string(TRAC0R_BENCHMARKS_DIR) + "/" + program, args,
+                                    prefix, 60);
+}
+
+struct Case {
+    std::string args;
+    std::string expected;  // part of the message
+};
+
+// Each case exits `code` with one line on stderr that holds its expected
+// text, and prints nothing on stdout (no table header before the error).
+void check_refused(const std::string& program, const std::vector<Case>& cases, int code) {
+    for (const Case& c : cases) {
+        CAPTURE(program, c.args);
+        const ViewerRun r = run_benchmark(program, c.args);
+        CAPTURE(r.err, r.out);
+        CHECK(r.exit_code == code);
+        CHECK(r.err.find(c.expected) != std::string::npos);
+        CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
+        CHECK(r.out.empty());
+    }
+}
+
+void check_help(const std::string& program, const std::vector<std::string>& mentions) {
+    for (const char* flag : {"--help", "-h"}) {
+        CAPTURE(program, flag);
+        const ViewerRun r = run_benchmark(program, flag);
+        CAPTURE(r.err);
+        CHECK(r.exit_code == 0);
+        CHECK(r.err.empty());
+        CHECK(r.out.find("Usage: " + program) == 0);
+        for (const std::string& m : mentions) {
+            CHECK(r.out.find(m) != std::string::npos);
+        }
+    }
+}
+
+// A small linear image, to tone-map.
+std::string write_test_pfm(const std::string& path) {
+    trac0r::Image image;
+    image.width = 4;
+    image.height = 3;
+    image.pixels.assign(12, glm::vec3(0.25f));
+    trac0r::write_pfm(path, image);
+    return path;
+}
+
+}  // namespace
+
+TEST_CASE("tonemap: --help, and outputs and exposures it refuses", "[benchmark_cli]") {
+    check_help("tonemap", {"IN.pfm", "OUT.png", "EXPOSURE", "default 1"});
+    const std::string in = write_test_pfm("bench_cli_in.pfm");
+    check_refused("tonemap",
+                  {{in + " " + in, "is the input file"},
+                   {in + " bench_cli_out.jpg",
+                    "OUT.png 'bench_cli_out.jpg': expected a file name "
+                    "ending in .png"},
+                   {in + " bench_cli_out", "expected a file name ending in .png"},
+                   {in + " bench_cli_out.png 2x", "EXPOSURE: expected a number in [1e-06, 1e+06]"},
+                   {in + " bench_cli_out.png inf", "EXPOSURE: expected a number"},
+                   {in + " bench_cli_out.png 1e300", "EXPOSURE: expected a number"},
+                   {in + " bench_cli_out.png 1e-300", "EXPOSURE: expected a number"},
+                   {in + " bench_cli_out.png 0", "EXPOSURE: expected a number"},
+                   {in, "expected IN.pfm OUT.png [EXPOSURE], got 1 argument"},
+                   {in + " bench_cli_out.png 1 2", "got 4 arguments"},
+                   {"--bogus", "--bogus: unknown option"}},
+                  2);
+    // The input is untouched: still the PFM it was.
+    CHECK(trac0r::read_pfm(in).width == 4);
+    check_refused("tonemap", {{"no_such_file.pfm bench_cli_out.png", "no_such_file.pfm"}}, 1);
+
+    std::remove("bench_cli_out.png");
+    const ViewerRun ok = run_benchmark("tonemap", in + " bench_cli_out.png 2");
+    CAPTURE(ok.err);
+    CHECK(ok.exit_code == 0);
+    const std::string png = trac0r_test::read_text_file("bench_cli_out.png");
+    REQUIRE(png.size() > 8);
+    CHECK(png.compare(1, 3, "PNG") == 0);
+}
+
+TEST_CASE("bench_accel_crossover: --help, and bad flags named", "[benchmark_cli]") {
+    check_help("bench_accel_crossover", {"--frames N", "--size W H", "default 30"});
+    check_refused("bench_accel_crossover",
+                  {{"--bogus", "--bogus: unknown option"},
+                   {"--frames", "--frames: expected a value"},
+                   {"--size 32", "--size: expected two values, W H"},
+                   {"--frames abc", "--frames: expected an integer in [1, 100000], got 'abc'"},
+                   {"--frames 99999999999999999999", "--frames: expected an integer"},
+                   {"--frames 1.5", "--frames: expected an integer"},
+                   {"--size 32 0", "--size H: expected an integer in [1, 16384], got '0'"}},
+                  2);
+}
+
+#ifdef TRAC0R_HAVE_OPENCL
+// Only the command line: every case stops before an OpenCL device is opened.
+TEST_CASE("bench_backends: --help, bad flags named, default scenes missing", "[benchmark_cli]") {
+    check_help("bench_backends", {"--frames N", "--accel LIST", "relative to the working"});
+    check_refused("bench_backends",
+                  {{"--frames abc", "--frames: expected an integer in [1, 100000], got 'abc'"},
+                   {"--frames 1.5", "--frames: expected an integer"},
+                   {"--width 0", "--width: expected an integer in [1, 16384], got '0'"},
+                   {"--height 99999", "--height: expected an integer in [1, 16384]"},
+                   {"--width", "--width: expected a value"},
+                   {"--accel kd", "--accel: unknown structure 'kd'"},
+                   {"--bogus", "--bogus: unknown option"}},
+                  2);
+    // The tests run in the build tree, where scenes/ is not: nothing is
+    // printed before the message, which says where the defaults are read.
+    check_refused("bench_backends",
+                  {{"",
+                    "scenes/cornell.json: cannot open scene file (the default scenes are "
+                    "relative to the working directory"},
+                   {"no_such_scene.json", "no_such_scene.json: cannot open scene file"}},
+                  1);
+}
+#endif
+
+TEST_CASE("bench_ray_order: sizes too small to time and scenes with no triangles refused",
+          "[benchmark_cli]") {
+    check_help("bench_ray_order", {"--size W H", "at least 4096 pixels"});
+    check_refused("bench_ray_order",
+                  {{"--size 1 1", "--size 1 1: 1 pixels, expected at least 4096"},
+                   {"--size 32", "--size: expected two values, W H"},
+                   {"--size 0 64", "--size W: expected an integer in [1, 16384], got '0'"},
+                   {"--passes 1.5", "--passes: expected an integer in [1, 1000]"}},
+                  2);
+    // One triangle of zero area, which packing drops.
+    std::ofstream("bench_cli_degenerate.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
+    std::ofstream("bench_cli_degenerate.json")
+        << R"({"materials": {"white": {"type": "diffuse", "color": [0.5, 0.5, 0.5]}},
+              "shapes": [{"type": "mesh", "material": "white", "file": "bench_cli_degenerate.obj"}]})";
+    check_refused("bench_ray_order",
+                  {{"bench_cli_degenerate.json --size 64 64",
+                    "bench_cli_degenerate.json: the scene has no triangles"}},
+                  1);
+}
+
+TEST_CASE("bench_convergence: bad --cache, --config and --reference-spp refused before rendering",
+          "[benchmark_cli]") {
+    check_help("bench_convergence",
+               {"--config SPEC", "each key at most once", "not with --reference"});
+    const std::string in = write_test_pfm("bench_cli_reference.pfm");
+    check_refused("bench_convergence",
+                  {{"--config backend=cpu,backend=cpu",
+                    "--config backend=cpu,backend=cpu: key "
+                    "'backend' given twice"},
+                   {"--config ''", "--config: expected comma-separated key=value"},
+                   {"--config backend=cpu,", "an empty key=value"},
+                   {"--config colour=red", "unknown key 'colour'"},
+                   {"--reference " + in + " --reference-spp 64",
+                    "--reference-spp: only for a "
+                    "rendered reference; --reference"},
+                   {"--seconds inf", "--seconds: expected a number"}},
+                  2);
+    // The expensive reference would render first: these fail at once.
+    std::ofstream("bench_cli_not_a_dir") << "x";
+    check_refused("bench_convergence",
+                  {{"--cache /nonexistent_trac0r_dir/cache",
+                    "--cache /nonexistent_trac0r_dir/cache: cannot create the directory"},
+                   {"--cache bench_cli_not_a_dir", "--cache bench_cli_not_a_dir: not a directory"},
+                   {"--csv /nonexistent_trac0r_dir/x.csv --cache bench_cli_cache",
+                    "--csv /nonexistent_trac0r_dir/x.csv: cannot write"}},
+                  1);
+}
