@@ -429,16 +429,17 @@ TEST_CASE("scene errors: a shape none of whose triangles survive in float", "[sc
     // area), and 3e38 plus the radius is above float's largest. The shape
     // would silently vanish.
     const std::string expected =
-        "none of the shape's 2 triangles can be rendered: in float arithmetic each has zero area";
+        "no triangle of the shape can be rendered (of 2, each has in float arithmetic zero area";
     CHECK_THAT(
         scene_error(scene_json(
             white_material,
             plane_shape + R"(, {"type": "plane", "size": [1e-20, 1e-20], "position": [1, 0, 1],
                                          "material": "white"})")),
         StartsWith("test.json: /shapes/1: " + expected));
-    CHECK_THAT(scene_error(with_shape(R"({"type": "icosphere", "radius": 1e38,
+    CHECK_THAT(
+        scene_error(with_shape(R"({"type": "icosphere", "radius": 1e38,
                                          "position": [3e38, 0, 0], "material": "white"})")),
-               StartsWith("test.json: /shapes/0: none of the shape's 320 triangles"));
+        StartsWith("test.json: /shapes/0: no triangle of the shape can be rendered (of 320,"));
     // Some triangles left: the shape stays (pack_scene counts the others).
     CHECK_NOTHROW(
         parse(with_shape(R"({"type": "plane", "size": [1e-5, 1e-5], "material": "white"})")));

@@ -565,10 +565,11 @@ std::vector<Shape> read_shapes(const json& value, const Location& at, const Shap
         // shape of size 1e-20, or at 3e38, would silently vanish.
         const std::vector<Triangle>& triangles = shapes.back().triangles;
         if (std::none_of(triangles.begin(), triangles.end(), usable_triangle)) {
-            fail(at.index(i), "none of the shape's " + std::to_string(triangles.size()) +
-                                  " triangles can be rendered: in float arithmetic each has zero "
-                                  "area or a vertex that is not finite (its size, scale or "
-                                  "position is too small or too large)");
+            fail(at.index(i), "no triangle of the shape can be rendered (of " +
+                                  std::to_string(triangles.size()) +
+                                  ", each has in float arithmetic zero area or a vertex that is "
+                                  "not finite: its size, scale or position is too small or too "
+                                  "large)");
         }
     }
     return shapes;
