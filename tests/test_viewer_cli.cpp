@@ -184,6 +184,9 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
          "--output no_such_dir/x.png: cannot be written (directory no_such_dir does not exist)"},
         {"--headless --output . --output x.pfm", "--output .: expected a .png or .pfm"},
         {"--headless --width 32 --width 16 --output x.png", "--width: given more than once"},
+        {"--headless --seconds 0x10 --output x.png", "--seconds: expected a positive number"},
+        {"--headless --spp +3 --output x.png", "--spp: expected an integer"},
+        {"--headless --spp ' 3' --output x.png", "--spp: expected an integer"},
         {"--headless --output x.pfm --exposure 4", "--exposure: scales the tone mapping of PNG"},
         {"--list-devices --output x.png", "--list-devices: lists the OpenCL devices and exits"},
     };

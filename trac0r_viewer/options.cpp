@@ -79,11 +79,20 @@ Examples:
 
 namespace {
 
+// Whether text is written as a decimal number, as the usage shows them:
+// no leading space or '+' (which strtol and strtod skip), no hexadecimal
+// (which strtod reads), no "inf" or "nan".
+bool plain_decimal(const std::string& text) {
+    return !text.empty() && text.find_first_not_of("0123456789.eE-") == std::string::npos &&
+           text.find_first_of("0123456789") != std::string::npos &&
+           text.find('x') == std::string::npos;
+}
+
 long parse_integer(const std::string& flag, const std::string& text, long min, long max) {
     errno = 0;
     char* end = nullptr;
     const long value = std::strtol(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno != 0 || value < min || value > max) {
+    if (!plain_decimal(text) || *end != '\0' || errno != 0 || value < min || value > max) {
         throw UsageError(flag + ": expected an integer in [" + std::to_string(min) + ", " +
                          std::to_string(max) + "], got '" + text + "'");
     }
@@ -94,7 +103,8 @@ double parse_positive(const std::string& flag, const std::string& text) {
     errno = 0;
     char* end = nullptr;
     const double value = std::strtod(text.c_str(), &end);
-    if (text.empty() || *end != '\0' || errno != 0 || !std::isfinite(value) || !(value > 0.0)) {
+    if (!plain_decimal(text) || *end != '\0' || errno != 0 || !std::isfinite(value) ||
+        !(value > 0.0)) {
         throw UsageError(flag + ": expected a positive number, got '" + text + "'");
     }
     return value;
@@ -104,7 +114,7 @@ std::uint64_t parse_seed(const std::string& flag, const std::string& text) {
     errno = 0;
     char* end = nullptr;
     const unsigned long long value = std::strtoull(text.c_str(), &end, 10);
-    if (text.empty() || text[0] == '-' || *end != '\0' || errno != 0) {
+    if (!plain_decimal(text) || text[0] == '-' || *end != '\0' || errno != 0) {
         throw UsageError(flag + ": expected a non-negative 64-bit integer, got '" + text + "'");
     }
     return static_cast<std::uint64_t>(value);
