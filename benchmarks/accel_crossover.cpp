@@ -46,6 +46,7 @@ struct Options {
 
 // false for --help.
 bool parse(int argc, char** argv, Options& o) {
+    trac0r_bench::check_given_once(argc, argv);
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (trac0r_bench::is_help(a)) {

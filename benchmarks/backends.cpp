@@ -63,23 +63,20 @@ the repository root), as Markdown tables.
 
 std::vector<Accel> parse_accels(const std::string& list) {
     std::vector<Accel> out;
-    std::size_t start = 0;
-    while (start <= list.size()) {
-        const std::size_t comma = std::min(list.find(',', start), list.size());
-        const std::string name = list.substr(start, comma - start);
+    for (const std::string& name : trac0r_bench::split_commas(list)) {
         try {
             out.push_back(parse_accel(name));
         } catch (const std::invalid_argument&) {
             throw UsageError("--accel: unknown structure '" + name +
                              "' (expected a list of flat, bvh, auto)");
         }
-        start = comma + 1;
     }
     return out;
 }
 
 Config parse(int argc, char** argv) {
     Config c;
+    trac0r_bench::check_given_once(argc, argv);
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         const auto value = [&]() { return trac0r_bench::flag_value(argc, argv, &i, a); };

@@ -5,13 +5,17 @@
 #ifndef TRAC0R_BENCHMARKS_CLI_H
 #define TRAC0R_BENCHMARKS_CLI_H
 
+#include "trac0r/input_checks.h"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace trac0r_bench {
 
@@ -20,14 +24,12 @@ struct UsageError : std::runtime_error {
 };
 
 // text as an integer in [lo, hi], or a UsageError naming flag. The whole
-// text: no sign but a leading '-', no spaces, no trailing characters.
+// text, written in decimal (trac0r::is_decimal_number, as trac0r_viewer).
 inline long parse_long(const std::string& flag, const std::string& text, long lo, long hi) {
     errno = 0;
     char* end = nullptr;
     const long v = std::strtol(text.c_str(), &end, 10);
-    const bool digits_first =
-        !text.empty() && (text[0] == '-' || (text[0] >= '0' && text[0] <= '9'));
-    if (!digits_first || *end != '\0' || errno != 0 || v < lo || v > hi) {
+    if (!trac0r::is_decimal_number(text) || *end != '\0' || errno != 0 || v < lo || v > hi) {
         throw UsageError(flag + ": expected an integer in [" + std::to_string(lo) + ", " +
                          std::to_string(hi) + "], got '" + text + "'");
     }
@@ -40,9 +42,8 @@ inline double parse_number(const std::string& flag, const std::string& text, dou
     errno = 0;
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
-    const bool digits_first =
-        !text.empty() && (text[0] == '-' || text[0] == '.' || (text[0] >= '0' && text[0] <= '9'));
-    if (!digits_first || *end != '\0' || errno != 0 || !std::isfinite(v) || v < lo || v > hi) {
+    if (!trac0r::is_decimal_number(text) || *end != '\0' || errno != 0 || !std::isfinite(v) ||
+        v < lo || v > hi) {
         char range[64];
         std::snprintf(range, sizeof range, "[%g, %g]", lo, hi);
         throw UsageError(flag + ": expected a number in " + range + ", got '" + text + "'");
@@ -72,6 +73,35 @@ inline void size_values(int argc, char** argv, int* i, const std::string& flag, 
 }
 
 inline bool is_help(const std::string& arg) { return arg == "-h" || arg == "--help"; }
+
+// A UsageError for the first option ("--" and a name) given twice, but
+// those in `repeatable`: a second value would silently replace the first.
+// Every value of these programs is a number, a name or a path, never an
+// option's spelling, so the arguments are read as they stand.
+inline void check_given_once(int argc, char** argv, const std::set<std::string>& repeatable = {}) {
+    std::set<std::string> given;
+    for (int i = 1; i < argc; ++i) {
+        const std::string a = argv[i];
+        if (a.size() > 2 && a.compare(0, 2, "--") == 0 && repeatable.count(a) == 0 &&
+            !given.insert(a).second) {
+            throw UsageError(a + ": given more than once");
+        }
+    }
+}
+
+// text split at its commas, every part kept (an empty one too).
+inline std::vector<std::string> split_commas(const std::string& text) {
+    std::vector<std::string> parts;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', start);
+        parts.push_back(text.substr(start, comma - start));
+        if (comma == std::string::npos) {
+            return parts;
+        }
+        start = comma + 1;
+    }
+}
 
 // Runs body (which returns the exit code) and turns its exceptions into one
 // line on stderr, prefixed with the program's name.

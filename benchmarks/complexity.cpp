@@ -106,6 +106,7 @@ void parse_backends(const std::string& list, Options& o) {
 
 // Returns false when --help was asked for.
 bool parse(int argc, char** argv, Options& o) {
+    trac0r_bench::check_given_once(argc, argv);
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&]() -> const char* {

@@ -98,27 +98,13 @@ struct Options {
     std::string csv_path = "convergence.csv";
 };
 
-// spec split at its commas, every part kept (an empty one too).
-std::vector<std::string> split_commas(const std::string& spec) {
-    std::vector<std::string> parts;
-    std::size_t start = 0;
-    while (true) {
-        const std::size_t comma = spec.find(',', start);
-        parts.push_back(spec.substr(start, comma - start));
-        if (comma == std::string::npos) {
-            return parts;
-        }
-        start = comma + 1;
-    }
-}
-
 Config parse_config(const std::string& spec) {
     if (spec.empty()) {
         throw UsageError("--config: expected comma-separated key=value (e.g. backend=cpu), got ''");
     }
     Config c;
     std::set<std::string> seen;
-    for (const std::string& part : split_commas(spec)) {
+    for (const std::string& part : trac0r_bench::split_commas(spec)) {
         const std::size_t eq = part.find('=');
         const std::string key = part.substr(0, eq);
         const std::string value = eq == std::string::npos ? "" : part.substr(eq + 1);
@@ -158,6 +144,7 @@ Config parse_config(const std::string& spec) {
 
 Options parse_options(int argc, char** argv) {
     Options o;
+    trac0r_bench::check_given_once(argc, argv, {"--config"});
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         const auto value = [&]() -> std::string {
@@ -272,16 +259,16 @@ bool reference_is_cached(const Options& o) {
 // reference renders, which can take longer than the run itself.
 void prepare_cache_dir(const std::string& dir) {
     if (mkdir(dir.c_str(), 0755) != 0 && errno != EEXIST) {
-        throw std::runtime_error("--cache " + dir + ": cannot create the directory (" +
-                                 std::strerror(errno) + ")");
+        throw UsageError("--cache " + dir + ": cannot create the directory (" +
+                         std::strerror(errno) + ")");
     }
     struct stat st;
     if (stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
-        throw std::runtime_error("--cache " + dir + ": not a directory");
+        throw UsageError("--cache " + dir + ": not a directory");
     }
     if (access(dir.c_str(), W_OK | X_OK) != 0) {
-        throw std::runtime_error("--cache " + dir + ": cannot write in the directory (" +
-                                 std::strerror(errno) + ")");
+        throw UsageError("--cache " + dir + ": cannot write in the directory (" +
+                         std::strerror(errno) + ")");
     }
 }
 
@@ -376,11 +363,17 @@ int run(const Options& o) {
     if (o.reference_path.empty() && !reference_is_cached(o)) {
         prepare_cache_dir(o.cache_dir);
     }
+    // Checked now, but opened (and so emptied) only once the reference is
+    // there: a reference that fails or is stopped leaves the last CSV as it was.
+    const std::string csv_problem = trac0r::unwritable_reason(o.csv_path);
+    if (!csv_problem.empty()) {
+        throw UsageError("--csv " + o.csv_path + ": cannot be written (" + csv_problem + ")");
+    }
+    const Reference ref = reference_image(o, scene);
     std::ofstream csv(o.csv_path);
     if (!csv) {
         throw std::runtime_error("--csv " + o.csv_path + ": cannot write");
     }
-    const Reference ref = reference_image(o, scene);
 
     csv << "config,spp,seconds,rmse,rel_mse,psnr,estimated_rel_mse,reference_rel_mse,"
            "wall_seconds\n";

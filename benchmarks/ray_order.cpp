@@ -31,7 +31,7 @@ const char* const usage =
     "\n"
     "Casts the primary and diffuse-bounce rays of SCENE (default\n"
     "scenes/cornell.json, relative to the working directory) at W x H (default\n"
-    "800 x 600; at least 4096 pixels, e.g. 64 x 64, each side at most 16384)\n"
+    "800 x 600; at least 4096 pixels, e.g. 128 x 128, each side at most 16384)\n"
     "through its BVH on one thread, in pixel order, shuffled, sorted by\n"
     "direction octant (within runs of 64 rays, as a tile's paths, and over the\n"
     "whole set), and each ray twice in a row; prints a ray's time, the median of\n"
@@ -54,6 +54,7 @@ struct Options {
 // false for --help.
 bool parse(int argc, char** argv, Options& o) {
     bool have_scene = false;
+    trac0r_bench::check_given_once(argc, argv);
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&](const std::string& flag) {
@@ -69,7 +70,7 @@ bool parse(int argc, char** argv, Options& o) {
                     "--size " + std::to_string(o.width) + " " + std::to_string(o.height) + ": " +
                     std::to_string(pixels) + " pixels, expected at least " +
                     std::to_string(min_rays_to_time) +
-                    " (e.g. 64 x 64): fewer rays are too short a pass to time");
+                    " (e.g. 128 x 128): fewer rays are too short a pass to time");
             }
         } else if (a == "--passes") {
             o.passes =

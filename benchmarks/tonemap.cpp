@@ -3,12 +3,11 @@
 //   build/benchmarks/tonemap IN.pfm OUT.png [EXPOSURE]
 #include "cli.h"
 
+#include "trac0r/input_checks.h"
 #include "trac0r/image_io.h"
 
 #include <sys/stat.h>
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -31,16 +30,6 @@ to [0, 1], then the sRGB curve.
 
 const double min_exposure = 1e-6;
 const double max_exposure = 1e6;
-
-bool ends_with_png(const std::string& path) {
-    if (path.size() <= 4) {
-        return false;
-    }
-    std::string tail = path.substr(path.size() - 4);
-    std::transform(tail.begin(), tail.end(), tail.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return tail == ".png";
-}
 
 // The same file: the same name, or (where both exist) the same device and
 // inode, as a link or another spelling of the path gives.
@@ -73,8 +62,12 @@ int run(int argc, char** argv) {
     if (same_file(in, out)) {
         throw UsageError("OUT.png '" + out + "' is the input file: it would be overwritten");
     }
-    if (!ends_with_png(out)) {
+    if (!trac0r::is_png_path(out)) {
         throw UsageError("OUT.png '" + out + "': expected a file name ending in .png");
+    }
+    const std::string reason = trac0r::unwritable_reason(out);
+    if (!reason.empty()) {
+        throw UsageError("OUT.png '" + out + "': cannot be written (" + reason + ")");
     }
     const float exposure = args.size() == 3 ? static_cast<float>(trac0r_bench::parse_number(
                                                   "EXPOSURE", args[2], min_exposure, max_exposure))

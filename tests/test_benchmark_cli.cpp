@@ -83,7 +83,11 @@ TEST_CASE("tonemap: --help, and outputs and exposures it refuses", "[benchmark_c
                    {in + " bench_cli_out.png 0", "EXPOSURE: expected a number"},
                    {in, "expected IN.pfm OUT.png [EXPOSURE], got 1 argument"},
                    {in + " bench_cli_out.png 1 2", "got 4 arguments"},
-                   {"--bogus", "--bogus: unknown option"}},
+                   {"--bogus", "--bogus: unknown option"},
+                   {in + " bench_cli_out.png 0x10", "EXPOSURE: expected a number"},
+                   {in + " no_such_dir/out.png",
+                    "OUT.png 'no_such_dir/out.png': cannot be written (directory no_such_dir "
+                    "does not exist)"}},
                   2);
     // The input is untouched: still the PFM it was.
     CHECK(trac0r::read_pfm(in).width == 4);
@@ -158,6 +162,17 @@ TEST_CASE("bench_ray_order: sizes too small to time and scenes with no triangles
         1);
 }
 
+TEST_CASE("the benchmark programs refuse an option given twice", "[benchmark_cli]") {
+    check_refused("bench_accel_crossover",
+                  {{"--frames 1 --frames 2", "--frames: given more than once"},
+                   {"--size 8 6 --size 4 3", "--size: given more than once"}},
+                  2);
+    check_refused("bench_ray_order", {{"--passes 1 --passes 2", "--passes: given more than once"}},
+                  2);
+    check_refused("bench_complexity", {{"--frames 1 --frames 1", "--frames: given more than once"}},
+                  2);
+}
+
 TEST_CASE("bench_convergence: bad --cache, --config and --reference-spp refused before rendering",
           "[benchmark_cli]") {
     check_help("bench_convergence",
@@ -182,6 +197,7 @@ TEST_CASE("bench_convergence: bad --cache, --config and --reference-spp refused 
                     "--cache /nonexistent_trac0r_dir/cache: cannot create the directory"},
                    {"--cache bench_cli_not_a_dir", "--cache bench_cli_not_a_dir: not a directory"},
                    {"--csv /nonexistent_trac0r_dir/x.csv --cache bench_cli_cache",
-                    "--csv /nonexistent_trac0r_dir/x.csv: cannot write"}},
-                  1);
+                    "--csv /nonexistent_trac0r_dir/x.csv: cannot be written (directory "
+                    "/nonexistent_trac0r_dir does not exist)"}},
+                  2);
 }

@@ -506,17 +506,21 @@ TEST_CASE("OBJ meshes: mistakes are named by file and line", "[scene_loader]") {
     const std::string obj = dir.path() + "/m.obj";
     // tinyobjloader alone read each of these as something else, silently.
     CHECK(obj_error("v 0 0 x\nv 1 0 0\nv 0 1 0\nf 1 2 3\n") ==
-          obj + ":1: expected a vertex coordinate finite in float, got 'x'");
+          obj + ":1: expected a vertex coordinate as a decimal number finite in float, got 'x'");
     CHECK_THAT(obj_error("v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n"),
                StartsWith(obj + ":2: ") && EndsWith("got 'nan'"));
     CHECK_THAT(obj_error(triangle + "v 0 0 1e39\nf 1 2 4\n"),
                StartsWith(obj + ":4: ") && EndsWith("got '1e39'"));
-    CHECK(obj_error("v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n") ==
-          obj + ":1: expected a vertex as 'v x y z' (with an optional w, or r g b), got 2 values");
+    CHECK(
+        obj_error("v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n") ==
+        obj +
+            ":1: expected a vertex as 'v x y z' (with an optional w, r g b, or both), got 2 values");
     CHECK_THAT(obj_error(triangle + "f 1 2 3.5\n"),
                StartsWith(obj + ":4: expected a face vertex") && EndsWith("got '3.5'"));
     CHECK_THAT(obj_error(triangle + "f 1 2 4294967299\n"),
                StartsWith(obj + ":4: expected a face vertex"));
+    CHECK_THAT(obj_error("v 0x1p0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+               StartsWith(obj + ":1: ") && EndsWith("got '0x1p0'"));  // tinyobjloader: 0
     CHECK(obj_error(triangle + "f 1 2 3\nf 1 2\n") ==
           obj + ":5: expected a face of at least 3 vertices, got 2");
     CHECK(
@@ -539,5 +543,34 @@ TEST_CASE("OBJ meshes: mistakes are named by file and line", "[scene_loader]") {
               "# a comment\nf 1/1 2/1/1 3//1 # late\nv 0 0 0 # first\nv 1 0 0 1 0 0\n"
               "v 1 1 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\ng part\nusemtl x\ns off\n"
               "f -4 -3 -2 -1\n");
-    CHECK(load_scene_file(scene).shapes[0].triangles.size() == 3);
+    const std::vector<Triangle> triangles = load_scene_file(scene).shapes[0].triangles;
+    REQUIRE(triangles.size() == 3);
+    // The face before the vertices: 1, 2, 3; the quad, counted back from
+    // the four before it: 1, 2, 3, 4, which tinyobjloader splits along
+    // 2-4 (1 2 4, 2 3 4).
+    const glm::vec3 v[4] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    CHECK((same_vec3(triangles[0].v0, v[0]) && same_vec3(triangles[0].v1, v[1]) &&
+           same_vec3(triangles[0].v2, v[2])));
+    CHECK((same_vec3(triangles[1].v0, v[0]) && same_vec3(triangles[1].v1, v[1]) &&
+           same_vec3(triangles[1].v2, v[3])));
+    CHECK((same_vec3(triangles[2].v0, v[1]) && same_vec3(triangles[2].v1, v[2]) &&
+           same_vec3(triangles[2].v2, v[3])));
+
+    // Line ends \r\n and \r (old Mac exporters), tabs, trailing spaces, a
+    // vertex with w and a colour (7 values), numbers as exporters write
+    // them: the same triangle each time.
+    const char* const same_triangle[] = {
+        "v 0 0 0\r\nv 1 0 0\r\nv 1 1 0\r\nf 1 2 3\r\n",
+        "v 0 0 0\rv 1 0 0\rv 1 1 0\rf 1 2 3\r",
+        "v\t0 0 0  \nv 1\t0 0\nv 1 1 0 \t\nf\t1 2 3",
+        "v 0 0 0 1 0.5 0.5 0.5\nv 1 0 0 1 0.5 0.5 0.5\nv 1 1 0 1 0.5 0.5 0.5\nf 1 2 3\n",
+        "v 0.0 -0 0e0\nv 1. 0.000000 .0\nv 1E+0 10e-1 0\nf 1 2 3\n",
+    };
+    for (const char* text : same_triangle) {
+        CAPTURE(text);
+        dir.write("m.obj", text);
+        const std::vector<Triangle> t = load_scene_file(scene).shapes[0].triangles;
+        REQUIRE(t.size() == 1);
+        CHECK((same_vec3(t[0].v0, v[0]) && same_vec3(t[0].v1, v[1]) && same_vec3(t[0].v2, v[2])));
+    }
 }

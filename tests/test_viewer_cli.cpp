@@ -153,6 +153,14 @@ TEST_CASE("a scene with nothing that emits renders, with a warning", "[cli]") {
     CHECK(lit.output.find("warning") == std::string::npos);
 }
 
+TEST_CASE("what the checks let through: any case of .png, exponents as %g writes them", "[cli]") {
+    const Run r = run_viewer(
+        "--headless --width 8 --height 6 --spp 1 --seconds 1e+1 --exposure 2 --output cli_up.PNG");
+    INFO(r.output);
+    CHECK(r.exit_code == 0);
+    CHECK(read_bytes("cli_up.PNG").compare(1, 3, "PNG") == 0);
+}
+
 TEST_CASE("--help lists the options and exits 0", "[cli]") {
     const Run r = run_viewer("--help");
     REQUIRE(r.exit_code == 0);

@@ -1,26 +1,22 @@
 #include "trac0r/camera.h"
 
+#include "trac0r/geometry.h"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace trac0r {
 
-namespace {
-bool finite(const glm::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-}  // namespace
-
 const char* camera_problem(const Camera& camera) {
-    if (!finite(camera.position)) {
+    if (!is_finite(camera.position)) {
         return "camera.position must be finite";
     }
-    if (!finite(camera.direction) || glm::length(camera.direction) == 0.0f) {
+    if (!is_finite(camera.direction) || glm::length(camera.direction) == 0.0f) {
         return "camera.direction must be a finite vector whose length is not zero in float "
                "(a component above about 1e-19)";
     }
-    if (!finite(camera.world_up) || glm::length(camera.world_up) == 0.0f) {
+    if (!is_finite(camera.world_up) || glm::length(camera.world_up) == 0.0f) {
         return "camera.world_up must be a finite vector whose length is not zero in float "
                "(a component above about 1e-19)";
     }

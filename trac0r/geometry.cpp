@@ -34,16 +34,13 @@ AABB Triangle::bounds() const {
     return b;
 }
 
-namespace {
-
-bool finite(const glm::vec3& v) {
+bool is_finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-}  // namespace
-
 bool usable_triangle(const Triangle& t) {
-    return finite(t.v0) && finite(t.v1) && finite(t.v2) && t.area > 0.0f && std::isfinite(t.area);
+    return is_finite(t.v0) && is_finite(t.v1) && is_finite(t.v2) && t.area > 0.0f &&
+           std::isfinite(t.area);
 }
 
 }  // namespace trac0r

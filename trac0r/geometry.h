@@ -39,6 +39,9 @@ struct Triangle {
     AABB bounds() const;
 };
 
+// Whether every component of v is finite.
+bool is_finite(const glm::vec3& v);
+
 // Whether the renderer can use t: finite vertices and a non-zero, finite
 // area. pack_scene leaves the others out (and counts them); the scene
 // loader refuses a shape that has none of its triangles left.

@@ -136,8 +136,10 @@ Image read_pfm(const std::string& path) {
 }
 
 bool is_supported_image_path(const std::string& path) {
-    return ends_with(path, ".png") || ends_with(path, ".pfm");
+    return is_png_path(path) || ends_with(path, ".pfm");
 }
+
+bool is_png_path(const std::string& path) { return ends_with(path, ".png"); }
 
 void write_image(const std::string& path, const Image& image, float exposure) {
     if (ends_with(path, ".png")) {

@@ -36,6 +36,8 @@ Rgb8Image tonemap_image(const Image& image, float exposure);
 
 // True for the extensions write_image knows (.png, .pfm, any case).
 bool is_supported_image_path(const std::string& path);
+// Whether path names a PNG (ends in .png, in any case), as write_image reads it.
+bool is_png_path(const std::string& path);
 
 // .png (tone-mapped sRGB) or .pfm (linear float), chosen by the extension.
 // Throws std::runtime_error naming the file on failure or another extension.

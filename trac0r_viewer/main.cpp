@@ -3,13 +3,12 @@
 #include "options.h"
 #include "window_session.h"
 
+#include "trac0r/input_checks.h"
 #include "trac0r/cpu_backend.h"
+#include "trac0r/image_io.h"
 #include "trac0r/opencl_backend.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
-
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -24,26 +23,6 @@ namespace {
 
 using trac0r_viewer::Options;
 using trac0r_viewer::UsageError;
-
-// Why path cannot be written, or "" if it can (as far as can be told
-// without writing it): checked before rendering, so that a long render is
-// not lost to a typo in the directory.
-std::string unwritable_reason(const std::string& path) {
-    struct stat info;
-    if (stat(path.c_str(), &info) == 0) {
-        if (S_ISDIR(info.st_mode)) {
-            return "is a directory";
-        }
-        return access(path.c_str(), W_OK) == 0 ? "" : "exists and is not writable";
-    }
-    const std::string::size_type slash = path.find_last_of('/');
-    const std::string dir =
-        slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
-    if (stat(dir.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) {
-        return "directory " + dir + " does not exist";
-    }
-    return access(dir.c_str(), W_OK | X_OK) == 0 ? "" : "directory " + dir + " is not writable";
-}
 
 // Checks combinations of flags that each parse fine alone.
 void check_options(const Options& o) {
@@ -74,9 +53,7 @@ void check_options(const Options& o) {
             "--headless or --benchmark");
     }
     if (o.headless && o.given.count("--exposure") != 0 &&
-        std::none_of(o.outputs.begin(), o.outputs.end(), [](const std::string& f) {
-            return f.size() >= 4 && f.compare(f.size() - 4, 4, ".png") == 0;
-        })) {
+        std::none_of(o.outputs.begin(), o.outputs.end(), trac0r::is_png_path)) {
         throw UsageError(
             "--exposure: scales the tone mapping of PNG outputs (and the window); no --output is "
             "a .png");
@@ -86,7 +63,7 @@ void check_options(const Options& o) {
         if (!trac0r::is_supported_image_path(f)) {
             throw UsageError("--output " + f + ": expected a .png or .pfm file name");
         }
-        const std::string reason = unwritable_reason(f);
+        const std::string reason = trac0r::unwritable_reason(f);
         if (!reason.empty()) {
             throw UsageError("--output " + f + ": cannot be written (" + reason + ")");
         }

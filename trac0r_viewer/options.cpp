@@ -1,5 +1,7 @@
 #include "options.h"
 
+#include "trac0r/input_checks.h"
+
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -79,20 +81,12 @@ Examples:
 
 namespace {
 
-// Whether text is written as a decimal number, as the usage shows them:
-// no leading space or '+' (which strtol and strtod skip), no hexadecimal
-// (which strtod reads), no "inf" or "nan".
-bool plain_decimal(const std::string& text) {
-    return !text.empty() && text.find_first_not_of("0123456789.eE-") == std::string::npos &&
-           text.find_first_of("0123456789") != std::string::npos &&
-           text.find('x') == std::string::npos;
-}
-
 long parse_integer(const std::string& flag, const std::string& text, long min, long max) {
     errno = 0;
     char* end = nullptr;
     const long value = std::strtol(text.c_str(), &end, 10);
-    if (!plain_decimal(text) || *end != '\0' || errno != 0 || value < min || value > max) {
+    if (!trac0r::is_decimal_number(text) || *end != '\0' || errno != 0 || value < min ||
+        value > max) {
         throw UsageError(flag + ": expected an integer in [" + std::to_string(min) + ", " +
                          std::to_string(max) + "], got '" + text + "'");
     }
@@ -103,7 +97,7 @@ double parse_positive(const std::string& flag, const std::string& text) {
     errno = 0;
     char* end = nullptr;
     const double value = std::strtod(text.c_str(), &end);
-    if (!plain_decimal(text) || *end != '\0' || errno != 0 || !std::isfinite(value) ||
+    if (!trac0r::is_decimal_number(text) || *end != '\0' || errno != 0 || !std::isfinite(value) ||
         !(value > 0.0)) {
         throw UsageError(flag + ": expected a positive number, got '" + text + "'");
     }
@@ -114,7 +108,7 @@ std::uint64_t parse_seed(const std::string& flag, const std::string& text) {
     errno = 0;
     char* end = nullptr;
     const unsigned long long value = std::strtoull(text.c_str(), &end, 10);
-    if (!plain_decimal(text) || text[0] == '-' || *end != '\0' || errno != 0) {
+    if (!trac0r::is_decimal_number(text) || text[0] == '-' || *end != '\0' || errno != 0) {
         throw UsageError(flag + ": expected a non-negative 64-bit integer, got '" + text + "'");
     }
     return static_cast<std::uint64_t>(value);

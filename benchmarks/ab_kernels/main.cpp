@@ -25,9 +25,9 @@
 
 // Each version compiled at four offsets (variant.cpp, AB_PAD): kernel_a0
 // to kernel_a3, kernel_b0 to kernel_b3.
-#define AB_VERSION(name)                                                                   \
+#define AB_VERSION(name)                                                                        \
     extern "C" void name##_frame(const void*, const void*, void*, std::uint64_t, std::uint32_t, \
-                                 int);                                                      \
+                                 int);                                                          \
     extern "C" void name##_sizes(std::size_t*);
 AB_VERSION(kernel_a0)
 AB_VERSION(kernel_a1)
@@ -63,6 +63,7 @@ struct Options {
 // The options after A and B (benchmarks/ab_kernels.sh, which has the usage).
 void parse(int argc, char** argv, Options& o) {
     bool have_scene = false;
+    trac0r_bench::check_given_once(argc, argv);
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&](const std::string& flag) {
@@ -131,7 +132,8 @@ int run(const Options& o) {
     const trac0r::kernel::SceneView view = packed.view();
     const trac0r::kernel::CameraRecord camera =
         trac0r::make_camera_record(scene.camera, o.width, o.height);
-    const std::size_t pixels = static_cast<std::size_t>(o.width) * static_cast<std::size_t>(o.height);
+    const std::size_t pixels =
+        static_cast<std::size_t>(o.width) * static_cast<std::size_t>(o.height);
     std::vector<trac0r::kernel::AccumPixel> accum_a(pixels, trac0r::kernel::AccumPixel{});
     std::vector<trac0r::kernel::AccumPixel> accum_b(pixels, trac0r::kernel::AccumPixel{});
     const trac0r::DenormalsAreZero denormals;  // as the CPU backend renders
@@ -177,9 +179,8 @@ int run(const Options& o) {
         "images %s\n",
         o.scene.c_str(), trac0r::to_string(o.accel), trac0r::to_string(o.integrator), o.width,
         o.height, o.pairs, 1e3 * trac0r_bench::median(seconds_a),
-        1e3 * trac0r_bench::median(seconds_b), trac0r_bench::median(ratios),
-        quantile(ratios, 0.25), quantile(ratios, 0.75), per_layout.c_str(),
-        same ? "the same bit for bit" : "DIFFERENT");
+        1e3 * trac0r_bench::median(seconds_b), trac0r_bench::median(ratios), quantile(ratios, 0.25),
+        quantile(ratios, 0.75), per_layout.c_str(), same ? "the same bit for bit" : "DIFFERENT");
     return 0;
 }
 

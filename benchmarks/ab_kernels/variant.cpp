@@ -36,8 +36,7 @@ extern "C" void AB_CAT(AB_NAMESPACE, _frame)(const void* scene, const void* came
     for (long y0 = 0; y0 < height; y0 += tile) {
         for (long x0 = 0; x0 < width; x0 += tile) {
             k::render_tile(&view, cam, static_cast<k::AccumPixel*>(accum), seed, frame, max_depth,
-                           x0, y0, std::min(x0 + tile, width), std::min(y0 + tile, height),
-                           width);
+                           x0, y0, std::min(x0 + tile, width), std::min(y0 + tile, height), width);
         }
     }
 }

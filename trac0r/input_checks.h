@@ -1,0 +1,28 @@
+// Checks of what users write, shared by the scene loader, trac0r_viewer
+// and the benchmark programs: how a number may be written (command lines,
+// OBJ files), and whether an output path can be written before the work
+// that fills it starts.
+#ifndef TRAC0R_INPUT_CHECKS_H
+#define TRAC0R_INPUT_CHECKS_H
+
+#include <string>
+
+namespace trac0r {
+
+// Whether text is a number written in decimal, as the usage texts and OBJ
+// files show them: an optional '-', digits with at most one '.', and an optional
+// exponent (e or E, an optional sign, digits): "3", "-0.5", ".5", "1e+06".
+// Not what strtol and strtod also take: a leading space or '+',
+// hexadecimal ("0x10"), "inf", "nan".
+bool is_decimal_number(const std::string& text);
+// The same for the characters [begin, end).
+bool is_decimal_number(const char* begin, const char* end);
+
+// Why path cannot be written ("is a directory", "directory d does not
+// exist", ...), or "" when it can, as far as can be told without writing
+// it.
+std::string unwritable_reason(const std::string& path);
+
+}  // namespace trac0r
+
+#endif
