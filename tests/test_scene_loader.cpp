@@ -565,6 +565,7 @@ TEST_CASE("OBJ meshes: mistakes are named by file and line", "[scene_loader]") {
         "v\t0 0 0  \nv 1\t0 0\nv 1 1 0 \t\nf\t1 2 3",
         "v 0 0 0 1 0.5 0.5 0.5\nv 1 0 0 1 0.5 0.5 0.5\nv 1 1 0 1 0.5 0.5 0.5\nf 1 2 3\n",
         "v 0.0 -0 0e0\nv 1. 0.000000 .0\nv 1E+0 10e-1 0\nf 1 2 3\n",
+        "\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 3\n",  // a UTF-8 byte-order mark
     };
     for (const char* text : same_triangle) {
         CAPTURE(text);

@@ -177,6 +177,10 @@ class ObjChecker {
             throw std::runtime_error(path_ + ": cannot read OBJ mesh: a read error");
         }
         std::string text = whole.str();
+        // A UTF-8 byte-order mark, which some Windows tools write first.
+        if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) {
+            text.replace(0, 3, 3, ' ');
+        }
         char* at = &text[0];
         char* const end = at + text.size();
         while (at < end) {
