@@ -70,41 +70,22 @@ struct Options {
     std::string csv_path = "benchmarks/results/complexity.csv";
 };
 
-double parse_seconds(const std::string& flag, const char* text) {
-    const std::string s = text;
-    std::size_t used = 0;
-    double v = -1.0;
-    try {
-        v = std::stod(s, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (s.empty() || used != s.size() || !(v >= 0.0) || !(v < 1e6)) {
-        throw UsageError(flag + ": expected seconds >= 0, got '" + s + "'");
-    }
-    return v;
-}
-
 void parse_backends(const std::string& list, Options& o) {
     o.cpu = false;
     o.opencl = false;
-    std::stringstream parts(list);
-    std::string part;
-    while (std::getline(parts, part, ',')) {
-        if (part == "cpu") {
-            o.cpu = true;
-        } else if (part == "opencl") {
-            o.opencl = true;
-        } else {
-            throw UsageError("--backends: unknown backend '" + part + "' (expected cpu, opencl)");
+    for (const std::string& part : trac0r_bench::split_commas(list)) {
+        bool* chosen = part == "cpu" ? &o.cpu : part == "opencl" ? &o.opencl : nullptr;
+        if (chosen == nullptr) {
+            throw UsageError("--backends " + list + ": unknown backend '" + part +
+                             "' (expected cpu, opencl or cpu,opencl)");
         }
-    }
-    if (!o.cpu && !o.opencl) {
-        throw UsageError("--backends: expected cpu, opencl or cpu,opencl");
+        if (*chosen) {
+            throw UsageError("--backends " + list + ": '" + part + "' given twice");
+        }
+        *chosen = true;
     }
 }
 
-// Returns false when --help was asked for.
 bool parse(int argc, char** argv, Options& o) {
     trac0r_bench::check_given_once(argc, argv);
     for (int i = 1; i < argc; ++i) {
@@ -130,7 +111,7 @@ bool parse(int argc, char** argv, Options& o) {
         } else if (a == "--repeats") {
             o.repeats = static_cast<int>(parse_long(a, value(), 1, 1000));
         } else if (a == "--flat-limit") {
-            o.flat_limit = parse_seconds(a, value());
+            o.flat_limit = trac0r_bench::parse_number(a, value(), 0.0, 1e6);
         } else if (a == "--csv") {
             o.csv_path = value();
         } else {
@@ -380,10 +361,15 @@ void print_table(const std::vector<Level>& levels) {
 }
 
 int run(const Options& o) {
-    // Opened first: a bad path should fail now, not after minutes of timing.
+    // Checked and opened first: a bad path should fail now, not after
+    // minutes of timing.
+    const std::string problem = trac0r::unwritable_reason(o.csv_path);
+    if (!problem.empty()) {
+        throw UsageError("--csv " + o.csv_path + ": cannot be written (" + problem + ")");
+    }
     std::ofstream csv(o.csv_path);
     if (!csv) {
-        throw std::runtime_error(o.csv_path + ": cannot write the CSV (does its folder exist?)");
+        throw std::runtime_error("--csv " + o.csv_path + ": cannot write");
     }
     Backends backends;
     if (o.cpu) {

@@ -68,8 +68,8 @@ bool parse(int argc, char** argv, Options& o) {
             if (pixels < static_cast<long>(min_rays_to_time)) {
                 throw trac0r_bench::UsageError(
                     "--size " + std::to_string(o.width) + " " + std::to_string(o.height) + ": " +
-                    std::to_string(pixels) + " pixels, expected at least " +
-                    std::to_string(min_rays_to_time) +
+                    std::to_string(pixels) + " pixel" + (pixels == 1 ? "" : "s") +
+                    ", expected at least " + std::to_string(min_rays_to_time) +
                     " (e.g. 128 x 128): fewer rays are too short a pass to time");
             }
         } else if (a == "--passes") {
@@ -79,7 +79,9 @@ bool parse(int argc, char** argv, Options& o) {
             o.scene = a;
             have_scene = true;
         } else {
-            throw trac0r_bench::UsageError("unexpected argument '" + a + "' (see --help)");
+            throw trac0r_bench::UsageError(
+                a[0] == '-' ? a + ": unknown option (see --help)"
+                            : "'" + a + "': only one scene file may be given (see --help)");
         }
     }
     return true;

@@ -6,8 +6,6 @@
 #include "trac0r/input_checks.h"
 #include "trac0r/image_io.h"
 
-#include <sys/stat.h>
-
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -31,15 +29,6 @@ to [0, 1], then the sRGB curve.
 const double min_exposure = 1e-6;
 const double max_exposure = 1e6;
 
-// The same file: the same name, or (where both exist) the same device and
-// inode, as a link or another spelling of the path gives.
-bool same_file(const std::string& a, const std::string& b) {
-    struct stat sa;
-    struct stat sb;
-    return a == b || (stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 &&
-                      sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino);
-}
-
 int run(int argc, char** argv) {
     std::vector<std::string> args;
     for (int i = 1; i < argc; ++i) {
@@ -59,7 +48,7 @@ int run(int argc, char** argv) {
     }
     const std::string& in = args[0];
     const std::string& out = args[1];
-    if (same_file(in, out)) {
+    if (trac0r::same_file(in, out)) {
         throw UsageError("OUT.png '" + out + "' is the input file: it would be overwritten");
     }
     if (!trac0r::is_png_path(out)) {

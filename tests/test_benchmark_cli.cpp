@@ -36,7 +36,7 @@ void check_refused(const std::string& program, const std::vector<Case>& cases, i
         CAPTURE(r.err, r.out);
         CHECK(r.exit_code == code);
         CHECK(r.err.find(c.expected) != std::string::npos);
-        CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
+        CHECK((!r.err.empty() && r.err.find('\n') == r.err.size() - 1));  // one line
         CHECK(r.out.empty());
     }
 }
@@ -143,7 +143,7 @@ TEST_CASE("bench_ray_order: sizes too small to time and scenes with no triangles
           "[benchmark_cli]") {
     check_help("bench_ray_order", {"--size W H", "at least 4096 pixels"});
     check_refused("bench_ray_order",
-                  {{"--size 1 1", "--size 1 1: 1 pixels, expected at least 4096"},
+                  {{"--size 1 1", "--size 1 1: 1 pixel, expected at least 4096"},
                    {"--size 32", "--size: expected two values, W H"},
                    {"--size 0 64", "--size W: expected an integer in [1, 16384], got '0'"},
                    {"--passes 1.5", "--passes: expected an integer in [1, 1000]"}},
@@ -173,6 +173,24 @@ TEST_CASE("the benchmark programs refuse an option given twice", "[benchmark_cli
                   2);
 }
 
+TEST_CASE("bench_complexity: numbers, backends and --csv as the others check them",
+          "[benchmark_cli]") {
+    std::remove("bench_cli_dir.csv");
+    REQUIRE(system("mkdir -p bench_cli_dir.csv") == 0);
+    check_refused("bench_complexity",
+                  {{"--flat-limit ' 1'", "--flat-limit: expected a number in [0, 1e+06]"},
+                   {"--flat-limit +1", "--flat-limit: expected a number in [0, 1e+06]"},
+                   {"--flat-limit 0x5", "--flat-limit: expected a number in [0, 1e+06]"},
+                   {"--flat-limit 2e6", "--flat-limit: expected a number in [0, 1e+06], got '2e6'"},
+                   {"--backends cpu,", "--backends cpu,: unknown backend ''"},
+                   {"--backends cpu,cpu", "--backends cpu,cpu: 'cpu' given twice"},
+                   {"--csv bench_cli_dir.csv",
+                    "--csv bench_cli_dir.csv: cannot be written (is a "
+                    "directory)"}},
+                  2);
+    REQUIRE(system("rmdir bench_cli_dir.csv") == 0);
+}
+
 TEST_CASE("bench_convergence: bad --cache, --config and --reference-spp refused before rendering",
           "[benchmark_cli]") {
     check_help("bench_convergence",
@@ -188,7 +206,10 @@ TEST_CASE("bench_convergence: bad --cache, --config and --reference-spp refused 
                    {"--reference " + in + " --reference-spp 64",
                     "--reference-spp: only for a "
                     "rendered reference; --reference"},
-                   {"--seconds inf", "--seconds: expected a number"}},
+                   {"--seconds inf", "--seconds: expected a number"},
+                   {"--reference " + in + " --csv " + in,
+                    "--csv " + in + ": is the --reference image; it would be overwritten"},
+                   {"--seconds 1 --seconds 2", "--seconds: given more than once"}},
                   2);
     // The expensive reference would render first: these fail at once.
     std::ofstream("bench_cli_not_a_dir") << "x";

@@ -366,6 +366,9 @@ TEST_CASE("scene errors: long names and lists are cut short", "[scene_loader]") 
     const std::string long_key = scene_error(with_extra("\"" + key + "\": 1"));
     CHECK_THAT(long_key, StartsWith("test.json: /kkk") && Contains("...: unknown key"));
     CHECK(long_key.size() < 300);
+    // A key with a newline and a terminal's escape: one line, escaped.
+    CHECK_THAT(scene_error(with_extra(R"("x\ny\u001b[31m": 1)")),
+               StartsWith("test.json: /x\\x0ay\\x1b[31m: unknown key"));
 }
 
 TEST_CASE("scene errors: unknown names and types", "[scene_loader]") {
@@ -429,7 +432,8 @@ TEST_CASE("scene errors: a shape none of whose triangles survive in float", "[sc
     // area), and 3e38 plus the radius is above float's largest. The shape
     // would silently vanish.
     const std::string expected =
-        "no triangle of the shape can be rendered (of 2, each has in float arithmetic zero area";
+        "no triangle of the shape can be rendered (of 2, each has in float arithmetic an area of "
+        "zero or below float's smallest normal";
     CHECK_THAT(
         scene_error(scene_json(
             white_material,
@@ -440,6 +444,12 @@ TEST_CASE("scene errors: a shape none of whose triangles survive in float", "[sc
         scene_error(with_shape(R"({"type": "icosphere", "radius": 1e38,
                                          "position": [3e38, 0, 0], "material": "white"})")),
         StartsWith("test.json: /shapes/0: no triangle of the shape can be rendered (of 320,"));
+    // At the origin the same plane's area, 1e-40, is a float, but a
+    // denormal, which the CPU backend (and any device that flushes them)
+    // reads as 0.
+    CHECK_THAT(scene_error(
+                   with_shape(R"({"type": "plane", "size": [1e-20, 1e-20], "material": "white"})")),
+               StartsWith("test.json: /shapes/0: " + expected));
     // Some triangles left: the shape stays (pack_scene counts the others).
     CHECK_NOTHROW(
         parse(with_shape(R"({"type": "plane", "size": [1e-5, 1e-5], "material": "white"})")));
@@ -506,7 +516,9 @@ TEST_CASE("OBJ meshes: mistakes are named by file and line", "[scene_loader]") {
     const std::string obj = dir.path() + "/m.obj";
     // tinyobjloader alone read each of these as something else, silently.
     CHECK(obj_error("v 0 0 x\nv 1 0 0\nv 0 1 0\nf 1 2 3\n") ==
-          obj + ":1: expected a vertex coordinate as a decimal number finite in float, got 'x'");
+          obj +
+              ":1: expected a vertex coordinate as a decimal number finite in float (at most 2 "
+              "exponent digits), got 'x'");
     CHECK_THAT(obj_error("v 0 0 0\nv 1 0 nan\nv 0 1 0\nf 1 2 3\n"),
                StartsWith(obj + ":2: ") && EndsWith("got 'nan'"));
     CHECK_THAT(obj_error(triangle + "v 0 0 1e39\nf 1 2 4\n"),
@@ -521,6 +533,23 @@ TEST_CASE("OBJ meshes: mistakes are named by file and line", "[scene_loader]") {
                StartsWith(obj + ":4: expected a face vertex"));
     CHECK_THAT(obj_error("v 0x1p0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
                StartsWith(obj + ":1: ") && EndsWith("got '0x1p0'"));  // tinyobjloader: 0
+    // Finite as floats, but tinyobjloader's mantissa times 10^exponent
+    // made them NaN (0 times infinity) and infinity.
+    CHECK_THAT(obj_error("v 0e500 0 0\n" + triangle + "f 2 3 4\n"),
+               StartsWith(obj + ":1: ") && EndsWith("got '0e500'"));
+    CHECK_THAT(obj_error("v 1" + std::string(400, '0') + "e-400 0 0\n" + triangle + "f 2 3 4\n"),
+               StartsWith(obj + ":1: ") && EndsWith("...'"));
+    // A word is quoted cut short, its control bytes escaped.
+    CHECK(obj_error("v 0 0 " + std::string(100000, 'x') + "\n").size() < 250);
+    CHECK_THAT(obj_error("v 0 0 \x1b[31m\n" + triangle), EndsWith("got '\\x1b[31m'"));
+    // The texture and normal indices of a face, which tinyobjloader
+    // refused as "zero value for face index".
+    for (const char* face : {"f 1/x/1 2/x/1 3/x/1", "f 1// 2// 3//", "f 1/0/1 2/0/1 3/0/1",
+                             "f 1/1/1/1 2 3", "f 1/ 2/ 3/"}) {
+        CAPTURE(face);
+        CHECK_THAT(obj_error(triangle + "vt 0 0\nvn 0 0 1\n" + face + "\n"),
+                   StartsWith(obj + ":6: expected a face vertex as v, v/vt, v//vn or v/vt/vn"));
+    }
     CHECK(obj_error(triangle + "f 1 2 3\nf 1 2\n") ==
           obj + ":5: expected a face of at least 3 vertices, got 2");
     CHECK(
@@ -555,6 +584,11 @@ TEST_CASE("OBJ meshes: mistakes are named by file and line", "[scene_loader]") {
            same_vec3(triangles[1].v2, v[3])));
     CHECK((same_vec3(triangles[2].v0, v[1]) && same_vec3(triangles[2].v1, v[2]) &&
            same_vec3(triangles[2].v2, v[3])));
+
+    // Lines, points and other statements the mesh does not use are not
+    // read at all (tinyobjloader refused "l x y").
+    dir.write("m.obj", triangle + "l x y\np 0\ncstype bezier\nf 1 2 3\n");
+    CHECK(load_scene_file(scene).shapes[0].triangles.size() == 1);
 
     // Line ends \r\n and \r (old Mac exporters), tabs, trailing spaces, a
     // vertex with w and a colour (7 values), numbers as exporters write

@@ -39,7 +39,9 @@ bool is_finite(const glm::vec3& v) {
 }
 
 bool usable_triangle(const Triangle& t) {
-    return is_finite(t.v0) && is_finite(t.v1) && is_finite(t.v2) && t.area > 0.0f &&
+    // An area below FLT_MIN is a denormal, which a device that flushes them
+    // (and the CPU backend, DenormalsAreZero) reads as 0: never hit.
+    return is_finite(t.v0) && is_finite(t.v1) && is_finite(t.v2) && t.area >= FLT_MIN &&
            std::isfinite(t.area);
 }
 

@@ -42,9 +42,9 @@ struct Triangle {
 // Whether every component of v is finite.
 bool is_finite(const glm::vec3& v);
 
-// Whether the renderer can use t: finite vertices and a non-zero, finite
-// area. pack_scene leaves the others out (and counts them); the scene
-// loader refuses a shape that has none of its triangles left.
+// Whether the renderer can use t: finite vertices and a finite area of at
+// least FLT_MIN (not a denormal). pack_scene leaves the others out (and
+// counts them); the scene loader refuses a shape that has none left.
 bool usable_triangle(const Triangle& t);
 
 }  // namespace trac0r

@@ -1,5 +1,7 @@
 #include "trac0r/image_io.h"
 
+#include <sys/stat.h>
+
 #include <stb_image.h>
 #include <stb_image_write.h>
 
@@ -104,6 +106,10 @@ void write_pfm(const std::string& path, const Image& image) {
 }
 
 Image read_pfm(const std::string& path) {
+    struct stat info;
+    if (stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+        throw std::runtime_error(path + ": cannot read PFM: it is a directory");
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         throw std::runtime_error(path + ": cannot open PFM");

@@ -49,6 +49,25 @@ bool is_decimal_number(const std::string& text) {
     return is_decimal_number(text.data(), text.data() + text.size());
 }
 
+std::string printable(const std::string& text, std::size_t max_length) {
+    std::string out;
+    for (const char c : text) {
+        if (out.size() >= max_length) {
+            return out.substr(0, max_length > 3 ? max_length - 3 : 0) + "...";
+        }
+        const unsigned char u = static_cast<unsigned char>(c);
+        if (u < 0x20 || u == 0x7f) {
+            const char* const hex = "0123456789abcdef";
+            out += "\\x";
+            out += hex[u >> 4];
+            out += hex[u & 15];
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
 std::string unwritable_reason(const std::string& path) {
     struct stat info;
     if (stat(path.c_str(), &info) == 0) {
@@ -64,6 +83,13 @@ std::string unwritable_reason(const std::string& path) {
         return "directory " + dir + " does not exist";
     }
     return access(dir.c_str(), W_OK | X_OK) == 0 ? "" : "directory " + dir + " is not writable";
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+    struct stat sa;
+    struct stat sb;
+    return a == b || (stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 &&
+                      sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino);
 }
 
 }  // namespace trac0r

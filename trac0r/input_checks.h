@@ -18,10 +18,20 @@ bool is_decimal_number(const std::string& text);
 // The same for the characters [begin, end).
 bool is_decimal_number(const char* begin, const char* end);
 
+// text as a one-line message may quote it: control bytes written as \xNN,
+// and cut to max_length characters with "..." (a word of a file may be a
+// megabyte long, or hold a terminal's escape sequence).
+std::string printable(const std::string& text, std::size_t max_length);
+
 // Why path cannot be written ("is a directory", "directory d does not
 // exist", ...), or "" when it can, as far as can be told without writing
 // it.
 std::string unwritable_reason(const std::string& path);
+
+// Whether a and b name the same file: the same name, or (where both exist)
+// the same device and inode, as a link or another spelling of the path
+// gives. For an output that would overwrite an input.
+bool same_file(const std::string& a, const std::string& b);
 
 }  // namespace trac0r
 

@@ -43,6 +43,8 @@
 // order nlohmann iterates the materials object (by name).
 #include "trac0r/scene_loader.h"
 
+#include "trac0r/input_checks.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -96,13 +98,10 @@ struct Location {
 };
 
 [[noreturn]] void fail(const Location& at, const std::string& message) {
-    // A key may be any string, 100,000 characters say: cut short, as a
-    // value is (describe).
-    const std::size_t max_length = 120;
-    std::string where = at.pointer.empty() ? "(top level)" : at.pointer;
-    if (where.size() > max_length) {
-        where = where.substr(0, max_length - 3) + "...";
-    }
+    // A key may be any string, 100,000 characters or a terminal's escape
+    // sequence: cut short, as a value is (describe), its control bytes
+    // escaped.
+    const std::string where = at.pointer.empty() ? "(top level)" : printable(at.pointer, 120);
     throw SceneError(at.origin + ": " + where + ": " + message);
 }
 
@@ -567,9 +566,10 @@ std::vector<Shape> read_shapes(const json& value, const Location& at, const Shap
         if (std::none_of(triangles.begin(), triangles.end(), usable_triangle)) {
             fail(at.index(i), "no triangle of the shape can be rendered (of " +
                                   std::to_string(triangles.size()) +
-                                  ", each has in float arithmetic zero area or a vertex that is "
-                                  "not finite: its size, scale or position is too small or too "
-                                  "large)");
+                                  ", each has in float arithmetic an area of zero or below "
+                                  "float's smallest normal, or a vertex that is not finite: "
+                                  "degenerate faces, or a size, scale or position too small or "
+                                  "too large)");
         }
     }
     return shapes;

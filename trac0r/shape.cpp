@@ -241,7 +241,14 @@ class ObjChecker {
                 words_.push_back({start, at});
                 if (words_.size() == 1 && !is_keyword(words_[0], 'v') &&
                     !is_keyword(words_[0], 'f')) {
-                    return;  // a statement the mesh does not use
+                    // A statement the mesh does not use: texture and normal
+                    // vertices stay (faces may refer to them), everything
+                    // else is blanked, so that tinyobjloader cannot refuse
+                    // or misread a line, point or curve the mesh never uses.
+                    if (!is_word(words_[0], "vt") && !is_word(words_[0], "vn")) {
+                        std::fill(begin, end, ' ');
+                    }
+                    return;
                 }
             }
         }
@@ -255,20 +262,39 @@ class ObjChecker {
         }
     }
 
-    // Whether a decimal number is finite as a float: one without an
-    // exponent and with at most 38 digits before its point is (FLT_MAX is
-    // 3.4e38), so only the others are converted.
+    // Whether a decimal number is finite as a float, and as tinyobjloader
+    // reads it (mantissa times 10^exponent in double: 0e500 is 0 times
+    // infinity, NaN; 1e400e-400 with 400 zeros overflows the mantissa):
+    // at most 39 digits before the point and two in the exponent, and
+    // finite when converted. Only numbers with an exponent or 39 digits
+    // before the point are converted (FLT_MAX is 3.4e38).
     static bool finite_in_float(const Word& w) {
-        const char* point = std::find(w.begin, w.end, '.');
-        const bool short_plain =
-            std::find_if(w.begin, w.end, [](char c) { return c == 'e' || c == 'E'; }) == w.end &&
-            point - w.begin <= 38;
-        return short_plain || std::isfinite(std::strtof(w.begin, nullptr));
+        const char* const exponent =
+            std::find_if(w.begin, w.end, [](char c) { return c == 'e' || c == 'E'; });
+        const char* const point = std::find(w.begin, exponent, '.');
+        const long integer_digits = (point - w.begin) - (*w.begin == '-' ? 1 : 0);
+        const char* exponent_digits = exponent + 1;
+        if (exponent_digits < w.end && (*exponent_digits == '+' || *exponent_digits == '-')) {
+            ++exponent_digits;
+        }
+        if (integer_digits > 39 || (exponent != w.end && w.end - exponent_digits > 2)) {
+            return false;
+        }
+        return (exponent == w.end && integer_digits <= 38) ||
+               std::isfinite(std::strtof(w.begin, nullptr));
     }
 
     static bool is_keyword(const Word& w, char keyword) {
         return w.end - w.begin == 1 && *w.begin == keyword;
     }
+
+    static bool is_word(const Word& w, const char* text) {
+        return static_cast<std::size_t>(w.end - w.begin) == std::strlen(text) &&
+               std::equal(w.begin, w.end, text);
+    }
+
+    // The word as the message shows it: cut short, control bytes escaped.
+    static std::string shown(const Word& w) { return printable(w.text(), 40); }
 
     // x y z, and optionally w, a colour (r g b), or both, each a decimal
     // number finite in float (one below float's smallest reads as 0,
@@ -285,8 +311,8 @@ class ObjChecker {
             if (!is_decimal_number(w.begin, w.end) || !finite_in_float(w)) {
                 fail_at(line_number_,
                         "expected a vertex coordinate as a decimal number finite "
-                        "in float, got '" +
-                            w.text() + "'");
+                        "in float (at most 2 exponent digits), got '" +
+                            shown(w) + "'");
             }
         }
         ++vertex_count_;
@@ -303,22 +329,24 @@ class ObjChecker {
         }
         for (std::size_t k = 1; k < words_.size(); ++k) {
             const Word& w = words_[k];
-            const char* slash = std::find(w.begin, w.end, '/');
+            // v, v/vt, v//vn or v/vt/vn: each index present a non-zero
+            // integer (vt and vn are not used, but tinyobjloader reads them).
+            const char* const slash1 = std::find(w.begin, w.end, '/');
+            const char* const slash2 = slash1 == w.end ? w.end : std::find(slash1 + 1, w.end, '/');
             long index = 0;
-            bool integer = slash > w.begin && slash - w.begin <= 11;
-            for (const char* c = w.begin; integer && c < slash; ++c) {
-                if (c == w.begin && *c == '-' && slash - w.begin > 1) {
-                    continue;
-                }
-                integer = *c >= '0' && *c <= '9';
-                index = index * 10 + (*c - '0');
+            bool valid = parse_index(w.begin, slash1, &index);
+            if (slash1 != w.end) {
+                long unused = 0;
+                const bool has_vt = slash2 > slash1 + 1;
+                valid = valid && (!has_vt || parse_index(slash1 + 1, slash2, &unused)) &&
+                        (slash2 != w.end || has_vt) &&
+                        (slash2 == w.end || parse_index(slash2 + 1, w.end, &unused));
             }
-            index = *w.begin == '-' ? -index : index;
-            if (!integer || index == 0 || index > 2147483647L || index < -2147483647L) {
+            if (!valid) {
                 fail_at(line_number_,
-                        "expected a face vertex as v, v/vt, v//vn or v/vt/vn with v "
+                        "expected a face vertex as v, v/vt, v//vn or v/vt/vn, each "
                         "a non-zero integer, got '" +
-                            w.text() + "'");
+                            shown(w) + "'");
             }
             if (index < 0 && -index > vertex_count_) {
                 fail_at(line_number_, "face refers to vertex " + std::to_string(index) +
@@ -331,6 +359,25 @@ class ObjChecker {
                 largest_index_line_ = line_number_;
             }
         }
+    }
+
+    // The non-zero integer in [begin, end) (a '-' and at most 10 digits,
+    // within 32 bits), or false.
+    static bool parse_index(const char* begin, const char* end, long* index) {
+        const bool negative = begin < end && *begin == '-';
+        const char* digits = negative ? begin + 1 : begin;
+        if (digits == end || end - digits > 10) {
+            return false;
+        }
+        long value = 0;
+        for (const char* c = digits; c < end; ++c) {
+            if (*c < '0' || *c > '9') {
+                return false;
+            }
+            value = value * 10 + (*c - '0');
+        }
+        *index = negative ? -value : value;
+        return value != 0 && value <= 2147483647L;
     }
 
     std::string path_;
