@@ -159,7 +159,8 @@ class ObjChecker {
   public:
     explicit ObjChecker(const std::string& path) : path_(path) {}
 
-    // The file's text, comments blanked out, once every line is checked.
+    // The file's text, its comments and unused statements blanked out,
+    // once every line is checked.
     std::string checked_text() {
         struct stat info;
         if (stat(path_.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
