@@ -76,11 +76,13 @@ void parse_backends(const std::string& list, Options& o) {
     for (const std::string& part : trac0r_bench::split_commas(list)) {
         bool* chosen = part == "cpu" ? &o.cpu : part == "opencl" ? &o.opencl : nullptr;
         if (chosen == nullptr) {
-            throw UsageError("--backends " + list + ": unknown backend '" + part +
+            throw UsageError("--backends " + trac0r::printable(list, 40) + ": unknown backend '" +
+                             trac0r::printable(part, 40) +
                              "' (expected cpu, opencl or cpu,opencl)");
         }
         if (*chosen) {
-            throw UsageError("--backends " + list + ": '" + part + "' given twice");
+            throw UsageError("--backends " + trac0r::printable(list, 40) + ": '" + part +
+                             "' given twice");
         }
         *chosen = true;
     }

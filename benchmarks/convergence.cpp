@@ -185,6 +185,9 @@ Options parse_options(int argc, char** argv) {
     if (o.configs.empty()) {
         o.configs.push_back(parse_config("backend=cpu"));
     }
+    if (!o.scene_path.empty() && trac0r::same_file(o.scene_path, o.csv_path)) {
+        throw UsageError("--csv " + o.csv_path + ": is the scene file; it would be overwritten");
+    }
     if (!o.reference_path.empty() && trac0r::same_file(o.reference_path, o.csv_path)) {
         throw UsageError("--csv " + o.csv_path +
                          ": is the --reference image; it would be "

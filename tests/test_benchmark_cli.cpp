@@ -196,6 +196,9 @@ TEST_CASE("bench_convergence: bad --cache, --config and --reference-spp refused 
     check_help("bench_convergence",
                {"--config SPEC", "each key at most once", "not with --reference"});
     const std::string in = write_test_pfm("bench_cli_reference.pfm");
+    std::ofstream("bench_cli_scene.json")
+        << R"({"materials": {"white": {"type": "diffuse", "color": [0.5, 0.5, 0.5]}},
+              "shapes": [{"type": "plane", "material": "white", "size": [1, 1]}]})";
     check_refused("bench_convergence",
                   {{"--config backend=cpu,backend=cpu",
                     "--config backend=cpu,backend=cpu: key "
@@ -209,7 +212,10 @@ TEST_CASE("bench_convergence: bad --cache, --config and --reference-spp refused 
                    {"--seconds inf", "--seconds: expected a number"},
                    {"--reference " + in + " --csv " + in,
                     "--csv " + in + ": is the --reference image; it would be overwritten"},
-                   {"--seconds 1 --seconds 2", "--seconds: given more than once"}},
+                   {"--seconds 1 --seconds 2", "--seconds: given more than once"},
+                   {"bench_cli_scene.json --csv bench_cli_scene.json",
+                    "--csv bench_cli_scene.json: is the scene file; it would be overwritten"},
+                   {"--csv ''", "--csv : cannot be written (the path is empty)"}},
                   2);
     // The expensive reference would render first: these fail at once.
     std::ofstream("bench_cli_not_a_dir") << "x";

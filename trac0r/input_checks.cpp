@@ -50,25 +50,51 @@ bool is_decimal_number(const std::string& text) {
 }
 
 std::string printable(const std::string& text, std::size_t max_length) {
+    // Built a unit at a time, a unit being one character (all the bytes of
+    // a UTF-8 sequence) or one escape, so the cut never splits either.
     std::string out;
-    for (const char c : text) {
-        if (out.size() >= max_length) {
-            return out.substr(0, max_length > 3 ? max_length - 3 : 0) + "...";
+    std::size_t fits_with_dots = 0;
+    std::size_t at = 0;
+    while (at < text.size()) {
+        const unsigned char lead = static_cast<unsigned char>(text[at]);
+        std::size_t length = 1;
+        while (at + length < text.size() &&
+               (static_cast<unsigned char>(text[at + length]) & 0xC0) == 0x80) {
+            ++length;  // continuation bytes belong to the character before
         }
-        const unsigned char u = static_cast<unsigned char>(c);
-        if (u < 0x20 || u == 0x7f) {
+        // C0 controls, DEL, and C1 controls (U+0080 to U+009F: C2 80 to C2 9F)
+        // are escaped byte by byte; anything else passes as it is.
+        const bool c1 =
+            lead == 0xC2 && length == 2 && static_cast<unsigned char>(text[at + 1]) <= 0x9F;
+        std::string unit;
+        if (lead < 0x20 || lead == 0x7F || c1) {
             const char* const hex = "0123456789abcdef";
-            out += "\\x";
-            out += hex[u >> 4];
-            out += hex[u & 15];
+            for (std::size_t k = 0; k < (c1 ? 2u : 1u); ++k) {
+                const unsigned char u = static_cast<unsigned char>(text[at + k]);
+                unit += "\\x";
+                unit += hex[u >> 4];
+                unit += hex[u & 15];
+            }
+            length = c1 ? 2 : 1;
         } else {
-            out += c;
+            unit = text.substr(at, length);
+        }
+        out += unit;
+        at += length;
+        if (out.size() + 3 <= max_length) {
+            fits_with_dots = out.size();  // the longest prefix "..." may follow
+        }
+        if (out.size() > max_length) {
+            return out.substr(0, fits_with_dots) + "...";
         }
     }
     return out;
 }
 
 std::string unwritable_reason(const std::string& path) {
+    if (path.empty()) {
+        return "the path is empty";
+    }
     struct stat info;
     if (stat(path.c_str(), &info) == 0) {
         if (S_ISDIR(info.st_mode)) {

@@ -18,9 +18,10 @@ bool is_decimal_number(const std::string& text);
 // The same for the characters [begin, end).
 bool is_decimal_number(const char* begin, const char* end);
 
-// text as a one-line message may quote it: control bytes written as \xNN,
-// and cut to max_length characters with "..." (a word of a file may be a
-// megabyte long, or hold a terminal's escape sequence).
+// text as a one-line message may quote it: control bytes (C0, DEL, C1)
+// written as \xNN, and cut to at most max_length bytes with "..." (a word
+// of a file may be a megabyte long, or hold a terminal's escape sequence),
+// never inside a UTF-8 character or an escape.
 std::string printable(const std::string& text, std::size_t max_length);
 
 // Why path cannot be written ("is a directory", "directory d does not

@@ -99,9 +99,14 @@ struct Location {
 
 [[noreturn]] void fail(const Location& at, const std::string& message) {
     // A key may be any string, 100,000 characters or a terminal's escape
-    // sequence: cut short, as a value is (describe), its control bytes
-    // escaped.
-    const std::string where = at.pointer.empty() ? "(top level)" : printable(at.pointer, 120);
+    // sequence: each is cut short, as a value is (describe), its control
+    // bytes escaped, and the path keeps every key (the last names the field).
+    std::string where = at.pointer.empty() ? "(top level)" : "";
+    for (std::size_t start = 0; start < at.pointer.size();) {
+        const std::size_t slash = std::min(at.pointer.find('/', start + 1), at.pointer.size());
+        where += printable(at.pointer.substr(start, slash - start), 40);
+        start = slash;
+    }
     throw SceneError(at.origin + ": " + where + ": " + message);
 }
 
