@@ -29,8 +29,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <cstring>
+#include <fstream>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -258,8 +258,9 @@ std::string cached_reference_base(const Options& o) {
            std::to_string(o.height) + "-" + std::to_string(o.reference_spp) + "spp";
 }
 
-bool reference_is_cached(const Options& o) {
-    const std::string base = cached_reference_base(o);
+// Whether the cache holds the rendered reference named base
+// (cached_reference_base).
+bool reference_is_cached(const std::string& base) {
     return file_exists(base + ".pfm") && file_exists(base + ".relmse");
 }
 
@@ -270,8 +271,7 @@ void prepare_cache_dir(const std::string& dir) {
         throw UsageError("--cache " + dir + ": cannot create the directory (" +
                          std::strerror(errno) + ")");
     }
-    struct stat st;
-    if (stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) {
+    if (!trac0r::is_directory(dir)) {
         throw UsageError("--cache " + dir + ": not a directory");
     }
     if (access(dir.c_str(), W_OK | X_OK) != 0) {
@@ -280,7 +280,9 @@ void prepare_cache_dir(const std::string& dir) {
     }
 }
 
-Reference reference_image(const Options& o, const Scene& scene) {
+// The --reference image, or the rendered one: from the cache, under
+// cache_base, or rendered and put there.
+Reference reference_image(const Options& o, const Scene& scene, const std::string& cache_base) {
     if (!o.reference_path.empty()) {
         Reference ref{read_pfm(o.reference_path), 0.0};
         if (ref.image.width != o.width || ref.image.height != o.height) {
@@ -293,10 +295,9 @@ Reference reference_image(const Options& o, const Scene& scene) {
                      o.reference_path.c_str());
         return ref;
     }
-    const std::string base = cached_reference_base(o);
-    const std::string pfm = base + ".pfm";
-    const std::string noise_file = base + ".relmse";
-    if (file_exists(pfm) && file_exists(noise_file)) {
+    const std::string pfm = cache_base + ".pfm";
+    const std::string noise_file = cache_base + ".relmse";
+    if (reference_is_cached(cache_base)) {
         std::fprintf(stderr, "reference: cached %s\n", pfm.c_str());
         return {read_pfm(pfm), std::stod(read_text(noise_file))};
     }
@@ -368,7 +369,9 @@ int run(const Options& o) {
     scene.render.width = o.width;
     scene.render.height = o.height;
     // Where the results go, checked before the reference renders.
-    if (o.reference_path.empty() && !reference_is_cached(o)) {
+    // The cache's name reads and hashes the scene file: made once.
+    const std::string cache_base = o.reference_path.empty() ? cached_reference_base(o) : "";
+    if (o.reference_path.empty() && !reference_is_cached(cache_base)) {
         prepare_cache_dir(o.cache_dir);
     }
     // Checked now, but opened (and so emptied) only once the reference is
@@ -377,7 +380,7 @@ int run(const Options& o) {
     if (!csv_problem.empty()) {
         throw UsageError("--csv " + o.csv_path + ": cannot be written (" + csv_problem + ")");
     }
-    const Reference ref = reference_image(o, scene);
+    const Reference ref = reference_image(o, scene, cache_base);
     std::ofstream csv(o.csv_path);
     if (!csv) {
         throw std::runtime_error("--csv " + o.csv_path + ": cannot write");

@@ -1,6 +1,6 @@
 #include "trac0r/image_io.h"
 
-#include <sys/stat.h>
+#include "trac0r/input_checks.h"
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -106,8 +106,7 @@ void write_pfm(const std::string& path, const Image& image) {
 }
 
 Image read_pfm(const std::string& path) {
-    struct stat info;
-    if (stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+    if (is_directory(path)) {
         throw std::runtime_error(path + ": cannot read PFM: it is a directory");
     }
     std::ifstream in(path, std::ios::binary);
@@ -148,7 +147,7 @@ bool is_supported_image_path(const std::string& path) {
 bool is_png_path(const std::string& path) { return ends_with(path, ".png"); }
 
 void write_image(const std::string& path, const Image& image, float exposure) {
-    if (ends_with(path, ".png")) {
+    if (is_png_path(path)) {
         write_png(path, image, exposure);
     } else if (ends_with(path, ".pfm")) {
         write_pfm(path, image);

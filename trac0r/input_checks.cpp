@@ -3,6 +3,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
 namespace trac0r {
 
 namespace {
@@ -47,6 +51,20 @@ bool is_decimal_number(const char* begin, const char* end) {
 
 bool is_decimal_number(const std::string& text) {
     return is_decimal_number(text.data(), text.data() + text.size());
+}
+
+bool parse_decimal(const std::string& text, long* value) {
+    errno = 0;
+    char* end = nullptr;
+    *value = std::strtol(text.c_str(), &end, 10);
+    return is_decimal_number(text) && *end == '\0' && errno == 0;
+}
+
+bool parse_decimal(const std::string& text, double* value) {
+    errno = 0;
+    char* end = nullptr;
+    *value = std::strtod(text.c_str(), &end);
+    return is_decimal_number(text) && *end == '\0' && errno == 0 && std::isfinite(*value);
 }
 
 std::string printable(const std::string& text, std::size_t max_length) {
@@ -95,20 +113,24 @@ std::string unwritable_reason(const std::string& path) {
     if (path.empty()) {
         return "the path is empty";
     }
-    struct stat info;
-    if (stat(path.c_str(), &info) == 0) {
-        if (S_ISDIR(info.st_mode)) {
-            return "is a directory";
-        }
+    if (is_directory(path)) {
+        return "is a directory";
+    }
+    if (access(path.c_str(), F_OK) == 0) {
         return access(path.c_str(), W_OK) == 0 ? "" : "exists and is not writable";
     }
     const std::string::size_type slash = path.find_last_of('/');
     const std::string dir =
         slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
-    if (stat(dir.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) {
+    if (!is_directory(dir)) {
         return "directory " + dir + " does not exist";
     }
     return access(dir.c_str(), W_OK | X_OK) == 0 ? "" : "directory " + dir + " is not writable";
+}
+
+bool is_directory(const std::string& path) {
+    struct stat info;
+    return stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode);
 }
 
 bool same_file(const std::string& a, const std::string& b) {

@@ -18,6 +18,12 @@ bool is_decimal_number(const std::string& text);
 // The same for the characters [begin, end).
 bool is_decimal_number(const char* begin, const char* end);
 
+// text read as a number written in decimal (is_decimal_number), all of it,
+// into *value; false where it is not one, or is out of the type's range
+// (for a double also one that underflows: strtod's ERANGE).
+bool parse_decimal(const std::string& text, long* value);
+bool parse_decimal(const std::string& text, double* value);
+
 // text as a one-line message may quote it: control bytes (C0, DEL, C1)
 // written as \xNN, and cut to at most max_length bytes with "..." (a word
 // of a file may be a megabyte long, or hold a terminal's escape sequence),
@@ -28,6 +34,9 @@ std::string printable(const std::string& text, std::size_t max_length);
 // exist", ...), or "" when it can, as far as can be told without writing
 // it.
 std::string unwritable_reason(const std::string& path);
+
+// Whether path names an existing directory.
+bool is_directory(const std::string& path);
 
 // Whether a and b name the same file: the same name, or (where both exist)
 // the same device and inode, as a link or another spelling of the path

@@ -6,8 +6,6 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <array>
 #include <cerrno>
@@ -162,8 +160,7 @@ class ObjChecker {
     // The file's text, its comments and unused statements blanked out,
     // once every line is checked.
     std::string checked_text() {
-        struct stat info;
-        if (stat(path_.c_str(), &info) == 0 && S_ISDIR(info.st_mode)) {
+        if (is_directory(path_)) {
             throw std::runtime_error(path_ + ": cannot read OBJ mesh: it is a directory");
         }
         std::ifstream in(path_, std::ios::binary);
