@@ -7,10 +7,7 @@
 
 #include "trac0r/input_checks.h"
 
-#include <cerrno>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <set>
 #include <stdexcept>
@@ -26,10 +23,8 @@ struct UsageError : std::runtime_error {
 // text as an integer in [lo, hi], or a UsageError naming flag. The whole
 // text, written in decimal (trac0r::is_decimal_number, as trac0r_viewer).
 inline long parse_long(const std::string& flag, const std::string& text, long lo, long hi) {
-    errno = 0;
-    char* end = nullptr;
-    const long v = std::strtol(text.c_str(), &end, 10);
-    if (!trac0r::is_decimal_number(text) || *end != '\0' || errno != 0 || v < lo || v > hi) {
+    long v = 0;
+    if (!trac0r::parse_decimal(text, &v) || v < lo || v > hi) {
         throw UsageError(flag + ": expected an integer in [" + std::to_string(lo) + ", " +
                          std::to_string(hi) + "], got '" + text + "'");
     }
@@ -39,11 +34,8 @@ inline long parse_long(const std::string& flag, const std::string& text, long lo
 // text as a finite number in [lo, hi], or a UsageError naming flag; the
 // whole text, as parse_long.
 inline double parse_number(const std::string& flag, const std::string& text, double lo, double hi) {
-    errno = 0;
-    char* end = nullptr;
-    const double v = std::strtod(text.c_str(), &end);
-    if (!trac0r::is_decimal_number(text) || *end != '\0' || errno != 0 || !std::isfinite(v) ||
-        v < lo || v > hi) {
+    double v = 0.0;
+    if (!trac0r::parse_decimal(text, &v) || v < lo || v > hi) {
         char range[64];
         std::snprintf(range, sizeof range, "[%g, %g]", lo, hi);
         throw UsageError(flag + ": expected a number in " + range + ", got '" + text + "'");
@@ -116,6 +108,21 @@ int run_main(const char* program, Body body) {
         std::fprintf(stderr, "%s: %s\n", program, e.what());
         return 1;
     }
+}
+
+// main for a program whose parse(argc, argv, options) returns false for
+// --help: prints usage then (exit 0), or runs run(options), under run_main.
+template <typename Options, typename Parse, typename Run>
+int parse_and_run(const char* program, const char* usage, int argc, char** argv, Parse parse,
+                  Run run) {
+    return run_main(program, [&] {
+        Options o;
+        if (!parse(argc, argv, o)) {
+            std::fputs(usage, stdout);
+            return 0;
+        }
+        return run(o);
+    });
 }
 
 }  // namespace trac0r_bench

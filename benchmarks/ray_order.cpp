@@ -203,12 +203,5 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    return trac0r_bench::run_main("bench_ray_order", [&] {
-        Options o;
-        if (!parse(argc, argv, o)) {
-            std::fputs(usage, stdout);
-            return 0;
-        }
-        return run(o);
-    });
+    return trac0r_bench::parse_and_run<Options>("bench_ray_order", usage, argc, argv, parse, run);
 }

@@ -3,7 +3,6 @@
 #include "trac0r/input_checks.h"
 
 #include <cerrno>
-#include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <map>
@@ -82,11 +81,8 @@ Examples:
 namespace {
 
 long parse_integer(const std::string& flag, const std::string& text, long min, long max) {
-    errno = 0;
-    char* end = nullptr;
-    const long value = std::strtol(text.c_str(), &end, 10);
-    if (!trac0r::is_decimal_number(text) || *end != '\0' || errno != 0 || value < min ||
-        value > max) {
+    long value = 0;
+    if (!trac0r::parse_decimal(text, &value) || value < min || value > max) {
         throw UsageError(flag + ": expected an integer in [" + std::to_string(min) + ", " +
                          std::to_string(max) + "], got '" + text + "'");
     }
@@ -94,11 +90,8 @@ long parse_integer(const std::string& flag, const std::string& text, long min, l
 }
 
 double parse_positive(const std::string& flag, const std::string& text) {
-    errno = 0;
-    char* end = nullptr;
-    const double value = std::strtod(text.c_str(), &end);
-    if (!trac0r::is_decimal_number(text) || *end != '\0' || errno != 0 || !std::isfinite(value) ||
-        !(value > 0.0)) {
+    double value = 0.0;
+    if (!trac0r::parse_decimal(text, &value) || !(value > 0.0)) {
         throw UsageError(flag + ": expected a positive number, got '" + text + "'");
     }
     return value;
