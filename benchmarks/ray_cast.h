@@ -36,12 +36,14 @@ struct RaySets {
                      // cosine-distributed direction about the facing normal
 };
 
-// The two sets for `packed` seen by `camera` (seed fixed, so every backend
-// and structure casts the same rays).
+// The two sets for `packed` seen by `scene_camera` (in the scene's units;
+// seed fixed, so every backend and structure casts the same rays), in the
+// packed scene's coordinates (PackedScene::scale).
 inline RaySets make_ray_sets(const trac0r::PackedScene& packed,
-                             const trac0r::kernel::CameraRecord& camera) {
+                             const trac0r::kernel::CameraRecord& scene_camera) {
     using namespace trac0r::kernel;
     const SceneView scene = packed.view();
+    const CameraRecord camera = trac0r::scaled_camera(scene_camera, packed.scale);
     const t0_u32 pixels = camera.size.x * camera.size.y;
     RaySets sets;
     sets.primary.origins.resize(pixels);

@@ -98,6 +98,22 @@ TEST_CASE("accumulated_mean of varied samples matches a double reference", "[ker
     }
 }
 
+TEST_CASE("a finite sample whose sum would overflow is dropped and counted, never NaN",
+          "[kernel][accumulate]") {
+    AccumPixel px = empty_pixel();
+    const float big = 2e38f;  // finite; two of them are not
+    accumulate_sample(&px, make_float3(big, 1.0f, 1.0f));
+    const AccumPixel before = px;
+    accumulate_sample(&px, make_float3(big, 1.0f, 1.0f));
+    CHECK(px.moments.w == 1.0f);
+    CHECK(px.moments.z == 1.0f);
+    CHECK(px.sum == before.sum);
+    CHECK(px.compensation == before.compensation);
+    const float3 mean = accumulated_mean(px);
+    CHECK(mean.x == big);
+    CHECK(mean.y == 1.0f);
+}
+
 TEST_CASE("non-finite samples are counted and dropped", "[kernel][accumulate]") {
     AccumPixel px = empty_pixel();
     accumulate_sample(&px, make_float3(1.0f, 2.0f, 3.0f));

@@ -271,6 +271,23 @@ TEST_CASE("scene errors: a missing required key", "[scene_loader]") {
                StartsWith("test.json: /shapes/0/file: required key is missing"));
 }
 
+TEST_CASE("scene errors: an emission beyond what a pixel's float sum can hold", "[scene_loader]") {
+    // Each number is a finite float, but colour x emittance is 1e39 (or
+    // above 1e30, where a pixel's sum of up to 2^24 samples could overflow).
+    CHECK_THAT(scene_error(with_material(
+                   R"("m": {"type": "emissive", "color": [10, 1, 1], "emittance": 1e38})")),
+               StartsWith("test.json: /materials/m/emittance: the colour times the emittance "
+                          "is 1e+39 in a channel, above 1e30"));
+    CHECK_THAT(scene_error(with_material(
+                   R"("m": {"type": "diffuse", "color": [0.5, 1, 1], "emittance": 2e30})")),
+               StartsWith("test.json: /materials/m/emittance: the colour times the emittance "
+                          "is 2e+30"));
+    // 1e30 itself is accepted.
+    const Scene scene =
+        parse(with_material(R"("m": {"type": "emissive", "color": [1, 1, 1], "emittance": 1e30})"));
+    CHECK(material_named(scene, "m").emittance == 1e30f);
+}
+
 TEST_CASE("scene errors: a value of the wrong JSON type", "[scene_loader]") {
     CHECK_THAT(scene_error("[1, 2]"), StartsWith("test.json: (top level): expected a JSON object"));
     CHECK_THAT(scene_error(with_shape(R"({"type": "plane", "size": "big", "material": "white"})")),

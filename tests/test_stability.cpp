@@ -606,6 +606,27 @@ TEST_CASE("the same scene scaled by 1e-4, 1 and 1e4 renders the same image withi
     }
 }
 
+TEST_CASE("a scene scaled by 1e-15 or 1e15 is packed at ordinary size and renders the same image",
+          "[stability][scale]") {
+    // The triangle test's distance has a numerator that grows as the cube
+    // of the scene's size: at 1e13 it overflowed, at 1e-13 it was flushed
+    // to zero, and the whole image was black. pack_scene multiplies such a
+    // scene by a power of two (exact) to ordinary size, and the backends
+    // the camera with it; a scene of ordinary size keeps its floats.
+    CHECK(pack_scene(room(1e-4f, glm::vec3(0.0f))).scale == 1.0f);
+    CHECK(pack_scene(room(1e4f, glm::vec3(1e5f))).scale == 1.0f);
+    const float scales[] = {1e-15f, 1e15f};
+    for (float s : scales) {
+        CAPTURE(s);
+        const float packed_scale = pack_scene(room(s, glm::vec3(0.0f))).scale;
+        int exponent = 0;
+        CHECK(std::frexp(packed_scale, &exponent) == 0.5f);  // a power of two
+        CHECK(std::fabs(std::log2(static_cast<double>(s) * packed_scale)) < 4.0);
+        const std::unique_ptr<Renderer> scaled = render_room(s, glm::vec3(0.0f), 6);
+        require_same_image(room_at_origin(), *scaled, 0.1);
+    }
+}
+
 TEST_CASE("a scene moved to 1e5 renders as at the origin: no acne, no light leaks",
           "[stability][scale]") {
     // At 1e5 a float's spacing is 2^-7: the room is 256 of them across, the
@@ -721,8 +742,10 @@ TEST_CASE(
                     hit.t = 1.0f;
                     kernel::sample_triangle_barycentrics(kernel::rng_float(&rng),
                                                          kernel::rng_float(&rng), &hit.u, &hit.v);
-                    // Outward: away from the centre of the convex shape.
-                    const glm::vec3 to_triangle = glm::vec3(tri->v0) - centre;
+                    // Outward: away from the centre of the convex shape
+                    // (in the packed scene's coordinates: at 1e9 it is
+                    // scaled, PackedScene::scale).
+                    const glm::vec3 to_triangle = glm::vec3(tri->v0) - centre * packed.scale;
                     const glm::vec3 n = glm::dot(glm::vec3(tri->normal), to_triangle) > 0.0f
                                             ? glm::vec3(tri->normal)
                                             : -glm::vec3(tri->normal);
@@ -1334,6 +1357,16 @@ TEST_CASE(
         far.render.width = 32;
         far.render.height = 32;
         std::unique_ptr<Renderer> gpu = opencl(far, 6, room_frames);
+        require_same_image(room_at_origin(), *gpu, 0.1);
+    }
+    SECTION(
+        "scaled by 1e15 (packed at ordinary size, the camera scaled by the backend) as on "
+        "the CPU at scale 1") {
+        Scene huge = room(1e15f, glm::vec3(0.0f));
+        huge.render.width = 32;
+        huge.render.height = 32;
+        std::unique_ptr<Renderer> gpu = opencl(huge, 6, room_frames);
+        REQUIRE(gpu->packed().scale != 1.0f);
         require_same_image(room_at_origin(), *gpu, 0.1);
     }
 }

@@ -148,7 +148,15 @@ TEST_CASE("a scene with nothing that emits renders, with a warning", "[cli]") {
     const Run r = run_viewer(scene + " --headless --width 8 --height 6 --spp 1 --output cli_d.png");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
-    CHECK(r.output.find("warning: no shape has an emissive material") != std::string::npos);
+    CHECK(r.output.find("warning: no shape emits light") != std::string::npos);
+    // An emissive material of colour 0 emits nothing either.
+    const std::string black_lamp = "cli_black_lamp.json";
+    std::ofstream(black_lamp) << R"({"materials": {"lamp": {"type": "emissive", "color": [0, 0, 0],
+        "emittance": 15}}, "shapes": [{"type": "plane", "size": [1, 1], "material": "lamp"}]})";
+    const Run black =
+        run_viewer(black_lamp + " --headless --width 8 --height 6 --spp 1 --output cli_d.png");
+    CHECK(black.exit_code == 0);
+    CHECK(black.output.find("warning: no shape emits light") != std::string::npos);
     const Run lit = run_viewer("--headless --width 8 --height 6 --spp 1 --output cli_d.png");
     CHECK(lit.exit_code == 0);
     CHECK(lit.output.find("warning") == std::string::npos);
@@ -179,6 +187,9 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
     const Case cases[] = {
         {"--headless --spp abc --output x.png", "--spp: expected an integer"},
         {"--headless --spp 0 --output x.png", "--spp: expected an integer in [1"},
+        // A pixel's sample count is a float, exact to 2^24 (Renderer::max_frames).
+        {"--headless --spp 16777217 --output x.png",
+         "--spp: expected an integer in [1, 16777216], got '16777217'"},
         {"--frobnicate", "--frobnicate: unknown option"},
         {"--headless --output x.jpg", "expected a .png or .pfm"},
         {"--headless", "give --output FILE"},

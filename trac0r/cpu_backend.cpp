@@ -37,6 +37,7 @@ void CpuBackend::reset(int width, int height) {
 void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t seed,
                               std::uint32_t frame, int max_depth) {
     const kernel::SceneView view = scene_.view();
+    const kernel::CameraRecord scaled = scaled_camera(camera, scene_.scale);
     const long pixel_count = static_cast<long>(accum_.size());
     kernel::AccumPixel* accum = accum_.data();
     // Tiles of 8 x 8 pixels, handed out dynamically: neighbouring rays
@@ -56,7 +57,7 @@ void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t 
             const long y0 = (t / tiles_x) * tile;
             const long x1 = std::min(x0 + tile, width);
             const long y1 = std::min(y0 + tile, height);
-            kernel::render_tile(&view, camera, accum, seed, frame, max_depth, x0, y0, x1, y1,
+            kernel::render_tile(&view, scaled, accum, seed, frame, max_depth, x0, y0, x1, y1,
                                 width);
         }
     }

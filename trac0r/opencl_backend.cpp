@@ -219,6 +219,7 @@ std::vector<OpenClDeviceInfo> list_opencl_devices() {
 
 struct OpenClBackend::State {
     SharedDevice* device = nullptr;
+    float scale = 1.0f;  // the packed scene's (scaled_camera)
     cl_kernel kernel = nullptr;
     cl_mem triangles = nullptr;
     cl_mem shapes = nullptr;
@@ -260,6 +261,7 @@ double OpenClBackend::last_build_seconds() const { return state_->build_seconds;
 std::string OpenClBackend::build_options() const { return state_->options; }
 
 void OpenClBackend::set_scene(const PackedScene& scene) {
+    state_->scale = scene.scale;
     const std::string options = opencl_build_options(scene.features);
     cl_program program = nullptr;
     {
@@ -333,12 +335,13 @@ void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64
     const cl_ulong seed_arg = seed;
     const cl_uint frame_arg = frame;
     const cl_int depth_arg = max_depth;
+    const kernel::CameraRecord scaled = scaled_camera(camera, state_->scale);
     check(clSetKernelArg(k, 0, sizeof(cl_mem), &state_->triangles), "clSetKernelArg(0)");
     check(clSetKernelArg(k, 1, sizeof(cl_mem), &state_->shapes), "clSetKernelArg(1)");
     check(clSetKernelArg(k, 2, sizeof(cl_mem), &state_->materials), "clSetKernelArg(2)");
     check(clSetKernelArg(k, 3, sizeof(cl_mem), &state_->nodes), "clSetKernelArg(3)");
     check(clSetKernelArg(k, 4, sizeof(cl_uint), &state_->shape_count), "clSetKernelArg(4)");
-    check(clSetKernelArg(k, 5, sizeof camera, &camera), "clSetKernelArg(5)");
+    check(clSetKernelArg(k, 5, sizeof scaled, &scaled), "clSetKernelArg(5)");
     check(clSetKernelArg(k, 6, sizeof(cl_mem), &state_->accum), "clSetKernelArg(6)");
     check(clSetKernelArg(k, 7, sizeof seed_arg, &seed_arg), "clSetKernelArg(7)");
     check(clSetKernelArg(k, 8, sizeof frame_arg, &frame_arg), "clSetKernelArg(8)");

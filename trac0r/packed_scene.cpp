@@ -5,6 +5,7 @@
 #include "trac0r/kernel/intersect.h"
 #include "trac0r/kernel/material.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -169,20 +170,68 @@ void pack_lights(PackedScene& packed, const std::vector<std::uint32_t>& packed_i
     }
 }
 
+// The power of two that brings the scene's largest vertex coordinate
+// (magnitude) to between 1 and 2, or 1 where it is within 2^-20 to 2^20
+// already (every scene of ordinary size: its floats stay as they are).
+// The triangle test's distance has a numerator that grows as the cube of
+// the scene's size (kernel/intersect.h): a scene 1e13 across overflowed
+// it and one 1e-13 across was flushed to zero, and neither was ever hit.
+// Multiplying every coordinate by a power of two is exact, and the kernel
+// is the same at every scale (its offsets and thresholds are relative,
+// and a light's density per area times a squared distance does not
+// change), so a scaled scene renders as the same scene at ordinary size.
+float coordinate_scale(double magnitude) {
+    if (!(magnitude > 0.0) ||
+        (magnitude >= std::ldexp(1.0, -20) && magnitude <= std::ldexp(1.0, 20))) {
+        return 1.0f;
+    }
+    int exponent = 0;
+    std::frexp(magnitude, &exponent);  // magnitude = f 2^exponent, f in [0.5, 1)
+    return std::ldexp(1.0f, 1 - exponent);
+}
+
 }  // namespace
 
 PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
     PackedScene packed;
+    double magnitude = 0.0;
+    for (const Shape& shape : scene.shapes) {
+        for (const Triangle& t : shape.triangles) {
+            if (usable_triangle(t)) {
+                for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
+                    magnitude = std::max({magnitude, std::fabs(double(v.x)), std::fabs(double(v.y)),
+                                          std::fabs(double(v.z))});
+                }
+            }
+        }
+    }
+    packed.scale = coordinate_scale(magnitude);
+    // The triangles times packed.scale, where it is not 1 (reserved once:
+    // usable points into it).
+    std::vector<Triangle> scaled;
+    if (packed.scale != 1.0f) {
+        std::size_t count = 0;
+        for (const Shape& shape : scene.shapes) {
+            count += shape.triangles.size();
+        }
+        scaled.reserve(count);
+    }
     std::vector<UsableTriangle> usable;
     std::vector<bool> material_used(scene.materials.size(), false);
     for (std::size_t s = 0; s < scene.shapes.size(); ++s) {
         const Shape& shape = scene.shapes[s];
-        for (const Triangle& t : shape.triangles) {
-            if (!usable_triangle(t)) {
+        for (const Triangle& original : shape.triangles) {
+            const Triangle* t = &original;
+            if (packed.scale != 1.0f) {
+                scaled.emplace_back(original.v0 * packed.scale, original.v1 * packed.scale,
+                                    original.v2 * packed.scale);
+                t = &scaled.back();
+            }
+            if (!usable_triangle(*t)) {
                 ++packed.dropped_degenerate_triangles;
                 continue;
             }
-            usable.push_back({&t, static_cast<unsigned>(shape.material), static_cast<unsigned>(s)});
+            usable.push_back({t, static_cast<unsigned>(shape.material), static_cast<unsigned>(s)});
             material_used[static_cast<std::size_t>(shape.material)] = true;
         }
     }
@@ -215,7 +264,8 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
             continue;
         }
         packed.features |= material_feature(material.type);
-        if (material.emittance > 0.0f) {
+        if (material.emittance > 0.0f &&
+            std::max({material.color.x, material.color.y, material.color.z}) > 0.0f) {
             packed.features |= T0_FEATURE_EMITTANCE;
         }
     }
@@ -224,6 +274,12 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
         packed.features |= T0_FEATURE_NEE;
     }
     return packed;
+}
+
+kernel::CameraRecord scaled_camera(const kernel::CameraRecord& camera, float scale) {
+    kernel::CameraRecord c = camera;
+    c.position = glm::vec4(glm::vec3(c.position) * scale, c.position.w);
+    return c;
 }
 
 Accel parse_accel(const std::string& name) {

@@ -54,6 +54,12 @@ struct PackedScene {
     std::vector<kernel::LightRecord> lights;
     std::uint32_t features = 0;
     std::size_t dropped_degenerate_triangles = 0;  // zero-area or non-finite
+    // The power of two every coordinate was multiplied by: 1 for a scene of
+    // ordinary size (largest coordinate within 2^-20 to 2^20), else the one
+    // that brings it to between 1 and 2 (pack_scene). The backends multiply
+    // the camera's position by it (scaled_camera); code that runs the kernel
+    // on a packed scene itself must do the same.
+    float scale = 1.0f;
 
     kernel::SceneView view() const;
 };
@@ -64,6 +70,10 @@ struct PackedScene {
 // Degenerate triangles (zero area, non-finite vertices) can never be hit
 // and are left out.
 PackedScene pack_scene(const Scene& scene, const PackOptions& options = PackOptions());
+
+// The camera in a packed scene's coordinates: its position times the
+// scene's scale (PackedScene::scale; its directions and extents stay).
+kernel::CameraRecord scaled_camera(const kernel::CameraRecord& camera, float scale);
 
 // "flat", "bvh", "auto" and back; parse_accel throws std::invalid_argument.
 Accel parse_accel(const std::string& name);

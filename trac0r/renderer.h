@@ -29,6 +29,12 @@ class Renderer {
     int width() const { return scene_.render.width; }
     int height() const { return scene_.render.height; }
     std::uint32_t frames() const { return frame_; }
+    // The most frames (samples a pixel) an accumulation holds: a pixel's
+    // sample count is a float (kernel::AccumPixel::moments.z), exact to
+    // 2^24, past which it stops growing and the mean would drift. Callers
+    // stop there (the viewer's batch mode and window, and --spp's range).
+    static const std::uint32_t max_frames = 1u << 24;
+    bool full() const { return frame_ >= max_frames; }
 
     void set_camera(const Camera& camera);  // restarts accumulation
     void restart();

@@ -23,6 +23,7 @@
 // | material.color         | [3]     | required; in [0, 1] (emissive: >= 0)    |                 |
 // | material.emittance     | number  | emissive: required, > 0                 |                 |
 // |                        |         | diffuse: optional, >= 0                 | 0               |
+// |                        |         | colour x emittance <= 1e30 per channel  |                 |
 // | material.roughness     | number  | glossy only, in [0, 1]                  | 0               |
 // | material.ior           | number  | glass only, > 0                         | 1.5             |
 // | shapes                 | array   | required, non-empty                     |                 |
@@ -50,6 +51,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -438,6 +440,24 @@ void read_material_parameters(const ObjectReader& o, Material& m) {
     }
 }
 
+// The most a material may emit in a channel (colour times emittance): a
+// pixel sums up to 2^24 samples in float, each the emission times a path's
+// weights, and the sum must stay finite (FLT_MAX is 3.4e38).
+const double max_emitted_radiance = static_cast<double>(1e30f);  // as the loader reads 1e30
+
+void check_emission(const ObjectReader& o, const Material& m) {
+    const double emitted =
+        static_cast<double>(m.emittance) * std::max({m.color.x, m.color.y, m.color.z});
+    if (emitted > max_emitted_radiance) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.3g", emitted);
+        fail(o.at("emittance"), "the colour times the emittance is " + std::string(text) +
+                                    " in a channel, above 1e30, the most the renderer can "
+                                    "sum over a pixel's samples in float: scale the "
+                                    "scene's emittances down");
+    }
+}
+
 Material read_material(const std::string& name, const json& value, const Location& at) {
     const ObjectReader o(value, at, "a material object");
     const std::vector<std::string> types = {"emissive", "diffuse", "glass", "glossy"};
@@ -446,6 +466,7 @@ Material read_material(const std::string& name, const json& value, const Locatio
     m.type = material_type_named(
         read_choice(o.required("type", "one of " + join(types, "\"")), o.at("type"), types));
     read_material_parameters(o, m);
+    check_emission(o, m);
     return m;
 }
 

@@ -163,6 +163,7 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
     const Clock::time_point start = Clock::now();
     long error_check = next_error_check(0);
     bool error_reached = false;
+    bool stopped_full = false;
     for (;;) {
         const double elapsed = seconds_since(start);
         const bool spp_done = target_spp > 0 && spp >= target_spp;
@@ -170,6 +171,14 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
         // At least one sample, however short the time: an image of none
         // would be black.
         if (spp > 0 && (spp_done || time_done || error_reached)) {
+            break;
+        }
+        if (renderer.full()) {
+            std::fprintf(stderr,
+                         "trac0r_viewer: stopped at %u spp, the most a pixel's sample count "
+                         "(a float) holds exactly\n",
+                         trac0r::Renderer::max_frames);
+            stopped_full = true;
             break;
         }
         renderer.render_frame();
@@ -208,8 +217,8 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
             std::fprintf(stderr,
                          "target error NOT reached: estimated relative MSE %.4g > %.4g "
                          "when the %s limit stopped the render (%ld spp, %.2f s)\n",
-                         last_estimate, options.target_error, spp_done_reason(options), spp,
-                         elapsed);
+                         last_estimate, options.target_error,
+                         stopped_full ? "16777216-spp" : spp_done_reason(options), spp, elapsed);
         }
     }
     save_outputs(renderer, options);

@@ -200,8 +200,9 @@ int main(int argc, char** argv) {
             // nothing else would say why the image stays black.
             if ((renderer->packed().features & T0_FEATURE_EMITTANCE) == 0u && !warned_dark) {
                 std::fprintf(stderr,
-                             "trac0r_viewer: warning: no shape has an emissive material, so "
-                             "nothing emits light and the image will be black\n");
+                             "trac0r_viewer: warning: no shape emits light (no material "
+                             "with an emittance and a colour above 0 is used), so the image "
+                             "will be black\n");
                 warned_dark = true;
             }
             return renderer;

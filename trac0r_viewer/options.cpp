@@ -1,6 +1,7 @@
 #include "options.h"
 
 #include "trac0r/input_checks.h"
+#include "trac0r/renderer.h"
 
 #include <cerrno>
 #include <cstdlib>
@@ -40,7 +41,9 @@ Rendering:
   --device N             OpenCL device index (see --list-devices)
   --list-devices         print the OpenCL platforms and devices, then exit
   --width W --height H   override the scene's resolution
-  --spp N                stop after N samples per pixel (window: pause there)
+  --spp N                stop after N samples per pixel (window: pause there;
+                         at most 16777216, where every render stops: a
+                         pixel's sample count is a float)
   --seconds S            stop after S seconds of rendering (window: pause there)
   --seed N               random seed (default 1); same seed, same image
   --max-depth D          maximum path length in vertices (default: the scene's)
@@ -126,7 +129,8 @@ Options parse_options(int argc, const char* const* argv) {
         {"--device", [&](auto f, auto v) { o.device = (int)parse_integer(f, v, 0, 1023); }},
         {"--width", [&](auto f, auto v) { o.width = (int)parse_integer(f, v, 1, 16384); }},
         {"--height", [&](auto f, auto v) { o.height = (int)parse_integer(f, v, 1, 16384); }},
-        {"--spp", [&](auto f, auto v) { o.spp = parse_integer(f, v, 1, 1L << 31); }},
+        {"--spp",
+         [&](auto f, auto v) { o.spp = parse_integer(f, v, 1, trac0r::Renderer::max_frames); }},
         {"--seconds", [&](auto f, auto v) { o.seconds = parse_positive(f, v); }},
         {"--output", [&](auto, auto v) { o.outputs.push_back(v); }},
         {"--benchmark",

@@ -101,7 +101,8 @@ bool RenderWorker::paused() const {
     if (full_stale_) {
         return false;
     }
-    const bool spp_done = settings_.spp_limit > 0 && full_->frames() >= settings_.spp_limit;
+    const bool spp_done =
+        (settings_.spp_limit > 0 && full_->frames() >= settings_.spp_limit) || full_->full();
     const bool time_done =
         settings_.seconds_limit > 0.0 && seconds_since(full_started_) >= settings_.seconds_limit;
     return spp_done || time_done;

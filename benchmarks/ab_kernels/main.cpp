@@ -130,8 +130,8 @@ int run(const Options& o) {
     pack.integrator = o.integrator;
     const trac0r::PackedScene packed = trac0r::pack_scene(scene, pack);
     const trac0r::kernel::SceneView view = packed.view();
-    const trac0r::kernel::CameraRecord camera =
-        trac0r::make_camera_record(scene.camera, o.width, o.height);
+    const trac0r::kernel::CameraRecord camera = trac0r::scaled_camera(
+        trac0r::make_camera_record(scene.camera, o.width, o.height), packed.scale);
     const std::size_t pixels =
         static_cast<std::size_t>(o.width) * static_cast<std::size_t>(o.height);
     std::vector<trac0r::kernel::AccumPixel> accum_a(pixels, trac0r::kernel::AccumPixel{});

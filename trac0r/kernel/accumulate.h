@@ -15,14 +15,18 @@ T0_INLINE int is_finite3(float3 c) {
 }
 
 T0_INLINE void accumulate_sample(T0_GLOBAL AccumPixel* px, float3 sample) {
-    if (!is_finite3(sample)) {
-        px->moments.w += 1.0f;
-        return;
-    }
     // Kahan: compensation carries the low-order bits each addition loses.
     const float3 y = sample - xyz(px->compensation);
     const float3 sum = xyz(px->sum);
     const float3 t = sum + y;
+    // A non-finite sample makes t non-finite, and so does a finite one
+    // whose sum a float cannot hold (an emission near FLT_MAX: the scene
+    // loader refuses more than 1e30): either is counted and dropped, never
+    // summed (inf - inf would make the compensation NaN). One test for both.
+    if (!is_finite3(t)) {
+        px->moments.w += 1.0f;
+        return;
+    }
     const float3 c = (t - sum) - y;
     px->sum = make_float4(t.x, t.y, t.z, 0.0f);
     px->compensation = make_float4(c.x, c.y, c.z, 0.0f);
