@@ -2,6 +2,7 @@
 
 #include "trac0r/projection.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
@@ -50,16 +51,31 @@ Font::~Font() {
 
 int Font::draw_panel(SDL_Renderer* renderer, const std::string& text, int x, int y) const {
     const SDL_Color white{235, 235, 235, 255};
-    // Wrap length 0: break at the newlines only.
-    SDL_Surface* surface = TTF_RenderUTF8_Blended_Wrapped(font_, text.c_str(), white, 0);
-    if (!surface) {
-        return 0;  // nothing drawable (empty text); the image is still shown
-    }
-    SDL_Texture* texture = SDL_CreateTextureFromSurface(renderer, surface);
     const int margin = 4;
     int out_w = 0;
     int out_h = 0;
     SDL_GetRendererOutputSize(renderer, &out_w, &out_h);
+    // Lines wider than the window (8 pixels off each edge) wrap at a space,
+    // so that a narrow window cuts nothing off (at least 120 pixels wide).
+    // Only then: SDL_ttf makes a wrapped panel as wide as the wrap length.
+    const int wrap = std::max(120, out_w - 2 * margin - 16);
+    int widest = 0;
+    for (std::size_t start = 0; start <= text.size();) {
+        const std::size_t end = std::min(text.find('\n', start), text.size());
+        int w = 0;
+        int h = 0;
+        if (TTF_SizeUTF8(font_, text.substr(start, end - start).c_str(), &w, &h) == 0) {
+            widest = std::max(widest, w);
+        }
+        start = end + 1;
+    }
+    // Wrap length 0: break at the newlines only.
+    SDL_Surface* surface = TTF_RenderUTF8_Blended_Wrapped(
+        font_, text.c_str(), white, widest > wrap ? static_cast<Uint32>(wrap) : 0u);
+    if (!surface) {
+        return 0;  // nothing drawable (empty text); the image is still shown
+    }
+    SDL_Texture* texture = SDL_CreateTextureFromSurface(renderer, surface);
     SDL_Rect panel{0, 0, surface->w + 2 * margin, surface->h + 2 * margin};
     panel.x = x >= 0 ? x : out_w + x - panel.w;
     panel.y = y >= 0 ? y : out_h + y - panel.h;
@@ -95,8 +111,12 @@ void draw_wireframes(const Window& window, const std::vector<trac0r::AABB>& boxe
 
 std::string overlay_text(const OverlayFigures& f) {
     const double fps = f.frame_seconds > 0.0 ? 1.0 / f.frame_seconds : 0.0;
-    std::string text = format("render   %.2f fps  %.0f ms/frame  %.2f Mpaths/s\n", fps,
-                              1e3 * f.frame_seconds, 1e-6 * fps * f.pixels);
+    // Paused, the last frame's rate would read as if it still rendered.
+    std::string text =
+        f.paused_by.empty()
+            ? format("render   %.2f fps  %.0f ms/frame  %.2f Mpaths/s\n", fps,
+                     1e3 * f.frame_seconds, 1e-6 * fps * f.pixels)
+            : format("render   paused at %ld spp (%s; R restarts)\n", f.spp, f.paused_by.c_str());
     if (f.preview_factor > 0) {
         text += format("samples  %ld spp (1/%d-resolution preview while moving)\n", f.spp,
                        f.preview_factor);

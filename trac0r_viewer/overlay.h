@@ -33,7 +33,8 @@ class Font {
 
     // Draws lines of text on a translucent dark panel whose top-left corner
     // is at (x, y); negative x or y measure from the right or bottom edge of
-    // the window. Returns the panel's height.
+    // the window. Lines wider than the window wrap at a space. Returns the
+    // panel's height.
     int draw_panel(SDL_Renderer* renderer, const std::string& text, int x, int y) const;
 
   private:
@@ -53,6 +54,7 @@ struct OverlayFigures {
     double relative_mse = 0.0;  // estimated; +inf when unknown (below 2 spp)
     long relative_mse_spp = 0;  // the samples per pixel it was estimated at
     int preview_factor = 0;     // 0: a full-resolution frame
+    std::string paused_by;      // WorkerFrame::paused_by
     std::string backend;
     std::string device;
     std::size_t triangles = 0;

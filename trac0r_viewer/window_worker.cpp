@@ -3,6 +3,7 @@
 #include "trac0r/noise.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <exception>
 #include <limits>
 
@@ -96,16 +97,23 @@ void RenderWorker::tell(const std::string& message) {
     messages_.push_back(message);
 }
 
-// --spp and --seconds: the image is done; nothing to do until a request.
-bool RenderWorker::paused() const {
-    if (full_stale_) {
-        return false;
+// --spp and --seconds (and the 2^24 samples a pixel's count holds): the
+// image is done; nothing to do until a request.
+bool RenderWorker::paused() const { return !full_stale_ && !pause_reason_.empty(); }
+
+std::string RenderWorker::pause_reason_now() const {
+    if (settings_.spp_limit > 0 && full_->frames() >= settings_.spp_limit) {
+        return "--spp " + std::to_string(settings_.spp_limit);
     }
-    const bool spp_done =
-        (settings_.spp_limit > 0 && full_->frames() >= settings_.spp_limit) || full_->full();
-    const bool time_done =
-        settings_.seconds_limit > 0.0 && seconds_since(full_started_) >= settings_.seconds_limit;
-    return spp_done || time_done;
+    if (full_->full()) {
+        return "the most a pixel's sample count holds";
+    }
+    if (settings_.seconds_limit > 0.0 && seconds_since(full_started_) >= settings_.seconds_limit) {
+        char text[64];
+        std::snprintf(text, sizeof text, "--seconds %g", settings_.seconds_limit);
+        return text;
+    }
+    return "";
 }
 
 void RenderWorker::run() {
@@ -203,6 +211,7 @@ void RenderWorker::render_full() {
         full_started_ = Clock::now();
         full_stale_ = false;
         last_estimate_spp_ = 0;
+        pause_reason_.clear();
     }
     const Clock::time_point start = Clock::now();
     full_->render_frame();
@@ -237,6 +246,10 @@ void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time
     frame.spp = renderer.frames();
     frame.preview = preview;
     frame.frame_seconds = seconds_since(start);
+    if (!preview) {
+        pause_reason_ = pause_reason_now();  // before noise_estimate, which asks paused()
+        frame.paused_by = pause_reason_;
+    }
     frame.relative_mse = preview ? std::numeric_limits<double>::infinity() : noise_estimate();
     frame.relative_mse_spp = preview ? 0 : last_estimate_spp_;
     frame.generation = applied_generation_;

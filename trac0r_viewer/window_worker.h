@@ -47,6 +47,9 @@ struct WorkerFrame {
     double relative_mse = 0.0;
     std::uint32_t relative_mse_spp = 0;
     std::uint64_t generation = 0;  // of the last request it reflects
+    // Why the worker stopped after this frame ("--spp 20"), until a
+    // request; empty while it goes on.
+    std::string paused_by;
     std::string backend;
     std::string device;
 };
@@ -102,6 +105,9 @@ class RenderWorker {
     std::uint64_t request(Change change);
     void run();
     bool paused() const;
+    // Why the accumulation is done now (publish decides it once a frame, so
+    // that the frame on screen and the pause agree); empty: not done.
+    std::string pause_reason_now() const;
     void apply(const Requests& requests);
     void change_backend(const std::string& name);
     void render_preview();
@@ -124,6 +130,7 @@ class RenderWorker {
     std::uint64_t applied_generation_ = 0;
     double last_estimate_ = 0.0;
     std::uint32_t last_estimate_spp_ = 0;  // 0: none since the last restart
+    std::string pause_reason_;             // of the last full frame (pause_reason_now)
     Clock::time_point last_estimate_time_;
     double last_estimate_cost_ = 0.0;  // seconds
 
