@@ -209,6 +209,7 @@ TEST_CASE("a bad --replay file is one message naming the line, before any window
     const ViewerRun r = run_viewer_process("--replay bad_replay.txt");
     CHECK(r.exit_code == 1);
     CHECK(r.err.find("bad_replay.txt:2: expected an SDL key name") != std::string::npos);
+    CHECK(r.err.find("got 'NoSuchKey'") != std::string::npos);  // the argument, not the line
     CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
     const ViewerRun missing = run_viewer_process("--replay no_such_replay.txt");
     CHECK(missing.exit_code == 1);

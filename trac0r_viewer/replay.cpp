@@ -23,14 +23,16 @@ std::string trim(const std::string& s) {
     return s.substr(first, last - first + 1);
 }
 
-// One line's reader: every failure names the file, the line and the text.
+// One line's reader: every failure names the file and the line, and then
+// the argument it could not read, or the whole line.
 class LineParser {
   public:
     LineParser(const std::string& origin, int line, const std::string& text)
         : where_(origin + ":" + std::to_string(line) + ": "), text_(text) {}
 
-    [[noreturn]] void fail(const std::string& what) const {
-        throw ReplayError(where_ + what + ", got '" + text_ + "'");
+    [[noreturn]] void fail(const std::string& what) const { fail_at(what, text_); }
+    [[noreturn]] void fail_at(const std::string& what, const std::string& got) const {
+        throw ReplayError(where_ + what + ", got '" + got + "'");
     }
 
     long integer(const std::string& argument, long min, long max) const {
@@ -38,8 +40,9 @@ class LineParser {
         long value = 0;
         std::string rest;
         if (!(in >> value) || (in >> rest) || value < min || value > max) {
-            fail("expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) +
-                 "]");
+            fail_at(
+                "expected an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]",
+                argument);
         }
         return value;
     }
@@ -47,7 +50,8 @@ class LineParser {
     long key(const std::string& name) const {
         const SDL_Keycode code = SDL_GetKeyFromName(name.c_str());
         if (name.empty() || code == SDLK_UNKNOWN) {
-            fail("expected an SDL key name (W, F1, Escape, Space, Left Shift, Keypad +, ...)");
+            fail_at("expected an SDL key name (W, F1, Escape, Space, Left Shift, Keypad +, ...)",
+                    name);
         }
         return code;
     }
@@ -57,7 +61,7 @@ class LineParser {
             {"left", SDL_BUTTON_LEFT}, {"middle", SDL_BUTTON_MIDDLE}, {"right", SDL_BUTTON_RIGHT}};
         const auto b = buttons.find(name);
         if (b == buttons.end()) {
-            fail("expected a mouse button: left, middle or right");
+            fail_at("expected a mouse button: left, middle or right", name);
         }
         return b->second;
     }
