@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "trac0r/cpu_backend.h"
+#include "trac0r/kernel/accumulate.h"
 #include "trac0r/noise.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
@@ -81,6 +82,22 @@ TEST_CASE("the noise estimate needs two samples per pixel", "[noise]") {
     REQUIRE(std::isinf(estimate_relative_mse(r.accumulator(), 32, 24)));
     r.render_frame();
     REQUIRE(std::isfinite(estimate_relative_mse(r.accumulator(), 32, 24)));
+}
+
+TEST_CASE("a luminance's squared deviations beyond float's range are reported as overflowed",
+          "[noise]") {
+    std::vector<kernel::AccumPixel> accum(4, kernel::AccumPixel{});
+    for (kernel::AccumPixel& p : accum) {
+        kernel::accumulate_sample(&p, kernel::make_float3(1.0f, 1.0f, 1.0f));
+        kernel::accumulate_sample(&p, kernel::make_float3(3.0f, 3.0f, 3.0f));
+    }
+    CHECK(std::isfinite(estimate_relative_mse(accum, 2, 2)));
+    CHECK_FALSE(noise_estimate_overflowed(accum));
+    // Finite samples of 1e25 and 0: squared deviations of 1e50.
+    kernel::accumulate_sample(&accum[3], kernel::make_float3(1e25f, 1e25f, 1e25f));
+    kernel::accumulate_sample(&accum[3], kernel::make_float3(0.0f, 0.0f, 0.0f));
+    CHECK(noise_estimate_overflowed(accum));
+    CHECK(std::isinf(estimate_relative_mse(accum, 2, 2)));
 }
 
 TEST_CASE("the noise estimate: variance of the mean over the neighbourhood's mean", "[noise]") {

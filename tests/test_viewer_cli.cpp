@@ -141,6 +141,27 @@ TEST_CASE("a time limit shorter than one frame still renders one sample", "[cli]
     CHECK(largest > 0.0f);  // the built-in scene's lamp, at least
 }
 
+TEST_CASE("--target-error on a scene whose noise estimate overflows stops with a message",
+          "[cli]") {
+    // Radiance 1e25 (the loader allows up to 1e30): squared deviations of
+    // 1e50 overflow the float moments, and the estimate can never fall.
+    const std::string scene = "cli_bright.json";
+    std::ofstream(scene) << R"({"camera": {"position": [0, 0, 0], "direction": [0, 0, 1]},
+        "materials": {"l": {"type": "emissive", "color": [1, 1, 1], "emittance": 1e25},
+                      "w": {"type": "diffuse", "color": [0.5, 0.5, 0.5]}},
+        "shapes": [{"type": "box", "size": [4, 4, 4], "material": "w"},
+                   {"type": "box", "size": [0.3, 0.3, 0.3], "position": [0.5, 0.5, 1.5],
+                    "material": "l"}]})";
+    const Run r = run_viewer(scene +
+                             " --headless --width 16 --height 12 --target-error 0.01 "
+                             "--output cli_bright.pfm");
+    INFO(r.output);
+    CHECK(r.exit_code == 1);
+    CHECK(r.output.find("--target-error cannot be reached: the noise estimate has overflowed") !=
+          std::string::npos);
+    CHECK(r.output.find("wrote cli_bright.pfm") != std::string::npos);
+}
+
 TEST_CASE("a scene with nothing that emits renders, with a warning", "[cli]") {
     const std::string scene = "cli_dark.json";
     std::ofstream(scene) << R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},

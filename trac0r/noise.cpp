@@ -75,6 +75,15 @@ std::vector<double> neighbourhood_means(const std::vector<kernel::AccumPixel>& a
 
 }  // namespace
 
+bool noise_estimate_overflowed(const std::vector<kernel::AccumPixel>& accumulator) {
+    for (const kernel::AccumPixel& p : accumulator) {
+        if (!std::isfinite(p.moments.y)) {
+            return true;
+        }
+    }
+    return false;
+}
+
 double estimate_relative_mse(const std::vector<kernel::AccumPixel>& accumulator, int width,
                              int height) {
     if (accumulator.empty() || accumulator.size() != static_cast<std::size_t>(width) * height) {

@@ -36,6 +36,12 @@ ImageError image_error(const Image& image, const Image& reference);
 double estimate_relative_mse(const std::vector<kernel::AccumPixel>& accumulator, int width,
                              int height);
 
+// Whether a pixel's sum of squared luminance deviations (a float,
+// AccumPixel::moments.y) has overflowed: samples beyond about 1e19, whose
+// squares a float cannot hold. The estimate is then infinite for good,
+// however long the render runs.
+bool noise_estimate_overflowed(const std::vector<kernel::AccumPixel>& accumulator);
+
 }  // namespace trac0r
 
 #endif

@@ -187,6 +187,19 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
         if (by_error && spp >= error_check) {
             error_reached = estimate() <= options.target_error;
             error_check = next_error_check(spp);
+            if (!error_reached && trac0r::noise_estimate_overflowed(renderer.accumulator())) {
+                // Would never stop: say so, keep what was rendered.
+                const double so_far = seconds_since(start);
+                progress.finish(spp, so_far, so_far > 0.0 ? spp * pixels / so_far : 0.0,
+                                last_estimate);
+                std::fprintf(stderr,
+                             "trac0r_viewer: --target-error cannot be reached: the noise "
+                             "estimate has overflowed (a pixel's squared deviations exceed "
+                             "float's range: radiance samples above about 1e19); give --spp "
+                             "or --seconds instead (the image so far is written)\n");
+                save_outputs(renderer, options);
+                return 1;
+            }
         }
         if (progress.due(spp, now, last_estimate)) {
             if (!by_error && spp >= 2) {
