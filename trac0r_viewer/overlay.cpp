@@ -118,7 +118,7 @@ std::string overlay_text(const OverlayFigures& f) {
                      1e3 * f.frame_seconds, 1e-6 * fps * f.pixels)
             : format("render   paused at %ld spp (%s; R restarts)\n", f.spp, f.paused_by.c_str());
     if (f.preview_factor > 0) {
-        text += format("samples  %ld spp (1/%d-resolution preview while moving)\n", f.spp,
+        text += format("samples  %ld spp (1/%d-resolution preview while moving, with NEE)\n", f.spp,
                        f.preview_factor);
     } else if (std::isfinite(f.relative_mse) && f.relative_mse_spp == f.spp) {
         text += format("samples  %ld spp  rel. MSE \u2248 %.3g\n", f.spp, f.relative_mse);

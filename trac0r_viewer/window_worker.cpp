@@ -188,9 +188,16 @@ void RenderWorker::render_preview() {
         scene.camera = camera_;
         scene.render.width /= preview_factor_;
         scene.render.height /= preview_factor_;
+        // Next-event estimation whatever the integrator: one naive sample
+        // a pixel finds the lamp by chance, and the moving view was black
+        // but for scattered dots; with a light sample at every diffuse hit
+        // it shows the lit room. Both converge to the same image, and the
+        // preview never accumulates.
+        trac0r::PackOptions pack = settings_.pack;
+        pack.integrator = trac0r::Integrator::nee;
         try {
             preview_ = std::make_unique<trac0r::Renderer>(
-                scene, make_backend_(full_->backend().name()), settings_.seed, settings_.pack);
+                scene, make_backend_(full_->backend().name()), settings_.seed, pack);
         } catch (const std::exception& e) {
             // Navigation still works, at full resolution.
             tell(std::string("no low-resolution preview while moving: ") + e.what());
