@@ -255,6 +255,14 @@ TEST_CASE("without a display: one message pointing to --headless, exit 1, no cra
         // A display that is set but not there (no X server on :64999).
         run_viewer_process("--width 32 --height 24",
                            "env -u WAYLAND_DISPLAY -u SDL_VIDEODRIVER DISPLAY=:64999"),
+        // A Wayland display that is not there: libwayland printed its own
+        // error line before SDL gave up.
+        run_viewer_process("--width 32 --height 24",
+                           "env -u DISPLAY -u SDL_VIDEODRIVER -u XDG_RUNTIME_DIR "
+                           "WAYLAND_DISPLAY=wayland-64999"),
+        run_viewer_process("--width 32 --height 24",
+                           "env -u DISPLAY -u SDL_VIDEODRIVER XDG_RUNTIME_DIR=/tmp "
+                           "WAYLAND_DISPLAY=wayland-64999"),
     };
     for (const trac0r_test::ViewerRun& r : runs) {
         CAPTURE(r.err);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include <sys/stat.h>
+
 namespace trac0r_viewer {
 
 namespace {
@@ -21,6 +23,22 @@ bool is_set(const char* variable) {
     return value && *value;
 }
 
+// Whether WAYLAND_DISPLAY names a socket that exists (an absolute path, or
+// a name in XDG_RUNTIME_DIR): where it does not, libwayland prints its own
+// error lines before SDL gives up on it.
+bool wayland_socket_exists() {
+    const std::string name = std::getenv("WAYLAND_DISPLAY");
+    std::string path = name;
+    if (name[0] != '/') {
+        if (!is_set("XDG_RUNTIME_DIR")) {
+            return false;
+        }
+        path = std::string(std::getenv("XDG_RUNTIME_DIR")) + "/" + name;
+    }
+    struct stat st;
+    return stat(path.c_str(), &st) == 0 && S_ISSOCK(st.st_mode);
+}
+
 // Without a display, SDL would try Wayland (which prints its own noise) and
 // then settle for its invisible "offscreen" driver: say so instead, unless
 // the user picked a driver with SDL_VIDEODRIVER.
@@ -30,7 +48,15 @@ void open_video() {
         throw WindowError(std::string("no display: DISPLAY and WAYLAND_DISPLAY are not set") +
                           no_display_advice);
     }
-    if (!driver_chosen && !is_set("WAYLAND_DISPLAY")) {
+    const bool wayland = is_set("WAYLAND_DISPLAY") && wayland_socket_exists();
+    if (!driver_chosen && is_set("WAYLAND_DISPLAY") && !wayland && !is_set("DISPLAY")) {
+        throw WindowError(
+            std::string("no display: WAYLAND_DISPLAY=") + std::getenv("WAYLAND_DISPLAY") +
+            " names no Wayland socket" +
+            (is_set("XDG_RUNTIME_DIR") ? " in XDG_RUNTIME_DIR" : " (XDG_RUNTIME_DIR is not set)") +
+            ", and DISPLAY is not set" + no_display_advice);
+    }
+    if (!driver_chosen && !wayland) {
         // Only X11 can work: an unreachable DISPLAY must not fall through to
         // Wayland's own error lines and SDL's offscreen driver.
         SDL_SetHint(SDL_HINT_VIDEODRIVER, "x11");
