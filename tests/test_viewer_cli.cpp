@@ -160,6 +160,16 @@ TEST_CASE("--target-error on a scene whose noise estimate overflows stops with a
     CHECK(r.output.find("--target-error cannot be reached: the noise estimate has overflowed") !=
           std::string::npos);
     CHECK(r.output.find("wrote cli_bright.pfm") != std::string::npos);
+    // With --spp (or --seconds) the render is bounded: it runs to the limit
+    // and says the estimate overflowed.
+    const Run bounded = run_viewer(scene +
+                                   " --headless --width 16 --height 12 --target-error 0.01 "
+                                   "--spp 20 --output cli_bright.pfm");
+    INFO(bounded.output);
+    CHECK(bounded.exit_code == 0);
+    CHECK(bounded.output.find("rendered 20 spp") != std::string::npos);
+    CHECK(bounded.output.find("target error NOT reached") != std::string::npos);
+    CHECK(bounded.output.find("the noise estimate has overflowed float") != std::string::npos);
 }
 
 TEST_CASE("a scene with nothing that emits renders, with a warning", "[cli]") {

@@ -170,9 +170,13 @@ void pack_lights(PackedScene& packed, const std::vector<std::uint32_t>& packed_i
     }
 }
 
-// The power of two that brings the scene's largest vertex coordinate
-// (magnitude) to between 1 and 2, or 1 where it is within 2^-20 to 2^20
-// already (every scene of ordinary size: its floats stay as they are).
+// The power of two that brings the scene's typical magnitude (the median
+// over its triangles of their largest coordinate) to between 1 and 2, or 1
+// where it is within 2^-20 to 2^20 already (every scene of ordinary size:
+// its floats stay as they are). The median, not the largest: one huge
+// backdrop must not shrink the rest of the scene below float's smallest
+// normal numbers (a room with a ground plane 1e15 wide rendered black); it
+// is the one left out of range instead, as before.
 // The triangle test's distance has a numerator that grows as the cube of
 // the scene's size (kernel/intersect.h): a scene 1e13 across overflowed
 // it and one 1e-13 across was flushed to zero, and neither was ever hit.
@@ -194,18 +198,26 @@ float coordinate_scale(double magnitude) {
 
 PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
     PackedScene packed;
-    double magnitude = 0.0;
+    std::vector<double> magnitudes;  // per usable triangle: its largest coordinate
     for (const Shape& shape : scene.shapes) {
         for (const Triangle& t : shape.triangles) {
             if (usable_triangle(t)) {
+                double m = 0.0;
                 for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
-                    magnitude = std::max({magnitude, std::fabs(double(v.x)), std::fabs(double(v.y)),
-                                          std::fabs(double(v.z))});
+                    m = std::max({m, std::fabs(double(v.x)), std::fabs(double(v.y)),
+                                  std::fabs(double(v.z))});
                 }
+                magnitudes.push_back(m);
             }
         }
     }
-    packed.scale = coordinate_scale(magnitude);
+    double typical = 0.0;
+    if (!magnitudes.empty()) {
+        const auto middle = magnitudes.begin() + static_cast<long>(magnitudes.size() / 2);
+        std::nth_element(magnitudes.begin(), middle, magnitudes.end());
+        typical = *middle;
+    }
+    packed.scale = coordinate_scale(typical);
     // The triangles times packed.scale, where it is not 1 (reserved once:
     // usable points into it).
     std::vector<Triangle> scaled;

@@ -187,8 +187,10 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
         if (by_error && spp >= error_check) {
             error_reached = estimate() <= options.target_error;
             error_check = next_error_check(spp);
-            if (!error_reached && trac0r::noise_estimate_overflowed(renderer.accumulator())) {
-                // Would never stop: say so, keep what was rendered.
+            // Would never stop unless --spp or --seconds bounds it: say so,
+            // keep what was rendered.
+            if (!error_reached && target_spp == 0 && options.seconds <= 0.0 &&
+                trac0r::noise_estimate_overflowed(renderer.accumulator())) {
                 const double so_far = seconds_since(start);
                 progress.finish(spp, so_far, so_far > 0.0 ? spp * pixels / so_far : 0.0,
                                 last_estimate);
@@ -229,9 +231,13 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
         } else {
             std::fprintf(stderr,
                          "target error NOT reached: estimated relative MSE %.4g > %.4g "
-                         "when the %s limit stopped the render (%ld spp, %.2f s)\n",
+                         "when the %s limit stopped the render (%ld spp, %.2f s)%s\n",
                          last_estimate, options.target_error,
-                         stopped_full ? "16777216-spp" : spp_done_reason(options), spp, elapsed);
+                         stopped_full ? "16777216-spp" : spp_done_reason(options), spp, elapsed,
+                         trac0r::noise_estimate_overflowed(renderer.accumulator())
+                             ? "; the noise estimate has overflowed float (radiance samples "
+                               "above about 1e19) and cannot fall"
+                             : "");
         }
     }
     save_outputs(renderer, options);
