@@ -625,15 +625,19 @@ TEST_CASE("a scene scaled by 1e-15 or 1e15 is packed at ordinary size and render
         const std::unique_ptr<Renderer> scaled = render_room(s, glm::vec3(0.0f), 6);
         require_same_image(room_at_origin(), *scaled, 0.1);
     }
-    // One huge shape does not decide the scale (the median triangle does):
-    // scaled to fit it, the room fell below float's smallest normals and
-    // the image was black. The slab lies outside the closed room.
+    // One huge shape does not decide the scale alone (the median triangle
+    // does, as far as the largest allows): scaled to bring the slab to 1,
+    // the room fell below float's smallest normals and the image was black.
+    // Now both fit: the slab within 2^38, the room about 2^-11. The slab
+    // lies outside the closed room.
     Scene with_slab = room(1.0f, glm::vec3(0.0f));
     with_slab.shapes.push_back(
         make_box(glm::vec3(0.0f, -1e3f, 0.0f), glm::vec3(0.0f), glm::vec3(1e15f, 1.0f, 1e15f), 0));
     with_slab.render.width = 32;
     with_slab.render.height = 32;
-    CHECK(pack_scene(with_slab).scale == 1.0f);
+    const float slab_scale = pack_scene(with_slab).scale;
+    CHECK(slab_scale * 5e14 <= std::ldexp(1.0, 38));
+    CHECK(slab_scale * 5e14 > std::ldexp(1.0, 36));  // no smaller than it must be
     const std::unique_ptr<Renderer> slab = render(with_slab, room_frames, 6);
     require_same_image(room_at_origin(), *slab, 0.1);
 }

@@ -170,28 +170,35 @@ void pack_lights(PackedScene& packed, const std::vector<std::uint32_t>& packed_i
     }
 }
 
-// The power of two that brings the scene's typical magnitude (the median
-// over its triangles of their largest coordinate) to between 1 and 2, or 1
-// where it is within 2^-20 to 2^20 already (every scene of ordinary size:
-// its floats stay as they are). The median, not the largest: one huge
-// backdrop must not shrink the rest of the scene below float's smallest
-// normal numbers (a room with a ground plane 1e15 wide rendered black); it
-// is the one left out of range instead, as before.
-// The triangle test's distance has a numerator that grows as the cube of
-// the scene's size (kernel/intersect.h): a scene 1e13 across overflowed
-// it and one 1e-13 across was flushed to zero, and neither was ever hit.
+// The power of two the packer multiplies a scene's coordinates by. The
+// triangle test's distance has a numerator that grows as the cube of the
+// scene's size (kernel/intersect.h): a scene 1e13 across overflowed it and
+// one 1e-13 across was flushed to zero, and neither was ever hit.
 // Multiplying every coordinate by a power of two is exact, and the kernel
-// is the same at every scale (its offsets and thresholds are relative,
-// and a light's density per area times a squared distance does not
-// change), so a scaled scene renders as the same scene at ordinary size.
-float coordinate_scale(double magnitude) {
-    if (!(magnitude > 0.0) ||
-        (magnitude >= std::ldexp(1.0, -20) && magnitude <= std::ldexp(1.0, 20))) {
+// is the same at every scale (its offsets and thresholds are relative, and
+// a light's density per area times a squared distance does not change), so
+// a scaled scene renders as the same scene at ordinary size.
+// 1 (the floats as they are) where the largest coordinate is at most 2^38
+// (2.7e11: the numerator stays below 24 (2 M)^3, far from FLT_MAX) and the
+// typical one (the median over the triangles of their largest coordinate)
+// at least 2^-40: every scene of ordinary size, and one with fine detail
+// too. Otherwise the power of two that brings the typical coordinate to
+// between 1 and 2, or less, so that the largest stays within 2^38: the
+// median, not the largest, decides, so that a huge backdrop does not shrink
+// the rest below float's smallest normals (a room beside a slab 1e15 wide
+// rendered black when the largest decided).
+float coordinate_scale(double typical, double largest) {
+    const double top = std::ldexp(1.0, 38);
+    if (!(typical > 0.0) || (largest <= top && typical >= std::ldexp(1.0, -40))) {
         return 1.0f;
     }
     int exponent = 0;
-    std::frexp(magnitude, &exponent);  // magnitude = f 2^exponent, f in [0.5, 1)
-    return std::ldexp(1.0f, 1 - exponent);
+    std::frexp(typical, &exponent);  // typical = f 2^exponent, f in [0.5, 1)
+    int power = 1 - exponent;
+    int largest_exponent = 0;
+    std::frexp(largest, &largest_exponent);  // largest < 2^largest_exponent
+    power = std::min(power, 38 - largest_exponent);
+    return std::ldexp(1.0f, power);
 }
 
 }  // namespace
@@ -212,12 +219,14 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
         }
     }
     double typical = 0.0;
+    double largest = 0.0;
     if (!magnitudes.empty()) {
+        largest = *std::max_element(magnitudes.begin(), magnitudes.end());
         const auto middle = magnitudes.begin() + static_cast<long>(magnitudes.size() / 2);
         std::nth_element(magnitudes.begin(), middle, magnitudes.end());
         typical = *middle;
     }
-    packed.scale = coordinate_scale(typical);
+    packed.scale = coordinate_scale(typical, largest);
     // The triangles times packed.scale, where it is not 1 (reserved once:
     // usable points into it).
     std::vector<Triangle> scaled;

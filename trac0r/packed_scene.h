@@ -55,9 +55,9 @@ struct PackedScene {
     std::uint32_t features = 0;
     std::size_t dropped_degenerate_triangles = 0;  // zero-area or non-finite
     // The power of two every coordinate was multiplied by: 1 for a scene of
-    // ordinary size (its triangles' median largest coordinate within 2^-20
-    // to 2^20), else the one that brings that to between 1 and 2
-    // (pack_scene). The backends multiply
+    // ordinary size, else the one that brings the median triangle's largest
+    // coordinate to between 1 and 2, or less where the largest must stay
+    // within 2^38 (pack_scene, coordinate_scale). The backends multiply
     // the camera's position by it (scaled_camera); code that runs the kernel
     // on a packed scene itself must do the same.
     float scale = 1.0f;
