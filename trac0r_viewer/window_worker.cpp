@@ -133,7 +133,12 @@ void RenderWorker::run() {
                 pending_.generation = requests.generation;
             }
             apply(requests);
-            if (requests.camera_changed && preview_factor_ > 1) {
+            if (paused()) {
+                // A request that changed nothing (a backend switch to the
+                // backend in use, or one that failed): the same image under
+                // the new generation, not one more sample past --spp.
+                publish(*full_, false, Clock::now());
+            } else if (requests.camera_changed && preview_factor_ > 1) {
                 render_preview();
             } else {
                 render_full();
