@@ -127,7 +127,10 @@ std::string overlay_text(const OverlayFigures& f) {
         text += format("samples  %ld spp  rel. MSE \u2248 %.3g at %ld spp\n", f.spp, f.relative_mse,
                        f.relative_mse_spp);
     } else {
-        text += format("samples  %ld spp  rel. MSE \u2248 ? (from 2 spp)\n", f.spp);
+        text +=
+            f.estimate_overflowed
+                ? format("samples  %ld spp  rel. MSE overflowed (radiance above ~1e19)\n", f.spp)
+                : format("samples  %ld spp  rel. MSE \u2248 ? (from 2 spp)\n", f.spp);
     }
     text += format("backend  %s: %s\n", f.backend.c_str(), f.device.c_str());
     text += format("scene    %zu triangles, %zu shapes, %dx%d\n", f.triangles, f.shapes, f.width,

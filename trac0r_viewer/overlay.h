@@ -51,10 +51,11 @@ struct OverlayFigures {
     double frame_seconds = 0.0;
     long pixels = 0;  // of that frame
     long spp = 0;
-    double relative_mse = 0.0;  // estimated; +inf when unknown (below 2 spp)
-    long relative_mse_spp = 0;  // the samples per pixel it was estimated at
-    int preview_factor = 0;     // 0: a full-resolution frame
-    std::string paused_by;      // WorkerFrame::paused_by
+    double relative_mse = 0.0;         // estimated; +inf when unknown (below 2 spp)
+    long relative_mse_spp = 0;         // the samples per pixel it was estimated at
+    int preview_factor = 0;            // 0: a full-resolution frame
+    std::string paused_by;             // WorkerFrame::paused_by
+    bool estimate_overflowed = false;  // WorkerFrame::estimate_overflowed
     std::string backend;
     std::string device;
     std::size_t triangles = 0;

@@ -377,6 +377,7 @@ OverlayFigures Session::figures() const {
     f.relative_mse = shown_.relative_mse;
     f.relative_mse_spp = shown_.relative_mse_spp;
     f.paused_by = shown_.paused_by;
+    f.estimate_overflowed = shown_.estimate_overflowed;
     f.preview_factor =
         shown_.preview ? window_.render_width() / std::max(1, shown_.image.width) : 0;
     f.backend = have_frame_ ? shown_.backend : options_.backend;

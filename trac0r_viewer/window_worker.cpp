@@ -3,6 +3,7 @@
 #include "trac0r/noise.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <limits>
@@ -264,6 +265,9 @@ void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time
     }
     frame.relative_mse = preview ? std::numeric_limits<double>::infinity() : noise_estimate();
     frame.relative_mse_spp = preview ? 0 : last_estimate_spp_;
+    frame.estimate_overflowed = !preview && std::isinf(frame.relative_mse) &&
+                                full_->frames() >= 2 &&
+                                trac0r::noise_estimate_overflowed(full_->accumulator());
     frame.generation = applied_generation_;
     frame.backend = renderer.backend().name();
     frame.device = renderer.backend().device();

@@ -50,6 +50,8 @@ struct WorkerFrame {
     // Why the worker stopped after this frame ("--spp 20"), until a
     // request; empty while it goes on.
     std::string paused_by;
+    // trac0r::noise_estimate_overflowed: the estimate is infinite for good.
+    bool estimate_overflowed = false;
     std::string backend;
     std::string device;
 };
