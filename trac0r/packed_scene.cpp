@@ -205,17 +205,18 @@ float coordinate_scale(double typical, double largest) {
 
 PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
     PackedScene packed;
+    std::vector<UsableTriangle> usable;
     std::vector<double> magnitudes;  // per usable triangle: its largest coordinate
-    for (const Shape& shape : scene.shapes) {
+    for (std::size_t s = 0; s < scene.shapes.size(); ++s) {
+        const Shape& shape = scene.shapes[s];
         for (const Triangle& t : shape.triangles) {
-            if (usable_triangle(t)) {
-                double m = 0.0;
-                for (const glm::vec3& v : {t.v0, t.v1, t.v2}) {
-                    m = std::max({m, std::fabs(double(v.x)), std::fabs(double(v.y)),
-                                  std::fabs(double(v.z))});
-                }
-                magnitudes.push_back(m);
+            if (!usable_triangle(t)) {
+                ++packed.dropped_degenerate_triangles;
+                continue;
             }
+            usable.push_back({&t, static_cast<unsigned>(shape.material), static_cast<unsigned>(s)});
+            magnitudes.push_back(
+                std::max({kernel::max_abs3(t.v0), kernel::max_abs3(t.v1), kernel::max_abs3(t.v2)}));
         }
     }
     double typical = 0.0;
@@ -227,34 +228,27 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
         typical = *middle;
     }
     packed.scale = coordinate_scale(typical, largest);
-    // The triangles times packed.scale, where it is not 1 (reserved once:
-    // usable points into it).
+    // The usable triangles times packed.scale, where it is not 1 (reserved
+    // once: usable points into it); one that the scaling made unusable is
+    // dropped as well.
     std::vector<Triangle> scaled;
     if (packed.scale != 1.0f) {
-        std::size_t count = 0;
-        for (const Shape& shape : scene.shapes) {
-            count += shape.triangles.size();
-        }
-        scaled.reserve(count);
-    }
-    std::vector<UsableTriangle> usable;
-    std::vector<bool> material_used(scene.materials.size(), false);
-    for (std::size_t s = 0; s < scene.shapes.size(); ++s) {
-        const Shape& shape = scene.shapes[s];
-        for (const Triangle& original : shape.triangles) {
-            const Triangle* t = &original;
-            if (packed.scale != 1.0f) {
-                scaled.emplace_back(original.v0 * packed.scale, original.v1 * packed.scale,
-                                    original.v2 * packed.scale);
-                t = &scaled.back();
-            }
-            if (!usable_triangle(*t)) {
+        scaled.reserve(usable.size());
+        std::vector<UsableTriangle> kept;
+        for (const UsableTriangle& u : usable) {
+            const Triangle& t = *u.triangle;
+            scaled.emplace_back(t.v0 * packed.scale, t.v1 * packed.scale, t.v2 * packed.scale);
+            if (!usable_triangle(scaled.back())) {
                 ++packed.dropped_degenerate_triangles;
                 continue;
             }
-            usable.push_back({t, static_cast<unsigned>(shape.material), static_cast<unsigned>(s)});
-            material_used[static_cast<std::size_t>(shape.material)] = true;
+            kept.push_back({&scaled.back(), u.material, u.shape});
         }
+        usable.swap(kept);
+    }
+    std::vector<bool> material_used(scene.materials.size(), false);
+    for (const UsableTriangle& u : usable) {
+        material_used[u.material] = true;
     }
     const bool use_bvh =
         !usable.empty() &&
