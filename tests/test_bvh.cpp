@@ -4,10 +4,13 @@
 
 #include "trac0r/bvh.h"
 #include "trac0r/cpu_backend.h"
+#include "trac0r/camera.h"
 #include "trac0r/kernel/intersect.h"
+#include "trac0r/kernel/trace.h"
 #include "trac0r/packed_scene.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
+#include "test_support.h"
 
 #include <algorithm>
 #include <cmath>
@@ -218,7 +221,109 @@ int same_hits(const Scene& scene, const std::vector<kernel::Ray>& rays) {
     return hits;
 }
 
+// What bundled_camera_hits saw: tiles whose camera rays shared their
+// leaves, tiles whose rays traversed the tree, and rays that hit.
+struct BundleCounts {
+    int bundled_tiles = 0;
+    int traversed_tiles = 0;
+    int hits = 0;
+};
+
+// Every camera ray of a width x height image of `scene`, made as
+// render_tile makes them (begin_pixel, frame 3), bundled by 8 x 8 tile as
+// render_tile bundles them: among its tile's leaves (camera_hit) it finds
+// the nearest hit that traverse_bvh finds, bit for bit.
+BundleCounts bundled_camera_hits(const Scene& scene, int width, int height) {
+    const PackedScene packed = pack_scene(scene, with(Accel::bvh));
+    const kernel::SceneView view = packed.view();
+    const kernel::CameraRecord camera =
+        scaled_camera(make_camera_record(scene.camera, width, height), packed.scale);
+    BundleCounts counts;
+    for (int y0 = 0; y0 < height; y0 += T0_TILE) {
+        for (int x0 = 0; x0 < width; x0 += T0_TILE) {
+            std::vector<kernel::PixelSample> samples;
+            kernel::RayBundle bundle;
+            kernel::bundle_start(&bundle, glm::vec3(camera.position));
+            for (int y = y0; y < std::min(y0 + T0_TILE, height); ++y) {
+                for (int x = x0; x < std::min(x0 + T0_TILE, width); ++x) {
+                    kernel::PixelSample s;
+                    kernel::begin_pixel(camera, static_cast<std::uint32_t>(y * width + x), 7, 3,
+                                        &s);
+                    if (!s.ray.any_parallel) {
+                        kernel::bundle_add(&bundle, s.ray.inv_direction);
+                    }
+                    samples.push_back(s);
+                }
+            }
+            kernel::LeafCandidate leaves[T0_BUNDLE_LEAVES];
+            const int count = kernel::bundle_finish_leaves(&view, &bundle, leaves);
+            (count >= 0 ? counts.bundled_tiles : counts.traversed_tiles) += 1;
+            for (const kernel::PixelSample& s : samples) {
+                const kernel::Hit a = kernel::camera_hit(&view, &s.ray, leaves, count);
+                const kernel::Hit b = kernel::traverse_bvh(&view, &s.ray, T0_NO_HIT, 0);
+                CAPTURE(x0, y0, count, b.t, s.ray.direction.x, s.ray.direction.y,
+                        s.ray.direction.z);
+                REQUIRE(a.triangle == b.triangle);
+                REQUIRE(bits_of(a.t) == bits_of(b.t));
+                REQUIRE(bits_of(a.u) == bits_of(b.u));
+                REQUIRE(bits_of(a.v) == bits_of(b.v));
+                counts.hits += b.triangle >= 0 ? 1 : 0;
+            }
+        }
+    }
+    return counts;
+}
+
 }  // namespace
+
+TEST_CASE("a tile's camera rays find their nearest hits among the leaves they share",
+          "[bvh][bundle]") {
+    // Odd sizes: tiles cut off at the right and bottom. The repository's
+    // scenes, then the Cornell box from views where tiles' rays have
+    // directions of both signs along two axes (the image's centre on an
+    // axis), along none (a diagonal view from a corner, a wide lens), and
+    // from inside the glass sphere.
+    struct View {
+        const char* what;
+        Scene scene;
+    };
+    std::vector<View> views;
+    for (const char* name : {"cornell.json", "cornell_diffuse.json", "mesh_demo.json"}) {
+        views.push_back({name, load_test_scene(name, 1, 1)});
+    }
+    Scene corner = builtin_scene();
+    corner.camera.position = glm::vec3(0.45f, 0.8f, -0.45f);
+    corner.camera.direction = glm::vec3(-1.0f, -0.7f, 1.1f);
+    corner.camera.vertical_fov = 120.0f;
+    views.push_back({"from a corner, 120 degrees", corner});
+    Scene inside = builtin_scene();
+    inside.camera.position = glm::vec3(0.0f, 0.1f, -0.3f);  // the glass sphere's centre
+    inside.camera.direction = glm::vec3(0.3f, 1.0f, 0.2f);
+    views.push_back({"inside the glass sphere", inside});
+    for (const View& v : views) {
+        CAPTURE(v.what);
+        const BundleCounts counts = bundled_camera_hits(v.scene, 157, 121);
+        CAPTURE(counts.bundled_tiles, counts.traversed_tiles, counts.hits);
+        // Most tiles share their leaves (at 157 x 121 a tile of the wide
+        // lens spans 8 degrees, and one in ten meets too many), and most
+        // rays meet something.
+        REQUIRE(counts.bundled_tiles > 5 * counts.traversed_tiles);
+        REQUIRE(counts.hits > 157 * 121 / 3);
+    }
+}
+
+TEST_CASE("tiles whose camera rays meet more leaves than a bundle holds traverse the tree",
+          "[bvh][bundle]") {
+    // An icosphere of 20,480 triangles filling the view: a tile's rays meet
+    // more than T0_BUNDLE_LEAVES leaves near its silhouette.
+    Scene scene = builtin_scene();
+    scene.shapes.push_back(make_icosphere(glm::vec3(0.0f, 0.31f, -0.6f), glm::vec3(0.0f), 0.25f, 5,
+                                          scene.shapes[0].material));
+    const BundleCounts counts = bundled_camera_hits(scene, 96, 72);
+    CAPTURE(counts.bundled_tiles, counts.traversed_tiles);
+    REQUIRE(counts.traversed_tiles > 0);
+    REQUIRE(counts.bundled_tiles > 0);
+}
 
 TEST_CASE("the BVH is a valid tree over every triangle", "[bvh]") {
     for (int count : {1, 2, 5, 100, 5000}) {

@@ -3,6 +3,7 @@
 // agree with the CPU backend's. A missing device fails these tests.
 #include <catch2/catch.hpp>
 
+#include "trac0r/camera.h"
 #include "trac0r/cpu_backend.h"
 #include "trac0r/kernel/accumulate.h"
 #include "trac0r/kernel/intersect.h"
@@ -15,6 +16,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <cstdio>
@@ -175,12 +177,6 @@ void require_cl(cl_int status, const char* what) {
     REQUIRE(status == CL_SUCCESS);
 }
 
-std::uint32_t bits_of(float f) {
-    std::uint32_t b;
-    std::memcpy(&b, &f, sizeof b);
-    return b;
-}
-
 }  // namespace
 
 TEST_CASE("the quarter turn and the ray offset give the same floats on OpenCL as in C++",
@@ -284,6 +280,130 @@ TEST_CASE("the quarter turn and the ray offset give the same floats on OpenCL as
         }
     }
     CHECK(move_mismatches == 0);
+}
+
+namespace {
+
+// The BVH program's camera hits, as render_frame finds them (a tile a
+// work-group, tile_camera_hit), and through the tree (intersect_scene),
+// per pixel (t, u, v, the triangle's bits), and each tile's leaf count.
+const char* const tile_hits_kernel_source = R"(
+__kernel void tile_hits(__global const TriangleRecord* triangles, __global const BvhNode* nodes,
+                        __global const TrianglePacket* packets, CameraRecord camera, ulong seed,
+                        uint frame, __global float4* bundled, __global float4* traversed,
+                        __global int* counts) {
+    const SceneView scene = scene_view(triangles, 0, 0, nodes, packets, 0, 0u, 0u);
+    __local float4 inverse[T0_TILE * T0_TILE];
+    __local LeafCandidate leaves[T0_BUNDLE_LEAVES];
+    __local int leaf_count;
+    PixelSample s;
+    uint pixel = 0u;
+    const int inside = tile_pixel(camera, seed, frame, &s, &pixel);
+    const Hit a = tile_camera_hit(&scene, camera, inside, &s.ray, inverse, leaves, &leaf_count);
+    if (inside) {
+        const Hit b = intersect_scene(&scene, &s.ray);
+        bundled[pixel] = (float4)(a.t, a.u, a.v, as_float(a.triangle));
+        traversed[pixel] = (float4)(b.t, b.u, b.v, as_float(b.triangle));
+    }
+    if (get_local_id(0) == 0u) {
+        counts[get_group_id(0)] = leaf_count;
+    }
+}
+)";
+
+}  // namespace
+
+TEST_CASE("a tile's camera rays find the same hits among their leaves on OpenCL", "[opencl]") {
+    // The Cornell box at an odd size (tiles cut off at the right and
+    // bottom), as the renderer packs it, on device 0's shared queue.
+    Scene scene = builtin_scene();
+    const int width = 157;
+    const int height = 121;
+    PackOptions options;
+    options.accel = Accel::bvh;
+    const PackedScene packed = pack_scene(scene, options);
+    const kernel::CameraRecord camera =
+        scaled_camera(make_camera_record(scene.camera, width, height), packed.scale);
+    const OpenClQueue cl = shared_opencl_queue(0);
+    cl_program program =
+        embedded_opencl_program(0, tile_hits_kernel_source, opencl_build_options(packed.features));
+    cl_int status = CL_SUCCESS;
+    cl_kernel kernel = clCreateKernel(program, "tile_hits", &status);
+    require_cl(status, "clCreateKernel");
+    auto upload = [&](const auto& v) {
+        cl_mem m = clCreateBuffer(cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                                  v.size() * sizeof(v[0]),
+                                  const_cast<void*>(static_cast<const void*>(v.data())), &status);
+        require_cl(status, "clCreateBuffer");
+        return m;
+    };
+    auto output = [&](std::size_t bytes) {
+        cl_mem m = clCreateBuffer(cl.context, CL_MEM_WRITE_ONLY, bytes, nullptr, &status);
+        require_cl(status, "clCreateBuffer");
+        return m;
+    };
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    const std::size_t tiles = static_cast<std::size_t>((width + T0_TILE - 1) / T0_TILE) *
+                              ((height + T0_TILE - 1) / T0_TILE);
+    cl_mem buffers[] = {upload(packed.triangles),
+                        upload(packed.nodes),
+                        upload(packed.packets),
+                        output(pixels * sizeof(glm::vec4)),
+                        output(pixels * sizeof(glm::vec4)),
+                        output(tiles * sizeof(cl_int))};
+    const cl_ulong seed = 7;
+    const cl_uint frame = 3;
+    for (cl_uint i = 0; i < 3; ++i) {
+        require_cl(clSetKernelArg(kernel, i, sizeof(cl_mem), &buffers[i]), "clSetKernelArg");
+    }
+    require_cl(clSetKernelArg(kernel, 3, sizeof camera, &camera), "clSetKernelArg");
+    require_cl(clSetKernelArg(kernel, 4, sizeof seed, &seed), "clSetKernelArg");
+    require_cl(clSetKernelArg(kernel, 5, sizeof frame, &frame), "clSetKernelArg");
+    for (cl_uint i = 3; i < 6; ++i) {
+        require_cl(clSetKernelArg(kernel, i + 3, sizeof(cl_mem), &buffers[i]), "clSetKernelArg");
+    }
+    const std::size_t local = T0_TILE * T0_TILE;
+    const std::size_t global = tiles * local;
+    require_cl(
+        clEnqueueNDRangeKernel(cl.queue, kernel, 1, nullptr, &global, &local, 0, nullptr, nullptr),
+        "clEnqueueNDRangeKernel");
+    std::vector<glm::vec4> bundled(pixels);
+    std::vector<glm::vec4> traversed(pixels);
+    std::vector<cl_int> counts(tiles);
+    require_cl(clEnqueueReadBuffer(cl.queue, buffers[3], CL_TRUE, 0, pixels * sizeof(glm::vec4),
+                                   bundled.data(), 0, nullptr, nullptr),
+               "clEnqueueReadBuffer");
+    require_cl(clEnqueueReadBuffer(cl.queue, buffers[4], CL_TRUE, 0, pixels * sizeof(glm::vec4),
+                                   traversed.data(), 0, nullptr, nullptr),
+               "clEnqueueReadBuffer");
+    require_cl(clEnqueueReadBuffer(cl.queue, buffers[5], CL_TRUE, 0, tiles * sizeof(cl_int),
+                                   counts.data(), 0, nullptr, nullptr),
+               "clEnqueueReadBuffer");
+    for (cl_mem m : buffers) {
+        clReleaseMemObject(m);
+    }
+    clReleaseKernel(kernel);
+
+    int mismatches = 0;
+    int hits = 0;
+    for (std::size_t i = 0; i < pixels; ++i) {
+        bool same = true;
+        for (int k = 0; k < 4; ++k) {
+            same = same && bits_of(bundled[i][k]) == bits_of(traversed[i][k]);
+        }
+        if (!same) {
+            UNSCOPED_INFO("pixel " << i << ": bundled t " << bundled[i].x << ", traversed t "
+                                   << traversed[i].x);
+            ++mismatches;
+        }
+        hits += bits_of(traversed[i].w) != 0xffffffffu ? 1 : 0;  // triangle -1: no hit
+    }
+    CHECK(mismatches == 0);
+    const auto bundled_tiles = std::count_if(
+        counts.begin(), counts.end(), [](cl_int c) { return c >= 0 && c <= T0_BUNDLE_LEAVES; });
+    CAPTURE(bundled_tiles, tiles, hits);
+    REQUIRE(bundled_tiles > static_cast<long>(tiles) * 9 / 10);
+    REQUIRE(hits > static_cast<int>(pixels) / 2);
 }
 
 TEST_CASE("an unknown device index is an error", "[opencl]") {

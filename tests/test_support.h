@@ -11,12 +11,21 @@
 #include "trac0r/scene_loader.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
 namespace trac0r {
+
+// A float's bits: equal floats compared bit for bit (0 and -0 apart).
+inline std::uint32_t bits_of(float f) {
+    std::uint32_t b;
+    std::memcpy(&b, &f, sizeof b);
+    return b;
+}
 
 // scenes/NAME from the source tree, rendered at width x height.
 inline Scene load_test_scene(const std::string& name, int width, int height) {

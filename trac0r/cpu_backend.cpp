@@ -40,12 +40,13 @@ void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t 
     const kernel::CameraRecord scaled = scaled_camera(camera, scene_.scale);
     const long pixel_count = static_cast<long>(accum_.size());
     kernel::AccumPixel* accum = accum_.data();
-    // Tiles of 8 x 8 pixels, handed out dynamically: neighbouring rays
-    // visit the same nodes and triangles (cache), and the image's regions
-    // differ a lot in cost (background against glass).
+    // Tiles of 8 x 8 pixels (T0_TILE), handed out dynamically: neighbouring
+    // rays visit the same nodes and triangles (cache), and with the BVH share
+    // the leaves their camera rays may enter (render_tile); and the image's
+    // regions differ a lot in cost (background against glass).
     const long width = static_cast<long>(camera.size.x);
     const long height = pixel_count / width;
-    const long tile = 8;
+    const long tile = T0_TILE;
     const long tiles_x = (width + tile - 1) / tile;
     const long tile_count = tiles_x * ((height + tile - 1) / tile);
 #pragma omp parallel num_threads(threads_)

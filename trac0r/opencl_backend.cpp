@@ -217,6 +217,9 @@ std::vector<OpenClDeviceInfo> list_opencl_devices() {
     return out;
 }
 
+// The BVH program's work-group: one tile of T0_TILE x T0_TILE pixels.
+const std::size_t kTileItems = T0_TILE * T0_TILE;
+
 struct OpenClBackend::State {
     SharedDevice* device = nullptr;
     float scale = 1.0f;  // the packed scene's (scaled_camera)
@@ -229,7 +232,7 @@ struct OpenClBackend::State {
     cl_mem lights = nullptr;
     cl_mem accum = nullptr;
     std::size_t pixels = 0;
-    std::size_t group = 0;  // the work-group size; 0: the driver's choice
+    bool bvh = false;  // the BVH's program: a tile a work-group
     cl_uint shape_count = 0;
     cl_uint light_count = 0;
     double build_seconds = 0.0;
@@ -276,23 +279,26 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
     state_->kernel = clCreateKernel(program, "render_frame", &status);
     check(status, "clCreateKernel(render_frame)");
     state_->options = options;
-    // Work-groups of 64 for the BVH's program (or the largest power of two
-    // the kernel allows, if less), the driver's choice for the flat list's.
-    // PoCL picks groups of thousands of work-items on a CPU and lays their
-    // private arrays out side by side: the BVH's traversal stack (1,184
-    // bytes a work-item; 1,152 when this was measured) then streams
-    // megabytes through the cache. With 64, BVH frames on cornell.json took
-    // 4.5 % less time on PoCL; the flat list, which has no such array, took
-    // 3 % more (bench_backends, alternated; README, "Performance").
-    state_->group = 0;
-    if ((scene.features & T0_FEATURE_BVH) != 0u) {
+    // The BVH's program renders a tile of 8 x 8 pixels a work-group of 64
+    // (render.cl), the flat list's a pixel a work-item in groups of the
+    // driver's choice. Groups of 64 also suit PoCL: it picks groups of
+    // thousands of work-items on a CPU and lays their private arrays out
+    // side by side, and the BVH's traversal stack (1,184 bytes a
+    // work-item) then streams megabytes through the cache; with 64, BVH
+    // frames on cornell.json took 4.5 % less time. The flat list, which
+    // has no such array, took 3 % more (bench_backends, alternated; README,
+    // "Performance").
+    state_->bvh = (scene.features & T0_FEATURE_BVH) != 0u;
+    if (state_->bvh) {
         std::size_t most = 0;
         check(clGetKernelWorkGroupInfo(state_->kernel, state_->device->device,
                                        CL_KERNEL_WORK_GROUP_SIZE, sizeof most, &most, nullptr),
               "clGetKernelWorkGroupInfo(CL_KERNEL_WORK_GROUP_SIZE)");
-        state_->group = 64;
-        while (state_->group > most && state_->group > 1) {
-            state_->group /= 2;
+        if (most < kTileItems) {
+            throw OpenClError("OpenCL device " + state_->device->description +
+                              " runs the BVH program in work-groups of at most " +
+                              std::to_string(most) + " work-items; it needs " +
+                              std::to_string(kTileItems) + " (one 8 x 8 tile): use --accel flat");
         }
     }
     // Uploaded once per scene change; a frame sends only its small arguments.
@@ -349,12 +355,20 @@ void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64
     check(clSetKernelArg(k, 10, sizeof(cl_mem), &state_->lights), "clSetKernelArg(10)");
     check(clSetKernelArg(k, 11, sizeof(cl_uint), &state_->light_count), "clSetKernelArg(11)");
     check(clSetKernelArg(k, 12, sizeof(cl_mem), &state_->packets), "clSetKernelArg(12)");
-    // The global size a multiple of 64 either way, which a driver choosing
-    // the groups itself can split evenly.
-    const std::size_t group = state_->group > 0 ? state_->group : 64;
-    const std::size_t global = (state_->pixels + group - 1) / group * group;
-    check(clEnqueueNDRangeKernel(state_->device->queue, k, 1, nullptr, &global,
-                                 state_->group > 0 ? &state_->group : nullptr, 0, nullptr, nullptr),
+    std::size_t global = 0;
+    const std::size_t* local = nullptr;  // the driver's choice
+    if (state_->bvh) {
+        const std::size_t tiles =
+            ((camera.size.x + T0_TILE - 1u) / T0_TILE) *
+            static_cast<std::size_t>((camera.size.y + T0_TILE - 1u) / T0_TILE);
+        global = tiles * kTileItems;
+        local = &kTileItems;
+    } else {
+        // A multiple of 64, which a driver choosing the groups can split evenly.
+        global = (state_->pixels + 63) / 64 * 64;
+    }
+    check(clEnqueueNDRangeKernel(state_->device->queue, k, 1, nullptr, &global, local, 0, nullptr,
+                                 nullptr),
           "clEnqueueNDRangeKernel(render_frame)");
     // A frame is done when render_frame returns, so timings are honest and
     // the queue never runs far ahead of the viewer.

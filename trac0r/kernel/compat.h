@@ -23,6 +23,7 @@
 #endif
 
 #define T0_GLOBAL __global
+#define T0_LOCAL __local
 #define T0_INLINE inline __attribute__((always_inline))
 // A rare path kept out of the hot code: on the CPU (compat.h below); PoCL
 // frames were 3 % slower with a call in the kernel than with it inline.
@@ -164,6 +165,7 @@ T0_INLINE void wide_store(t0_wide v, float* out) { vstore8(v, 0, out); }
 #endif
 
 #define T0_GLOBAL
+#define T0_LOCAL
 #define T0_INLINE inline
 #define T0_NOINLINE inline __attribute__((noinline))
 #define T0_HAVE_DOUBLE 1

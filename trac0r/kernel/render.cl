@@ -23,6 +23,55 @@ SceneView scene_view(__global const TriangleRecord* triangles, __global const Sh
     return scene;
 }
 
+// With the BVH a work-group renders a tile of T0_TILE x T0_TILE pixels
+// (the host launches them so), as the CPU backend's render_tile does:
+// tile_pixel makes the work-item's pixel's generator and camera ray, and
+// whether the pixel is in the image (the last tiles may be cut off).
+int tile_pixel(CameraRecord camera, ulong seed, uint frame, PixelSample* s, uint* pixel) {
+    const uint tile = (uint)get_group_id(0);
+    const uint item = (uint)get_local_id(0);
+    const uint x = tile % tiles_across(camera) * T0_TILE + item % T0_TILE;
+    const uint y = tile / tiles_across(camera) * T0_TILE + item / T0_TILE;
+    if (x >= camera.size.x || y >= camera.size.y) {
+        return 0;
+    }
+    *pixel = y * camera.size.x + x;
+    begin_pixel(camera, *pixel, seed, frame, s);
+    return 1;
+}
+
+// The nearest hit of the work-item's camera ray (where inside), from the
+// leaves that the tile's rays may enter, found once by the first work-item
+// (bundle_finish_leaves) into the group's local memory, or by traversal
+// where there are too many (camera_hit). Every work-item of the group calls
+// it (barriers); inverse, leaves and leaf_count are the group's.
+Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, const Ray* ray,
+                    __local float4* inverse, __local LeafCandidate* leaves,
+                    __local int* leaf_count) {
+    const uint item = (uint)get_local_id(0);
+    // xyz: the ray's inverse direction; w: 1 where it joins the bundle.
+    inverse[item] = inside ? (float4)(ray->inv_direction, ray->any_parallel ? 0.0f : 1.0f)
+                           : (float4)(0.0f);
+    barrier(CLK_LOCAL_MEM_FENCE);
+    if (item == 0u) {
+        RayBundle b;
+        bundle_start(&b, camera.position.xyz);
+        for (int i = 0; i < T0_TILE * T0_TILE; ++i) {
+            if (inverse[i].w != 0.0f) {
+                bundle_add(&b, inverse[i].xyz);
+            }
+        }
+        *leaf_count = bundle_finish_leaves(scene, &b, leaves);
+    }
+    barrier(CLK_LOCAL_MEM_FENCE);
+    Hit none;
+    none.t = T0_NO_HIT;
+    none.u = 0.0f;
+    none.v = 0.0f;
+    none.triangle = -1;
+    return inside ? camera_hit(scene, ray, leaves, *leaf_count) : none;
+}
+
 __kernel void render_frame(__global const TriangleRecord* triangles,
                            __global const ShapeRecord* shapes,
                            __global const MaterialRecord* materials, __global const BvhNode* nodes,
@@ -30,11 +79,25 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
                            ulong seed, uint frame, int max_depth,
                            __global const LightRecord* lights, uint light_count,
                            __global const TrianglePacket* packets) {
-    const uint pixel = (uint)get_global_id(0);
-    if (pixel >= camera.size.x * camera.size.y) {
-        return;
-    }
     const SceneView scene =
         scene_view(triangles, shapes, materials, nodes, packets, lights, shape_count, light_count);
-    render_pixel(&scene, camera, accum, pixel, seed, frame, max_depth);
+    if (!T0_HAS_FEATURE(&scene, T0_FEATURE_BVH)) {
+        // A pixel a work-item.
+        const uint pixel = (uint)get_global_id(0);
+        if (pixel < camera.size.x * camera.size.y) {
+            render_pixel(&scene, camera, accum, pixel, seed, frame, max_depth);
+        }
+        return;
+    }
+    // With the BVH, a tile a work-group (tile_camera_hit).
+    __local float4 inverse[T0_TILE * T0_TILE];
+    __local LeafCandidate leaves[T0_BUNDLE_LEAVES];
+    __local int leaf_count;
+    PixelSample s;
+    uint pixel = 0u;
+    const int inside = tile_pixel(camera, seed, frame, &s, &pixel);
+    const Hit first = tile_camera_hit(&scene, camera, inside, &s.ray, inverse, leaves, &leaf_count);
+    if (inside) {
+        accumulate_sample(&accum[pixel], trace_path_from(&scene, s.ray, first, max_depth, &s.rng));
+    }
 }

@@ -145,14 +145,19 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
 // a light; emission that the next scattered ray finds is then weighted by
 // MIS. Camera rays and rays after a mirror or glass bounce count emission
 // in full: nothing else could have found it.
-T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng* rng) {
+// trace_path_from starts from the camera ray's hit, found by the caller.
+T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int max_depth,
+                                 Rng* rng) {
     float3 radiance = float3_splat(0.0f);
     float3 throughput = float3_splat(1.0f);
     int lights_sampled = 0;    // whether the vertex this ray leaves sampled a light
     float scatter_pdf = 0.0f;  // the density with which that vertex picked this ray
+    Hit hit = first;
     for (int depth = 0; depth < max_depth; ++depth) {
         // Intersect: the nearest triangle, or the black background.
-        const Hit hit = intersect_scene(scene, &ray);
+        if (depth > 0) {
+            hit = intersect_scene(scene, &ray);
+        }
         if (hit.triangle < 0) {
             break;
         }
@@ -224,6 +229,10 @@ T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng*
     return radiance;
 }
 
+T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng* rng) {
+    return trace_path_from(scene, ray, intersect_scene(scene, &ray), max_depth, rng);
+}
+
 // A pixel's sample in two halves, so that a loop over pixels can make the
 // next pixel's random numbers and camera ray while this one's path runs:
 // begin_pixel seeds the pixel's generator and makes its camera ray,
@@ -246,6 +255,28 @@ T0_INLINE void begin_pixel(CameraRecord cam, t0_u32 pixel, t0_u64 seed, t0_u32 f
 T0_INLINE void finish_pixel(const SceneView* scene, T0_GLOBAL AccumPixel* accum, t0_u32 pixel,
                             int max_depth, PixelSample* s) {
     accumulate_sample(&accum[pixel], trace_path(scene, s->ray, max_depth, &s->rng));
+}
+
+// Tiles (T0_TILE, types.h) numbered row by row.
+T0_INLINE t0_u32 tiles_across(CameraRecord cam) { return (cam.size.x + T0_TILE - 1u) / T0_TILE; }
+
+// The leaves that the rays of bundle b may enter (bundle_leaves), or -1
+// where it cannot be used (no ray, no axis along which all have one sign,
+// or more leaves than T0_BUNDLE_LEAVES).
+T0_INLINE int bundle_finish_leaves(const SceneView* scene, RayBundle* b,
+                                   T0_LOCAL LeafCandidate* out) {
+    return bundle_finish(b) ? bundle_leaves(scene, b, out) : -1;
+}
+
+// A camera ray's nearest hit: among the `count` leaves of its tile
+// (count >= 0; a ray parallel to an axis was left out of the bundle), or
+// through the scene (count -1).
+T0_INLINE Hit camera_hit(const SceneView* scene, const Ray* ray,
+                         T0_LOCAL const LeafCandidate* leaves, int count) {
+    if (count >= 0 && !ray->any_parallel) {
+        return intersect_bundle_leaves(scene, leaves, count, ray);
+    }
+    return intersect_scene(scene, ray);
 }
 
 // One sample of one pixel in one frame, accumulated.
