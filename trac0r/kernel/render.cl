@@ -50,8 +50,8 @@ Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, con
                     __local int* leaf_count) {
     const uint item = (uint)get_local_id(0);
     // xyz: the ray's inverse direction; w: 1 where it joins the bundle.
-    inverse[item] = inside ? (float4)(ray->inv_direction, ray->any_parallel ? 0.0f : 1.0f)
-                           : (float4)(0.0f);
+    inverse[item] =
+        inside ? (float4)(ray->inv_direction, ray->any_parallel ? 0.0f : 1.0f) : (float4)(0.0f);
     barrier(CLK_LOCAL_MEM_FENCE);
     if (item == 0u) {
         RayBundle b;
