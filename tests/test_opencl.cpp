@@ -402,7 +402,8 @@ TEST_CASE("a tile's camera rays find the same hits among their leaves on OpenCL"
     const auto bundled_tiles = std::count_if(
         counts.begin(), counts.end(), [](cl_int c) { return c >= 0 && c <= T0_BUNDLE_LEAVES; });
     CAPTURE(bundled_tiles, tiles, hits);
-    REQUIRE(bundled_tiles > static_cast<long>(tiles) * 9 / 10);
+    // Most tiles share their leaves, as on the CPU (test_bvh).
+    REQUIRE(bundled_tiles > 5 * (static_cast<long>(tiles) - bundled_tiles));
     REQUIRE(hits > static_cast<int>(pixels) / 2);
 }
 

@@ -697,7 +697,7 @@ typedef struct LeafCandidate {
 } LeafCandidate;
 
 // The most leaves a bundle keeps; a bundle that meets more is not used.
-#define T0_BUNDLE_LEAVES 32
+#define T0_BUNDLE_LEAVES 16
 
 // Over the eight children of node n, for one usable axis of the bundle:
 // the least distance at which any of its rays meets each child's near
