@@ -293,20 +293,18 @@ __kernel void tile_hits(__global const TriangleRecord* triangles, __global const
                         uint frame, __global float4* bundled, __global float4* traversed,
                         __global int* counts) {
     const SceneView scene = scene_view(triangles, 0, 0, nodes, packets, 0, 0u, 0u);
-    __local float4 inverse[T0_TILE * T0_TILE];
-    __local LeafCandidate leaves[T0_BUNDLE_LEAVES];
-    __local int leaf_count;
+    __local TileShared shared;
     PixelSample s;
     uint pixel = 0u;
     const int inside = tile_pixel(camera, seed, frame, &s, &pixel);
-    const Hit a = tile_camera_hit(&scene, camera, inside, &s.ray, inverse, leaves, &leaf_count);
+    const Hit a = tile_camera_hit(&scene, camera, inside, &s.ray, &shared);
     if (inside) {
         const Hit b = intersect_scene(&scene, &s.ray);
         bundled[pixel] = (float4)(a.t, a.u, a.v, as_float(a.triangle));
         traversed[pixel] = (float4)(b.t, b.u, b.v, as_float(b.triangle));
     }
     if (get_local_id(0) == 0u) {
-        counts[get_group_id(0)] = leaf_count;
+        counts[get_group_id(0)] = shared.leaf_count;
     }
 }
 )";

@@ -40,16 +40,22 @@ int tile_pixel(CameraRecord camera, ulong seed, uint frame, PixelSample* s, uint
     return 1;
 }
 
+// What a work-group shares in local memory to find its tile's leaves.
+typedef struct TileShared {
+    float4 inverse[T0_TILE * T0_TILE];  // xyz: a ray's inverse direction; w: 1 if bundled
+    LeafCandidate leaves[T0_BUNDLE_LEAVES];
+    int leaf_count;
+} TileShared;
+
 // The nearest hit of the work-item's camera ray (where inside), from the
 // leaves that the tile's rays may enter, found once by the first work-item
 // (bundle_finish_leaves) into the group's local memory, or by traversal
 // where there are too many (camera_hit). Every work-item of the group calls
-// it (barriers); inverse, leaves and leaf_count are the group's.
+// it (barriers), with the group's `shared`.
 Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, const Ray* ray,
-                    __local float4* inverse, __local LeafCandidate* leaves,
-                    __local int* leaf_count) {
+                    __local TileShared* shared) {
     const uint item = (uint)get_local_id(0);
-    // xyz: the ray's inverse direction; w: 1 where it joins the bundle.
+    __local float4* inverse = shared->inverse;
     inverse[item] =
         inside ? (float4)(ray->inv_direction, ray->any_parallel ? 0.0f : 1.0f) : (float4)(0.0f);
     barrier(CLK_LOCAL_MEM_FENCE);
@@ -61,7 +67,7 @@ Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, con
                 bundle_add(&b, inverse[i].xyz);
             }
         }
-        *leaf_count = bundle_finish_leaves(scene, &b, leaves);
+        shared->leaf_count = bundle_finish_leaves(scene, &b, shared->leaves);
     }
     barrier(CLK_LOCAL_MEM_FENCE);
     Hit none;
@@ -69,7 +75,7 @@ Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, con
     none.u = 0.0f;
     none.v = 0.0f;
     none.triangle = -1;
-    return inside ? camera_hit(scene, ray, leaves, *leaf_count) : none;
+    return inside ? camera_hit(scene, ray, shared->leaves, shared->leaf_count) : none;
 }
 
 __kernel void render_frame(__global const TriangleRecord* triangles,
@@ -90,13 +96,11 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
         return;
     }
     // With the BVH, a tile a work-group (tile_camera_hit).
-    __local float4 inverse[T0_TILE * T0_TILE];
-    __local LeafCandidate leaves[T0_BUNDLE_LEAVES];
-    __local int leaf_count;
+    __local TileShared shared;
     PixelSample s;
     uint pixel = 0u;
     const int inside = tile_pixel(camera, seed, frame, &s, &pixel);
-    const Hit first = tile_camera_hit(&scene, camera, inside, &s.ray, inverse, leaves, &leaf_count);
+    const Hit first = tile_camera_hit(&scene, camera, inside, &s.ray, &shared);
     if (inside) {
         accumulate_sample(&accum[pixel], trace_path_from(&scene, s.ray, first, max_depth, &s.rng));
     }
