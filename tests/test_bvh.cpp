@@ -518,7 +518,7 @@ TEST_CASE("traversal of a BVH collapsed by levels finds the same hits", "[bvh]")
 
 TEST_CASE("flat and BVH renders of the Cornell box are the same image", "[bvh][render]") {
     Scene scene = builtin_scene();
-    scene.render.width = 48;
+    scene.render.width = 45;  // the last column of tiles 5 pixels wide
     scene.render.height = 36;
     auto render = [&](Accel accel, Integrator integrator) {
         PackOptions options = with(accel);

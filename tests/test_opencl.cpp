@@ -8,10 +8,12 @@
 #include "trac0r/kernel/accumulate.h"
 #include "trac0r/kernel/intersect.h"
 #include "trac0r/kernel/sampling.h"
+#include "trac0r/kernel/trace.h"
 #include "trac0r/opencl_backend.h"
 #include "trac0r/opencl_program.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
+#include "trac0r/shape.h"
 #include "test_support.h"
 
 #include <sys/wait.h>
@@ -80,7 +82,9 @@ TEST_CASE("a program is built once per feature mask and then reused", "[opencl]"
 // image), and most individual pixels must agree closely.
 // Both backends on the same structure (--accel auto may choose by backend).
 static void compare_backends(const std::string& name, Accel accel) {
-    const Scene scene = load_test_scene(name, 64, 48);
+    // An odd size: the last column and row of tiles (work-groups, with the
+    // BVH) cut off.
+    const Scene scene = load_test_scene(name, 61, 45);
     const int frames = 16;
     PackOptions options;
     options.accel = accel;
@@ -107,8 +111,8 @@ static void compare_backends(const std::string& name, Accel accel) {
         for (int bx = 0; bx < a.width; bx += block) {
             double la = 0.0, lb = 0.0, variance = 0.0;
             int n = 0;
-            for (int y = by; y < by + block; ++y) {
-                for (int x = bx; x < bx + block; ++x) {
+            for (int y = by; y < std::min(by + block, a.height); ++y) {
+                for (int x = bx; x < std::min(bx + block, a.width); ++x) {
                     const std::size_t i = static_cast<std::size_t>(y) * a.width + x;
                     la += kernel::luminance(a.pixels[i]);
                     lb += kernel::luminance(b.pixels[i]);
@@ -286,12 +290,13 @@ namespace {
 
 // The BVH program's camera hits, as render_frame finds them (a tile a
 // work-group, tile_camera_hit), and through the tree (intersect_scene),
-// per pixel (t, u, v, the triangle's bits), and each tile's leaf count.
+// per pixel (t, u, v, the triangle's bits), with the pixel's camera ray
+// direction and each tile's leaf count.
 const char* const tile_hits_kernel_source = R"(
 __kernel void tile_hits(__global const TriangleRecord* triangles, __global const BvhNode* nodes,
                         __global const TrianglePacket* packets, CameraRecord camera, ulong seed,
                         uint frame, __global float4* bundled, __global float4* traversed,
-                        __global int* counts) {
+                        __global float4* directions, __global int* counts) {
     const SceneView scene = scene_view(triangles, 0, 0, nodes, packets, 0, 0u, 0u);
     __local TileShared shared;
     PixelSample s;
@@ -302,6 +307,7 @@ __kernel void tile_hits(__global const TriangleRecord* triangles, __global const
         const Hit b = intersect_scene(&scene, &s.ray);
         bundled[pixel] = (float4)(a.t, a.u, a.v, as_float(a.triangle));
         traversed[pixel] = (float4)(b.t, b.u, b.v, as_float(b.triangle));
+        directions[pixel] = (float4)(s.ray.direction, 0.0f);
     }
     if (get_local_id(0) == 0u) {
         counts[get_group_id(0)] = shared.leaf_count;
@@ -309,14 +315,18 @@ __kernel void tile_hits(__global const TriangleRecord* triangles, __global const
 }
 )";
 
-}  // namespace
+struct DeviceTiles {
+    long bundled_tiles = 0;
+    long traversed_tiles = 0;
+    int hits = 0;
+};
 
-TEST_CASE("a tile's camera rays find the same hits among their leaves on OpenCL", "[opencl]") {
-    // The Cornell box at an odd size (tiles cut off at the right and
-    // bottom), as the renderer packs it, on device 0's shared queue.
-    Scene scene = builtin_scene();
-    const int width = 157;
-    const int height = 121;
+// Runs tile_hits over a width x height image of `scene` (packed with the
+// BVH) on device 0: every pixel written once, by the work-item of its own
+// tile (its ray is the host's begin_pixel ray, to within rounding), and
+// every camera ray's hit among its tile's leaves is its hit through the
+// tree, bit for bit.
+DeviceTiles device_tile_hits(const Scene& scene, int width, int height) {
     PackOptions options;
     options.accel = Accel::bvh;
     const PackedScene packed = pack_scene(scene, options);
@@ -335,20 +345,28 @@ TEST_CASE("a tile's camera rays find the same hits among their leaves on OpenCL"
         require_cl(status, "clCreateBuffer");
         return m;
     };
-    auto output = [&](std::size_t bytes) {
-        cl_mem m = clCreateBuffer(cl.context, CL_MEM_WRITE_ONLY, bytes, nullptr, &status);
+    // Outputs filled with a pattern no written value has (all bits set: a
+    // NaN distance; for the counts, a count above any bundle's).
+    auto output = [&](std::size_t bytes, cl_uint pattern) {
+        cl_mem m = clCreateBuffer(cl.context, CL_MEM_READ_WRITE, bytes, nullptr, &status);
         require_cl(status, "clCreateBuffer");
+        require_cl(clEnqueueFillBuffer(cl.queue, m, &pattern, sizeof pattern, 0, bytes, 0, nullptr,
+                                       nullptr),
+                   "clEnqueueFillBuffer");
         return m;
     };
     const std::size_t pixels = static_cast<std::size_t>(width) * height;
     const std::size_t tiles = static_cast<std::size_t>((width + T0_TILE - 1) / T0_TILE) *
                               ((height + T0_TILE - 1) / T0_TILE);
+    const cl_uint unwritten = 0xffffffffu;
+    const cl_uint unwritten_count = 0x7fffffffu;
     cl_mem buffers[] = {upload(packed.triangles),
                         upload(packed.nodes),
                         upload(packed.packets),
-                        output(pixels * sizeof(glm::vec4)),
-                        output(pixels * sizeof(glm::vec4)),
-                        output(tiles * sizeof(cl_int))};
+                        output(pixels * sizeof(glm::vec4), unwritten),
+                        output(pixels * sizeof(glm::vec4), unwritten),
+                        output(pixels * sizeof(glm::vec4), unwritten),
+                        output(tiles * sizeof(cl_int), unwritten_count)};
     const cl_ulong seed = 7;
     const cl_uint frame = 3;
     for (cl_uint i = 0; i < 3; ++i) {
@@ -357,7 +375,7 @@ TEST_CASE("a tile's camera rays find the same hits among their leaves on OpenCL"
     require_cl(clSetKernelArg(kernel, 3, sizeof camera, &camera), "clSetKernelArg");
     require_cl(clSetKernelArg(kernel, 4, sizeof seed, &seed), "clSetKernelArg");
     require_cl(clSetKernelArg(kernel, 5, sizeof frame, &frame), "clSetKernelArg");
-    for (cl_uint i = 3; i < 6; ++i) {
+    for (cl_uint i = 3; i < 7; ++i) {
         require_cl(clSetKernelArg(kernel, i + 3, sizeof(cl_mem), &buffers[i]), "clSetKernelArg");
     }
     const std::size_t local = T0_TILE * T0_TILE;
@@ -367,14 +385,16 @@ TEST_CASE("a tile's camera rays find the same hits among their leaves on OpenCL"
         "clEnqueueNDRangeKernel");
     std::vector<glm::vec4> bundled(pixels);
     std::vector<glm::vec4> traversed(pixels);
+    std::vector<glm::vec4> directions(pixels);
     std::vector<cl_int> counts(tiles);
-    require_cl(clEnqueueReadBuffer(cl.queue, buffers[3], CL_TRUE, 0, pixels * sizeof(glm::vec4),
-                                   bundled.data(), 0, nullptr, nullptr),
-               "clEnqueueReadBuffer");
-    require_cl(clEnqueueReadBuffer(cl.queue, buffers[4], CL_TRUE, 0, pixels * sizeof(glm::vec4),
-                                   traversed.data(), 0, nullptr, nullptr),
-               "clEnqueueReadBuffer");
-    require_cl(clEnqueueReadBuffer(cl.queue, buffers[5], CL_TRUE, 0, tiles * sizeof(cl_int),
+    std::vector<glm::vec4>* per_pixel[] = {&bundled, &traversed, &directions};
+    for (int k = 0; k < 3; ++k) {
+        require_cl(
+            clEnqueueReadBuffer(cl.queue, buffers[3 + k], CL_TRUE, 0, pixels * sizeof(glm::vec4),
+                                per_pixel[k]->data(), 0, nullptr, nullptr),
+            "clEnqueueReadBuffer");
+    }
+    require_cl(clEnqueueReadBuffer(cl.queue, buffers[6], CL_TRUE, 0, tiles * sizeof(cl_int),
                                    counts.data(), 0, nullptr, nullptr),
                "clEnqueueReadBuffer");
     for (cl_mem m : buffers) {
@@ -382,9 +402,21 @@ TEST_CASE("a tile's camera rays find the same hits among their leaves on OpenCL"
     }
     clReleaseKernel(kernel);
 
+    int unwritten_pixels = 0;
+    int misplaced = 0;
     int mismatches = 0;
-    int hits = 0;
+    DeviceTiles result;
     for (std::size_t i = 0; i < pixels; ++i) {
+        if (bits_of(traversed[i].x) == unwritten || bits_of(directions[i].x) == unwritten) {
+            ++unwritten_pixels;
+            continue;
+        }
+        kernel::PixelSample host;
+        kernel::begin_pixel(camera, static_cast<std::uint32_t>(i), seed, frame, &host);
+        if (glm::length(glm::vec3(directions[i]) - host.ray.direction) > 1e-5f) {
+            UNSCOPED_INFO("pixel " << i << ": the device's ray is not the pixel's");
+            ++misplaced;
+        }
         bool same = true;
         for (int k = 0; k < 4; ++k) {
             same = same && bits_of(bundled[i][k]) == bits_of(traversed[i][k]);
@@ -394,15 +426,37 @@ TEST_CASE("a tile's camera rays find the same hits among their leaves on OpenCL"
                                    << traversed[i].x);
             ++mismatches;
         }
-        hits += bits_of(traversed[i].w) != 0xffffffffu ? 1 : 0;  // triangle -1: no hit
+        result.hits += bits_of(traversed[i].w) != 0xffffffffu ? 1 : 0;  // triangle -1: no hit
     }
+    CHECK(unwritten_pixels == 0);
+    CHECK(misplaced == 0);
     CHECK(mismatches == 0);
-    const auto bundled_tiles = std::count_if(
-        counts.begin(), counts.end(), [](cl_int c) { return c >= 0 && c <= T0_BUNDLE_LEAVES; });
-    CAPTURE(bundled_tiles, tiles, hits);
-    // Most tiles share their leaves, as on the CPU (test_bvh).
-    REQUIRE(bundled_tiles > 5 * (static_cast<long>(tiles) - bundled_tiles));
-    REQUIRE(hits > static_cast<int>(pixels) / 2);
+    for (cl_int c : counts) {
+        CHECK(c >= -1);
+        CHECK(c <= T0_BUNDLE_LEAVES);
+        (c >= 0 ? result.bundled_tiles : result.traversed_tiles) += 1;
+    }
+    return result;
+}
+
+}  // namespace
+
+TEST_CASE("a tile's camera rays find the same hits among their leaves on OpenCL", "[opencl]") {
+    // The Cornell box at an odd size (tiles cut off at the right and
+    // bottom): most tiles share their leaves, as on the CPU (test_bvh).
+    const DeviceTiles cornell = device_tile_hits(builtin_scene(), 157, 121);
+    CAPTURE(cornell.bundled_tiles, cornell.traversed_tiles, cornell.hits);
+    REQUIRE(cornell.bundled_tiles > 5 * cornell.traversed_tiles);
+    REQUIRE(cornell.hits > 157 * 121 / 2);
+    // An icosphere of 20,480 triangles filling the view: tiles near its
+    // silhouette meet more leaves than a bundle holds and traverse.
+    Scene dense = builtin_scene();
+    dense.shapes.push_back(make_icosphere(glm::vec3(0.0f, 0.31f, -0.6f), glm::vec3(0.0f), 0.25f, 5,
+                                          dense.shapes[0].material));
+    const DeviceTiles sphere = device_tile_hits(dense, 96, 72);
+    CAPTURE(sphere.bundled_tiles, sphere.traversed_tiles);
+    REQUIRE(sphere.traversed_tiles > 0);
+    REQUIRE(sphere.bundled_tiles > 0);
 }
 
 TEST_CASE("an unknown device index is an error", "[opencl]") {

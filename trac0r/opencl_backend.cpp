@@ -2,6 +2,7 @@
 
 #include "trac0r/opencl_program.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -294,6 +295,11 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
         check(clGetKernelWorkGroupInfo(state_->kernel, state_->device->device,
                                        CL_KERNEL_WORK_GROUP_SIZE, sizeof most, &most, nullptr),
               "clGetKernelWorkGroupInfo(CL_KERNEL_WORK_GROUP_SIZE)");
+        std::size_t sizes[3] = {0, 0, 0};
+        check(clGetDeviceInfo(state_->device->device, CL_DEVICE_MAX_WORK_ITEM_SIZES, sizeof sizes,
+                              sizes, nullptr),
+              "clGetDeviceInfo(CL_DEVICE_MAX_WORK_ITEM_SIZES)");
+        most = std::min(most, sizes[0]);
         if (most < kTileItems) {
             throw OpenClError("OpenCL device " + state_->device->description +
                               " runs the BVH program in work-groups of at most " +

@@ -666,8 +666,10 @@ T0_INLINE void bundle_start(RayBundle* b, float3 origin) {
     b->rays = 0;
 }
 
-// Adds a ray that starts at b->origin, is not parallel to an axis
-// (Ray.any_parallel), and has inverse direction inv (Ray.inv_direction).
+// Adds a ray that starts at b->origin, bit for bit (the bounds are exact
+// only so: a tile's camera rays start at the camera's position), is not
+// parallel to an axis (Ray.any_parallel), and has inverse direction inv
+// (Ray.inv_direction).
 T0_INLINE void bundle_add(RayBundle* b, float3 inv) {
     if (b->rays == 0) {
         b->inv_min = inv;
@@ -782,9 +784,11 @@ T0_INLINE int bundle_leaves(const SceneView* scene, const RayBundle* b,
 // (bundle_leaves): traverse_bvh's hit, found without the tree. The leaves
 // are tested nearest bound first, up to the first whose bound is not below
 // the hit (as traverse_bvh pops its stack), each with traverse_bvh's packet
-// test: the same floats. Only where two triangles of different leaves are
-// hit at exactly the same distance (an edge they share) may the two pick
-// different ones, as they test the leaves in different orders.
+// test: the same floats. The two test the leaves in different orders, so
+// only where two triangles of different leaves are hit within rounding of
+// each other (an edge they share; a triangle in the face of its flat leaf
+// box, whose hit may lie an ulp before the box's entry) may they pick
+// different ones: both are hits there.
 T0_INLINE Hit intersect_bundle_leaves(const SceneView* scene, T0_LOCAL const LeafCandidate* leaves,
                                       int count, const Ray* ray) {
     Hit hit;
