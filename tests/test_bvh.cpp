@@ -314,12 +314,7 @@ TEST_CASE("a tile's camera rays find their nearest hits among the leaves they sh
 
 TEST_CASE("tiles whose camera rays meet more leaves than a bundle holds traverse the tree",
           "[bvh][bundle]") {
-    // An icosphere of 20,480 triangles filling the view: a tile's rays meet
-    // more than T0_BUNDLE_LEAVES leaves near its silhouette.
-    Scene scene = builtin_scene();
-    scene.shapes.push_back(make_icosphere(glm::vec3(0.0f, 0.31f, -0.6f), glm::vec3(0.0f), 0.25f, 5,
-                                          scene.shapes[0].material));
-    const BundleCounts counts = bundled_camera_hits(scene, 96, 72);
+    const BundleCounts counts = bundled_camera_hits(cornell_with_dense_sphere(), 96, 72);
     CAPTURE(counts.bundled_tiles, counts.traversed_tiles);
     REQUIRE(counts.traversed_tiles > 0);
     REQUIRE(counts.bundled_tiles > 0);

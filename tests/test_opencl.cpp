@@ -13,7 +13,6 @@
 #include "trac0r/opencl_program.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
-#include "trac0r/shape.h"
 #include "test_support.h"
 
 #include <sys/wait.h>
@@ -448,12 +447,8 @@ TEST_CASE("a tile's camera rays find the same hits among their leaves on OpenCL"
     CAPTURE(cornell.bundled_tiles, cornell.traversed_tiles, cornell.hits);
     REQUIRE(cornell.bundled_tiles > 5 * cornell.traversed_tiles);
     REQUIRE(cornell.hits > 157 * 121 / 2);
-    // An icosphere of 20,480 triangles filling the view: tiles near its
-    // silhouette meet more leaves than a bundle holds and traverse.
-    Scene dense = builtin_scene();
-    dense.shapes.push_back(make_icosphere(glm::vec3(0.0f, 0.31f, -0.6f), glm::vec3(0.0f), 0.25f, 5,
-                                          dense.shapes[0].material));
-    const DeviceTiles sphere = device_tile_hits(dense, 96, 72);
+    // Tiles that meet more leaves than a bundle holds traverse.
+    const DeviceTiles sphere = device_tile_hits(cornell_with_dense_sphere(), 96, 72);
     CAPTURE(sphere.bundled_tiles, sphere.traversed_tiles);
     REQUIRE(sphere.traversed_tiles > 0);
     REQUIRE(sphere.bundled_tiles > 0);

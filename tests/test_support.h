@@ -9,6 +9,7 @@
 #include "trac0r/opencl_backend.h"
 #include "trac0r/packed_scene.h"
 #include "trac0r/scene_loader.h"
+#include "trac0r/shape.h"
 
 #include <cmath>
 #include <cstdint>
@@ -32,6 +33,16 @@ inline Scene load_test_scene(const std::string& name, int width, int height) {
     Scene scene = load_scene_file(std::string(TRAC0R_SOURCE_DIR) + "/scenes/" + name);
     scene.render.width = width;
     scene.render.height = height;
+    return scene;
+}
+
+// The Cornell box with an icosphere of 20,480 triangles filling the view:
+// at 96 x 72 the camera rays of the tiles near its silhouette meet more
+// BVH leaves than a tile keeps (T0_BUNDLE_LEAVES), and traverse the tree.
+inline Scene cornell_with_dense_sphere() {
+    Scene scene = builtin_scene();
+    scene.shapes.push_back(make_icosphere(glm::vec3(0.0f, 0.31f, -0.6f), glm::vec3(0.0f), 0.25f, 5,
+                                          scene.shapes[0].material));
     return scene;
 }
 
