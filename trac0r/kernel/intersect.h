@@ -424,14 +424,20 @@ T0_INLINE int intersect_packet(T0_GLOBAL const TrianglePacket* p, const Ray* ray
     return hits;
 }
 
-// The thesis' structure: every shape's AABB, then its triangles. Nearest
-// hit below t_max; with any_hit, the first one found (shadow rays).
-T0_INLINE Hit traverse_flat(const SceneView* scene, const Ray* ray, float t_max, int any_hit) {
+// No hit yet: nothing nearer than t_max.
+T0_INLINE Hit no_hit(float t_max) {
     Hit hit;
     hit.t = t_max;
     hit.u = 0.0f;
     hit.v = 0.0f;
     hit.triangle = -1;
+    return hit;
+}
+
+// The thesis' structure: every shape's AABB, then its triangles. Nearest
+// hit below t_max; with any_hit, the first one found (shadow rays).
+T0_INLINE Hit traverse_flat(const SceneView* scene, const Ray* ray, float t_max, int any_hit) {
+    Hit hit = no_hit(t_max);
     for (t0_u32 s = 0; s < scene->shape_count; ++s) {
         T0_GLOBAL const ShapeRecord* shape = &scene->shapes[s];
         if (!intersect_aabb(xyz(shape->aabb_min), xyz(shape->aabb_max), *ray, hit.t)) {
@@ -564,11 +570,7 @@ T0_INLINE int leaf_hits(const SceneView* scene, t0_u32 packet, const Ray* ray, c
 // entry distances, farthest at the bottom; one is skipped if a hit has come
 // closer since.
 T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, int any_hit) {
-    Hit hit;
-    hit.t = t_max;
-    hit.u = 0.0f;
-    hit.v = 0.0f;
-    hit.triangle = -1;
+    Hit hit = no_hit(t_max);
     t0_u32 stack_child[T0_BVH_STACK_SIZE];
     float stack_entry[T0_BVH_STACK_SIZE];
     int top = 0;
@@ -648,14 +650,12 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
 }
 
 // Rays that share an origin (a tile's camera rays), bounded together:
-// per axis the least and the greatest of their inverse directions, and
-// whether the bounds may be used (every ray's component of one sign, none
+// per axis the least and the greatest of their inverse directions (none
 // parallel: Ray.any_parallel rays are left out of a bundle).
 typedef struct RayBundle {
     float3 origin;
     float3 inv_min;
     float3 inv_max;
-    int axis_usable[3];
     int rays;  // how many rays the bounds hold
 } RayBundle;
 
@@ -683,12 +683,10 @@ T0_INLINE void bundle_add(RayBundle* b, float3 inv) {
     ++b->rays;
 }
 
-// The bundle's axes whose inverse directions all have one sign.
-T0_INLINE int bundle_finish(RayBundle* b) {
-    b->axis_usable[0] = b->inv_min.x > 0.0f || b->inv_max.x < 0.0f;
-    b->axis_usable[1] = b->inv_min.y > 0.0f || b->inv_max.y < 0.0f;
-    b->axis_usable[2] = b->inv_min.z > 0.0f || b->inv_max.z < 0.0f;
-    return b->rays > 0 && (b->axis_usable[0] || b->axis_usable[1] || b->axis_usable[2]);
+// Whether the bounds along `axis` may be used: every ray's inverse
+// direction there of one sign.
+T0_INLINE int bundle_axis_usable(const RayBundle* b, int axis) {
+    return component3(b->inv_min, axis) > 0.0f || component3(b->inv_max, axis) < 0.0f;
 }
 
 // A leaf that some ray of a bundle may enter, and a lower bound of the
@@ -747,7 +745,7 @@ T0_INLINE int bundle_leaves(const SceneView* scene, const RayBundle* b,
         t0_wide entry = wide_splat(0.0f);
         t0_wide exit = wide_splat(T0_INFINITY);
         for (int axis = 0; axis < 3; ++axis) {
-            if (b->axis_usable[axis]) {
+            if (bundle_axis_usable(b, axis)) {
                 t0_wide near_lo;
                 t0_wide far_hi;
                 bundle_axis(n, b, axis, &near_lo, &far_hi);
@@ -780,6 +778,16 @@ T0_INLINE int bundle_leaves(const SceneView* scene, const RayBundle* b,
     return count;
 }
 
+// The leaves that the rays of bundle b may enter (bundle_leaves), or -1
+// where it cannot be used (no ray, no axis along which all have one sign,
+// or more leaves than T0_BUNDLE_LEAVES).
+T0_INLINE int bundle_finish_leaves(const SceneView* scene, const RayBundle* b,
+                                   T0_LOCAL LeafCandidate* out) {
+    const int usable =
+        bundle_axis_usable(b, 0) || bundle_axis_usable(b, 1) || bundle_axis_usable(b, 2);
+    return b->rays > 0 && usable ? bundle_leaves(scene, b, out) : -1;
+}
+
 // The nearest hit of a ray of a bundle among the bundle's leaves
 // (bundle_leaves): traverse_bvh's hit, found without the tree. The leaves
 // are tested nearest bound first, up to the first whose bound is not below
@@ -791,11 +799,7 @@ T0_INLINE int bundle_leaves(const SceneView* scene, const RayBundle* b,
 // different ones: both are hits there.
 T0_INLINE Hit intersect_bundle_leaves(const SceneView* scene, T0_LOCAL const LeafCandidate* leaves,
                                       int count, const Ray* ray) {
-    Hit hit;
-    hit.t = T0_NO_HIT;
-    hit.u = 0.0f;
-    hit.v = 0.0f;
-    hit.triangle = -1;
+    Hit hit = no_hit(T0_NO_HIT);
     const RayLanes lanes = make_ray_lanes(*ray);
     t0_lanes limit = lanes_splat(T0_NO_HIT);
     for (int k = 0; k < count && leaves[k].entry < hit.t; ++k) {

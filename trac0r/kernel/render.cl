@@ -70,12 +70,7 @@ Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, con
         shared->leaf_count = bundle_finish_leaves(scene, &b, shared->leaves);
     }
     barrier(CLK_LOCAL_MEM_FENCE);
-    Hit none;
-    none.t = T0_NO_HIT;
-    none.u = 0.0f;
-    none.v = 0.0f;
-    none.triangle = -1;
-    return inside ? camera_hit(scene, ray, shared->leaves, shared->leaf_count) : none;
+    return inside ? camera_hit(scene, ray, shared->leaves, shared->leaf_count) : no_hit(T0_NO_HIT);
 }
 
 __kernel void render_frame(__global const TriangleRecord* triangles,

@@ -21,10 +21,10 @@ T0_NAMESPACE_BEGIN
 inline bool render_tile_bundled(const SceneView* scene, CameraRecord cam, AccumPixel* accum,
                                 t0_u64 seed, t0_u32 frame, int max_depth, long x0, long y0, long x1,
                                 long y1, long width) {
-    PixelSample samples[T0_TILE * T0_TILE];
     if (!T0_HAS_FEATURE(scene, T0_FEATURE_BVH) || (x1 - x0) * (y1 - y0) > T0_TILE * T0_TILE) {
         return false;
     }
+    PixelSample samples[T0_TILE * T0_TILE];
     RayBundle bundle;
     bundle_start(&bundle, xyz(cam.position));
     int n = 0;

@@ -260,14 +260,6 @@ T0_INLINE void finish_pixel(const SceneView* scene, T0_GLOBAL AccumPixel* accum,
 // Tiles (T0_TILE, types.h) numbered row by row.
 T0_INLINE t0_u32 tiles_across(CameraRecord cam) { return (cam.size.x + T0_TILE - 1u) / T0_TILE; }
 
-// The leaves that the rays of bundle b may enter (bundle_leaves), or -1
-// where it cannot be used (no ray, no axis along which all have one sign,
-// or more leaves than T0_BUNDLE_LEAVES).
-T0_INLINE int bundle_finish_leaves(const SceneView* scene, RayBundle* b,
-                                   T0_LOCAL LeafCandidate* out) {
-    return bundle_finish(b) ? bundle_leaves(scene, b, out) : -1;
-}
-
 // A camera ray's nearest hit: among the `count` leaves of its tile
 // (count >= 0; a ray parallel to an axis was left out of the bundle), or
 // through the scene (count -1).
