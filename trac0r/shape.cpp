@@ -1,6 +1,6 @@
 #include "trac0r/shape.h"
 
-#include "trac0r/input_checks.h"
+#include "trac0r/obj_checker.h"
 
 #include <tiny_obj_loader.h>
 
@@ -8,14 +8,9 @@
 
 #include <algorithm>
 #include <array>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
-#include <cstring>
 #include <map>
 #include <istream>
-#include <sstream>
 #include <streambuf>
 #include <stdexcept>
 #include <utility>
@@ -146,266 +141,6 @@ Shape make_icosphere(const glm::vec3& position, const glm::vec3& orientation, fl
 
 namespace {
 
-// The OBJ checks that tinyobjloader leaves out: it reads "x", "nan" or a
-// missing coordinate as 0, "3.5" as the index 3, a face of two vertices as
-// nothing, an index past 2^31 as another index, and "0x1p0" as 0. Only v
-// and f lines are checked (the only ones the mesh uses); each error is
-// "path:line: ...". The checker also blanks comments out of the text,
-// which tinyobjloader refuses after a face ("zero value for face index"),
-// and then hands it the same text. Lines end in \n, \r\n or \r.
-class ObjChecker {
-  public:
-    explicit ObjChecker(const std::string& path) : path_(path) {}
-
-    // The file's text, its comments and unused statements blanked out,
-    // once every line is checked.
-    std::string checked_text() {
-        if (is_directory(path_)) {
-            throw std::runtime_error(path_ + ": cannot read OBJ mesh: it is a directory");
-        }
-        std::ifstream in(path_, std::ios::binary);
-        if (!in) {
-            throw std::runtime_error(path_ + ": cannot read OBJ mesh: " + std::strerror(errno));
-        }
-        // In one read: an iterator over the stream went a character at a
-        // time, 0.25 s of a 76-MB mesh.
-        std::ostringstream whole;
-        whole << in.rdbuf();
-        if (in.bad() || whole.bad()) {
-            throw std::runtime_error(path_ + ": cannot read OBJ mesh: a read error");
-        }
-        std::string text = whole.str();
-        // A UTF-8 byte-order mark, which some Windows tools write first.
-        if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) {
-            text.replace(0, 3, 3, ' ');
-        }
-        char* at = &text[0];
-        char* const end = at + text.size();
-        while (at < end) {
-            // memchr, not a loop: each byte of a large mesh is looked at
-            // here, for '#' and as a word.
-            char* line_end = static_cast<char*>(std::memchr(at, '\n', end - at));
-            line_end = line_end != nullptr ? line_end : end;
-            char* const cr = static_cast<char*>(std::memchr(at, '\r', line_end - at));
-            line_end = cr != nullptr ? cr : line_end;
-            ++line_number_;
-            check_line(at, line_end);
-            at = line_end;
-            if (at < end && *at == '\r') {
-                ++at;
-            }
-            if (at < end && *at == '\n') {
-                ++at;
-            }
-        }
-        if (largest_index_ > vertex_count_) {
-            fail_at(largest_index_line_, "face refers to vertex " + std::to_string(largest_index_) +
-                                             ", but the file has " + std::to_string(vertex_count_) +
-                                             " vertices");
-        }
-        return text;
-    }
-
-  private:
-    struct Word {
-        const char* begin;
-        const char* end;
-        std::string text() const { return std::string(begin, end); }
-    };
-
-    static bool is_blank(char c) { return c == ' ' || c == '\t'; }
-
-    [[noreturn]] void fail_at(long line, const std::string& message) const {
-        throw std::runtime_error(path_ + ":" + std::to_string(line) + ": " + message);
-    }
-
-    // The line [begin, end), its comment (from '#') blanked out first.
-    void check_line(char* begin, char* end) {
-        if (char* const hash = static_cast<char*>(std::memchr(begin, '#', end - begin))) {
-            std::fill(hash, end, ' ');
-            end = hash;
-        }
-        // tinyobjloader separates words by spaces and tabs only: other
-        // blanks become spaces, so that it reads the words checked here.
-        std::replace_if(
-            begin, end, [](char c) { return c == '\v' || c == '\f'; }, ' ');
-        words_.clear();
-        const char* at = begin;
-        while (at < end) {
-            while (at < end && is_blank(*at)) {
-                ++at;
-            }
-            const char* start = at;
-            while (at < end && !is_blank(*at)) {
-                ++at;
-            }
-            if (at > start) {
-                words_.push_back({start, at});
-                if (words_.size() == 1 && !is_keyword(words_[0], 'v') &&
-                    !is_keyword(words_[0], 'f')) {
-                    // A statement the mesh does not use: texture and normal
-                    // vertices stay (faces may refer to them), everything
-                    // else is blanked, so that tinyobjloader cannot refuse
-                    // or misread a line, point or curve the mesh never uses.
-                    if (!is_word(words_[0], "vt") && !is_word(words_[0], "vn")) {
-                        std::fill(begin, end, ' ');
-                    }
-                    return;
-                }
-            }
-        }
-        if (words_.empty()) {
-            return;
-        }
-        if (is_keyword(words_[0], 'v')) {
-            check_vertex();
-        } else {
-            check_face();
-        }
-    }
-
-    // Whether a decimal number is finite as a float, and as tinyobjloader
-    // reads it (mantissa times 5^exponent times 2^exponent in double: 0e500
-    // is 0 times infinity, NaN; 400 digits before the point overflow the
-    // mantissa): at most 39 significant digits before the point and an
-    // exponent within +-300, then finite when converted. Only numbers with
-    // an exponent or 39 significant digits are converted (FLT_MAX is 3.4e38).
-    static bool finite_in_float(const Word& w) {
-        const char* const exponent =
-            std::find_if(w.begin, w.end, [](char c) { return c == 'e' || c == 'E'; });
-        const char* const point = std::find(w.begin, exponent, '.');
-        const char* first_digit = *w.begin == '-' ? w.begin + 1 : w.begin;
-        while (first_digit < point && *first_digit == '0') {
-            ++first_digit;
-        }
-        const long integer_digits = point - first_digit;
-        if (integer_digits > 39) {
-            return false;
-        }
-        if (exponent == w.end) {
-            return integer_digits <= 38 || std::isfinite(std::strtof(w.begin, nullptr));
-        }
-        const char* digit = exponent + 1;
-        digit += digit < w.end && (*digit == '+' || *digit == '-') ? 1 : 0;
-        long value = 0;
-        for (; digit < w.end && value <= 300; ++digit) {
-            value = value * 10 + (*digit - '0');
-        }
-        return value <= 300 && std::isfinite(std::strtof(w.begin, nullptr));
-    }
-
-    static bool is_keyword(const Word& w, char keyword) {
-        return w.end - w.begin == 1 && *w.begin == keyword;
-    }
-
-    static bool is_word(const Word& w, const char* text) {
-        return static_cast<std::size_t>(w.end - w.begin) == std::strlen(text) &&
-               std::equal(w.begin, w.end, text);
-    }
-
-    // The word as the message shows it: cut short, control bytes escaped.
-    static std::string shown(const Word& w) { return printable(w.text(), 40); }
-
-    // x y z, and optionally w, a colour (r g b), or both, each a decimal
-    // number finite in float (one below float's smallest reads as 0,
-    // which is fine).
-    void check_vertex() {
-        const std::size_t values = words_.size() - 1;
-        if (values != 3 && values != 4 && values != 6 && values != 7) {
-            fail_at(line_number_,
-                    "expected a vertex as 'v x y z' (with an optional w, r g b, or both), got " +
-                        std::to_string(values) + " values");
-        }
-        for (std::size_t k = 1; k < words_.size(); ++k) {
-            const Word& w = words_[k];
-            if (!is_decimal_number(w.begin, w.end)) {
-                fail_at(line_number_,
-                        "expected a vertex coordinate as a decimal number, got '" + shown(w) + "'");
-            }
-            if (!finite_in_float(w)) {
-                fail_at(line_number_,
-                        "expected a vertex coordinate finite in float (below "
-                        "3.4e38, an exponent within +-300), got '" +
-                            shown(w) + "'");
-            }
-        }
-        ++vertex_count_;
-    }
-
-    // At least three vertex references v, v/vt, v//vn or v/vt/vn; v is an
-    // integer, from 1 up or (relative) from -1 down, of a vertex the file
-    // has.
-    void check_face() {
-        const std::size_t vertices = words_.size() - 1;
-        if (vertices < 3 || vertices > max_face_vertices) {
-            fail_at(line_number_, "expected a face of 3 to " + std::to_string(max_face_vertices) +
-                                      " vertices, got " + std::to_string(vertices));
-        }
-        for (std::size_t k = 1; k < words_.size(); ++k) {
-            const Word& w = words_[k];
-            // v, v/vt, v//vn or v/vt/vn: each index present a non-zero
-            // integer (vt and vn are not used, but tinyobjloader reads them).
-            const char* const slash1 = std::find(w.begin, w.end, '/');
-            const char* const slash2 = slash1 == w.end ? w.end : std::find(slash1 + 1, w.end, '/');
-            long index = 0;
-            bool valid = parse_index(w.begin, slash1, &index);
-            if (slash1 != w.end) {
-                long unused = 0;
-                const bool has_vt = slash2 > slash1 + 1;
-                valid = valid && (!has_vt || parse_index(slash1 + 1, slash2, &unused)) &&
-                        (slash2 != w.end || has_vt) &&
-                        (slash2 == w.end || parse_index(slash2 + 1, w.end, &unused));
-            }
-            if (!valid) {
-                fail_at(line_number_,
-                        "expected a face vertex as v, v/vt, v//vn or v/vt/vn, each "
-                        "a non-zero integer, got '" +
-                            shown(w) + "'");
-            }
-            if (index < 0 && -index > vertex_count_) {
-                fail_at(line_number_, "face refers to vertex " + std::to_string(index) +
-                                          " (counted back from the " +
-                                          std::to_string(vertex_count_) +
-                                          " vertices before it), before the first");
-            }
-            if (index > largest_index_) {
-                largest_index_ = index;  // a vertex may come after: checked at the end
-                largest_index_line_ = line_number_;
-            }
-        }
-    }
-
-    // The non-zero integer in [begin, end) (a '-' and at most 10 digits,
-    // within 32 bits), or false.
-    static bool parse_index(const char* begin, const char* end, long* index) {
-        const bool negative = begin < end && *begin == '-';
-        const char* digits = negative ? begin + 1 : begin;
-        if (digits == end || end - digits > 10) {
-            return false;
-        }
-        long value = 0;
-        for (const char* c = digits; c < end; ++c) {
-            if (*c < '0' || *c > '9') {
-                return false;
-            }
-            value = value * 10 + (*c - '0');
-        }
-        *index = negative ? -value : value;
-        return value != 0 && value <= 2147483647L;
-    }
-
-    // tinyobjloader triangulates a face in time that grows with the square
-    // of its size: 10,000 vertices take about 0.2 s, 100,000 took 18 s.
-    static constexpr std::size_t max_face_vertices = 10000;
-
-    std::string path_;
-    long line_number_ = 0;
-    long vertex_count_ = 0;
-    long largest_index_ = 0;
-    long largest_index_line_ = 0;
-    std::vector<Word> words_;
-};
-
 // A read-only stream over a string that outlives it, for tinyobjloader:
 // no second copy of a mesh's text.
 class TextBuffer : public std::streambuf {
@@ -422,7 +157,7 @@ Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
     std::vector<tinyobj::material_t> materials;
     std::string warn;
     std::string err;
-    std::string checked = ObjChecker(path).checked_text();
+    std::string checked = checked_obj_text(path);
     TextBuffer buffer(checked);
     std::istream text(&buffer);
     // Materials of the OBJ are ignored (the scene file assigns one), so no
