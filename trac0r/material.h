@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include <string>
+#include <vector>
 
 namespace trac0r {
 
@@ -26,7 +27,12 @@ struct Material {
     float ior = 1.5f;
 };
 
+// "emissive", "diffuse", "glass", "glossy" (the scene format's names) and
+// back; parse_material_type throws std::invalid_argument.
 const char* to_string(MaterialType type);
+MaterialType parse_material_type(const std::string& name);
+// Every type's name, in the enum's order.
+std::vector<std::string> material_type_names();
 
 }  // namespace trac0r
 

@@ -1,6 +1,7 @@
 #include "trac0r/packed_scene.h"
 
 #include "trac0r/bvh.h"
+#include "trac0r/enum_names.h"
 #include "trac0r/kernel/accumulate.h"
 #include "trac0r/kernel/intersect.h"
 #include "trac0r/kernel/material.h"
@@ -8,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 
 namespace trac0r {
 
@@ -297,44 +297,27 @@ kernel::CameraRecord scaled_camera(const kernel::CameraRecord& camera, float sca
     return c;
 }
 
+namespace {
+
+const EnumName<Accel> accel_names[] = {
+    {Accel::flat, "flat"}, {Accel::bvh, "bvh"}, {Accel::automatic, "auto"}};
+const EnumName<Integrator> integrator_names[] = {{Integrator::naive, "naive"},
+                                                 {Integrator::nee, "nee"}};
+
+}  // namespace
+
 Accel parse_accel(const std::string& name) {
-    if (name == "flat") {
-        return Accel::flat;
-    }
-    if (name == "bvh") {
-        return Accel::bvh;
-    }
-    if (name == "auto") {
-        return Accel::automatic;
-    }
-    throw std::invalid_argument("unknown acceleration structure '" + name +
-                                "' (expected flat, bvh or auto)");
+    return enum_value(accel_names, name, "acceleration structure");
 }
 
-const char* to_string(Accel accel) {
-    switch (accel) {
-    case Accel::flat:
-        return "flat";
-    case Accel::bvh:
-        return "bvh";
-    case Accel::automatic:
-        return "auto";
-    }
-    return "auto";
-}
+const char* to_string(Accel accel) { return enum_name(accel_names, accel, "auto"); }
 
 Integrator parse_integrator(const std::string& name) {
-    if (name == "naive") {
-        return Integrator::naive;
-    }
-    if (name == "nee") {
-        return Integrator::nee;
-    }
-    throw std::invalid_argument("unknown integrator '" + name + "' (expected naive or nee)");
+    return enum_value(integrator_names, name, "integrator");
 }
 
 const char* to_string(Integrator integrator) {
-    return integrator == Integrator::nee ? "nee" : "naive";
+    return enum_name(integrator_names, integrator, "naive");
 }
 
 std::string feature_names(std::uint32_t features) {

@@ -110,19 +110,6 @@ RenderSettings read_render(const json& value, const Location& at) {
 
 // ---- Materials --------------------------------------------------------------
 
-MaterialType material_type_named(const std::string& name) {
-    if (name == "emissive") {
-        return MaterialType::emissive;
-    }
-    if (name == "glass") {
-        return MaterialType::glass;
-    }
-    if (name == "glossy") {
-        return MaterialType::glossy;
-    }
-    return MaterialType::diffuse;
-}
-
 // Reads the keys that belong to the material's type; a key of another type
 // (roughness on a diffuse material) is an error, not ignored.
 void read_material_parameters(const ObjectReader& o, Material& m) {
@@ -171,10 +158,10 @@ void check_emission(const ObjectReader& o, const Material& m) {
 
 Material read_material(const std::string& name, const json& value, const Location& at) {
     const ObjectReader o(value, at, "a material object");
-    const std::vector<std::string> types = {"emissive", "diffuse", "glass", "glossy"};
+    const std::vector<std::string> types = material_type_names();
     Material m;
     m.name = name;
-    m.type = material_type_named(
+    m.type = parse_material_type(
         read_choice(o.required("type", "one of " + join(types, "\"")), o.at("type"), types));
     read_material_parameters(o, m);
     check_emission(o, m);
