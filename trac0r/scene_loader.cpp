@@ -110,32 +110,39 @@ RenderSettings read_render(const json& value, const Location& at) {
 
 // ---- Materials --------------------------------------------------------------
 
-// Reads the keys that belong to the material's type; a key of another type
-// (roughness on a diffuse material) is an error, not ignored.
+// What each type of material reads besides "type": a colour and one
+// parameter, in the schema table above. A key of another type (roughness
+// on a diffuse material) is an error, not ignored.
+struct MaterialKeys {
+    MaterialType type;
+    NumberRule color_rule;
+    const char* parameter;  // the parameter's key
+    NumberRule parameter_rule;
+    bool parameter_required;  // else optional, its default Material's
+    float Material::*field;   // where the parameter goes
+};
+
+const MaterialKeys material_keys[] = {
+    {MaterialType::emissive, NumberRule::non_negative, "emittance", NumberRule::positive, true,
+     &Material::emittance},
+    {MaterialType::diffuse, NumberRule::unit_interval, "emittance", NumberRule::non_negative, false,
+     &Material::emittance},
+    {MaterialType::glass, NumberRule::unit_interval, "ior", NumberRule::positive, false,
+     &Material::ior},
+    {MaterialType::glossy, NumberRule::unit_interval, "roughness", NumberRule::unit_interval, false,
+     &Material::roughness},
+};
+
 void read_material_parameters(const ObjectReader& o, Material& m) {
-    const std::string owner = with_article(to_string(m.type)) + " material";
-    switch (m.type) {
-    case MaterialType::emissive:
-        o.allow_only({"type", "color", "emittance"}, owner);
-        m.color = o.required_vec3("color", NumberRule::non_negative);
-        m.emittance = o.required_float("emittance", NumberRule::positive);
-        return;
-    case MaterialType::diffuse:
-        o.allow_only({"type", "color", "emittance"}, owner);
-        m.color = o.required_vec3("color", NumberRule::unit_interval);
-        m.emittance = o.optional_float("emittance", NumberRule::non_negative, m.emittance);
-        return;
-    case MaterialType::glass:
-        o.allow_only({"type", "color", "ior"}, owner);
-        m.color = o.required_vec3("color", NumberRule::unit_interval);
-        m.ior = o.optional_float("ior", NumberRule::positive, m.ior);
-        return;
-    case MaterialType::glossy:
-        o.allow_only({"type", "color", "roughness"}, owner);
-        m.color = o.required_vec3("color", NumberRule::unit_interval);
-        m.roughness = o.optional_float("roughness", NumberRule::unit_interval, m.roughness);
-        return;
-    }
+    const MaterialKeys& keys =
+        *std::find_if(std::begin(material_keys), std::end(material_keys),
+                      [&](const MaterialKeys& k) { return k.type == m.type; });
+    o.allow_only({"type", "color", keys.parameter}, with_article(to_string(m.type)) + " material");
+    m.color = o.required_vec3("color", keys.color_rule);
+    float& parameter = m.*keys.field;
+    parameter = keys.parameter_required
+                    ? o.required_float(keys.parameter, keys.parameter_rule)
+                    : o.optional_float(keys.parameter, keys.parameter_rule, parameter);
 }
 
 // The most a material may emit in a channel (colour times emittance): a
