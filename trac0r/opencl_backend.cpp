@@ -176,6 +176,32 @@ cl_mem upload(cl_context context, const std::vector<T>& data) {
     return m;
 }
 
+// The arguments of render_frame, named in the order of its signature in
+// trac0r/kernel/render.cl: a change there must change this list.
+enum RenderFrameArg : cl_uint {
+    arg_triangles,    // __global const TriangleRecord*
+    arg_shapes,       // __global const ShapeRecord*
+    arg_materials,    // __global const MaterialRecord*
+    arg_nodes,        // __global const BvhNode*
+    arg_shape_count,  // uint
+    arg_camera,       // CameraRecord
+    arg_accum,        // __global AccumPixel*
+    arg_seed,         // ulong
+    arg_frame,        // uint
+    arg_max_depth,    // int
+    arg_lights,       // __global const LightRecord*
+    arg_light_count,  // uint
+    arg_packets,      // __global const TrianglePacket*
+};
+
+// Sets render_frame's argument `index` to `value`: a cl_mem for a buffer,
+// else a value of the type the signature names (cl_uint for uint, ...).
+template <typename T>
+void set_arg(cl_kernel kernel, RenderFrameArg index, const T& value) {
+    check(clSetKernelArg(kernel, index, sizeof value, &value),
+          ("clSetKernelArg(" + std::to_string(index) + ")").c_str());
+}
+
 void release(cl_mem& m) {
     if (m) {
         clReleaseMemObject(m);
@@ -348,19 +374,20 @@ void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64
     const cl_uint frame_arg = frame;
     const cl_int depth_arg = max_depth;
     const kernel::CameraRecord scaled = scaled_camera(camera, state_->scale);
-    check(clSetKernelArg(k, 0, sizeof(cl_mem), &state_->triangles), "clSetKernelArg(0)");
-    check(clSetKernelArg(k, 1, sizeof(cl_mem), &state_->shapes), "clSetKernelArg(1)");
-    check(clSetKernelArg(k, 2, sizeof(cl_mem), &state_->materials), "clSetKernelArg(2)");
-    check(clSetKernelArg(k, 3, sizeof(cl_mem), &state_->nodes), "clSetKernelArg(3)");
-    check(clSetKernelArg(k, 4, sizeof(cl_uint), &state_->shape_count), "clSetKernelArg(4)");
-    check(clSetKernelArg(k, 5, sizeof scaled, &scaled), "clSetKernelArg(5)");
-    check(clSetKernelArg(k, 6, sizeof(cl_mem), &state_->accum), "clSetKernelArg(6)");
-    check(clSetKernelArg(k, 7, sizeof seed_arg, &seed_arg), "clSetKernelArg(7)");
-    check(clSetKernelArg(k, 8, sizeof frame_arg, &frame_arg), "clSetKernelArg(8)");
-    check(clSetKernelArg(k, 9, sizeof depth_arg, &depth_arg), "clSetKernelArg(9)");
-    check(clSetKernelArg(k, 10, sizeof(cl_mem), &state_->lights), "clSetKernelArg(10)");
-    check(clSetKernelArg(k, 11, sizeof(cl_uint), &state_->light_count), "clSetKernelArg(11)");
-    check(clSetKernelArg(k, 12, sizeof(cl_mem), &state_->packets), "clSetKernelArg(12)");
+    // Every argument, in the order of render_frame's signature.
+    set_arg(k, arg_triangles, state_->triangles);
+    set_arg(k, arg_shapes, state_->shapes);
+    set_arg(k, arg_materials, state_->materials);
+    set_arg(k, arg_nodes, state_->nodes);
+    set_arg(k, arg_shape_count, state_->shape_count);
+    set_arg(k, arg_camera, scaled);
+    set_arg(k, arg_accum, state_->accum);
+    set_arg(k, arg_seed, seed_arg);
+    set_arg(k, arg_frame, frame_arg);
+    set_arg(k, arg_max_depth, depth_arg);
+    set_arg(k, arg_lights, state_->lights);
+    set_arg(k, arg_light_count, state_->light_count);
+    set_arg(k, arg_packets, state_->packets);
     std::size_t global = 0;
     const std::size_t* local = nullptr;  // the driver's choice
     if (state_->bvh) {
