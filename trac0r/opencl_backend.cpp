@@ -1,5 +1,6 @@
 #include "trac0r/opencl_backend.h"
 
+#include "trac0r/opencl_owner.h"
 #include "trac0r/opencl_program.h"
 
 #include <algorithm>
@@ -90,16 +91,20 @@ std::string type_name(cl_device_id device) {
 // every backend, test and benchmark shares them.
 struct SharedDevice {
     cl_device_id device = nullptr;
-    cl_context context = nullptr;
-    cl_command_queue queue = nullptr;
+    OpenClContext context;
+    OpenClCommandQueue queue;
     std::string description;
-    std::map<std::pair<std::string, std::string>, cl_program> programs;
+    std::map<std::pair<std::string, std::string>, OpenClProgram> programs;
 };
 
 std::mutex shared_mutex;
 
 SharedDevice& shared_device(int index) {
-    static std::map<int, SharedDevice> devices;
+    // Never destroyed: the process keeps every context, queue and program
+    // to its end (embedded_opencl_program hands programs out), and a static
+    // destructor would release them at exit in no set order with the
+    // OpenCL driver's own teardown.
+    static std::map<int, SharedDevice>& devices = *new std::map<int, SharedDevice>;
     auto found = devices.find(index);
     if (found != devices.end()) {
         return found->second;
@@ -117,14 +122,14 @@ SharedDevice& shared_device(int index) {
     SharedDevice d;
     d.device = all[static_cast<std::size_t>(index)].device;
     cl_int status = CL_SUCCESS;
-    d.context = clCreateContext(nullptr, 1, &d.device, nullptr, nullptr, &status);
+    d.context.reset(clCreateContext(nullptr, 1, &d.device, nullptr, nullptr, &status));
     check(status, "clCreateContext");
-    d.queue = clCreateCommandQueue(d.context, d.device, 0, &status);
+    d.queue.reset(clCreateCommandQueue(d.context.get(), d.device, 0, &status));
     check(status, "clCreateCommandQueue");
     d.description =
         device_string(d.device, CL_DEVICE_NAME) + " (" +
         platform_string(all[static_cast<std::size_t>(index)].platform, CL_PLATFORM_NAME) + ")";
-    return devices.emplace(index, d).first->second;
+    return devices.emplace(index, std::move(d)).first->second;
 }
 
 std::string build_log(cl_program program, cl_device_id device) {
@@ -141,37 +146,37 @@ cl_program get_program(SharedDevice& d, const std::string& appended_source,
     const auto key = std::make_pair(appended_source, options);
     auto found = d.programs.find(key);
     if (found != d.programs.end()) {
-        return found->second;
+        return found->second.get();
     }
     const auto start = std::chrono::steady_clock::now();
     const std::string text = std::string(opencl_kernel_source()) + appended_source;
     const char* source = text.c_str();
     cl_int status = CL_SUCCESS;
-    cl_program program = clCreateProgramWithSource(d.context, 1, &source, nullptr, &status);
+    OpenClProgram program(clCreateProgramWithSource(d.context.get(), 1, &source, nullptr, &status));
     check(status, "clCreateProgramWithSource");
-    status = clBuildProgram(program, 1, &d.device, options.c_str(), nullptr, nullptr);
+    status = clBuildProgram(program.get(), 1, &d.device, options.c_str(), nullptr, nullptr);
     if (status != CL_SUCCESS) {
-        const std::string log = build_log(program, d.device);
-        clReleaseProgram(program);
+        const std::string log = build_log(program.get(), d.device);
         throw OpenClError("OpenCL program build failed on " + d.description + " with options '" +
                           options + "' (error " + std::to_string(status) + "); build log:\n" + log);
     }
     *build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    d.programs[key] = program;
-    return program;
+    cl_program built = program.get();
+    d.programs[key] = std::move(program);
+    return built;
 }
 
 template <typename T>
-cl_mem upload(cl_context context, const std::vector<T>& data) {
+OpenClMem upload(cl_context context, const std::vector<T>& data) {
     // OpenCL buffers may not be empty: keep one zeroed element at least.
     std::vector<T> padded = data;
     if (padded.empty()) {
         padded.resize(1);
     }
     cl_int status = CL_SUCCESS;
-    cl_mem m = clCreateBuffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                              sizeof(T) * padded.size(), padded.data(), &status);
+    OpenClMem m(clCreateBuffer(context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                               sizeof(T) * padded.size(), padded.data(), &status));
     check(status, "clCreateBuffer");
     return m;
 }
@@ -202,11 +207,25 @@ void set_arg(cl_kernel kernel, RenderFrameArg index, const T& value) {
           ("clSetKernelArg(" + std::to_string(index) + ")").c_str());
 }
 
-void release(cl_mem& m) {
-    if (m) {
-        clReleaseMemObject(m);
-        m = nullptr;
-    }
+// The scene's arrays on the device, uploaded once per scene change.
+struct SceneBuffers {
+    OpenClMem triangles;
+    OpenClMem shapes;
+    OpenClMem materials;
+    OpenClMem nodes;
+    OpenClMem packets;
+    OpenClMem lights;
+};
+
+SceneBuffers upload_scene(cl_context context, const PackedScene& scene) {
+    SceneBuffers buffers;
+    buffers.triangles = upload(context, scene.triangles);
+    buffers.shapes = upload(context, scene.shapes);
+    buffers.materials = upload(context, scene.materials);
+    buffers.nodes = upload(context, scene.nodes);
+    buffers.packets = upload(context, scene.packets);
+    buffers.lights = upload(context, scene.lights);
+    return buffers;
 }
 
 }  // namespace
@@ -214,7 +233,7 @@ void release(cl_mem& m) {
 OpenClQueue shared_opencl_queue(int device_index) {
     std::lock_guard<std::mutex> lock(shared_mutex);
     const SharedDevice& d = shared_device(device_index);
-    return {d.device, d.context, d.queue, d.description};
+    return {d.device, d.context.get(), d.queue.get(), d.description};
 }
 
 std::string opencl_build_options(std::uint32_t features) {
@@ -250,14 +269,9 @@ const std::size_t kTileItems = T0_TILE * T0_TILE;
 struct OpenClBackend::State {
     SharedDevice* device = nullptr;
     float scale = 1.0f;  // the packed scene's (scaled_camera)
-    cl_kernel kernel = nullptr;
-    cl_mem triangles = nullptr;
-    cl_mem shapes = nullptr;
-    cl_mem materials = nullptr;
-    cl_mem nodes = nullptr;
-    cl_mem packets = nullptr;
-    cl_mem lights = nullptr;
-    cl_mem accum = nullptr;
+    OpenClKernel kernel;
+    SceneBuffers scene;
+    OpenClMem accum;
     std::size_t pixels = 0;
     bool bvh = false;  // the BVH's program: a tile a work-group
     cl_uint shape_count = 0;
@@ -271,18 +285,7 @@ OpenClBackend::OpenClBackend(int device_index) : state_(new State) {
     state_->device = &shared_device(device_index);
 }
 
-OpenClBackend::~OpenClBackend() {
-    release(state_->triangles);
-    release(state_->shapes);
-    release(state_->materials);
-    release(state_->nodes);
-    release(state_->packets);
-    release(state_->lights);
-    release(state_->accum);
-    if (state_->kernel) {
-        clReleaseKernel(state_->kernel);
-    }
-}
+OpenClBackend::~OpenClBackend() = default;
 
 std::string OpenClBackend::device() const { return state_->device->description; }
 
@@ -298,12 +301,9 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
         std::lock_guard<std::mutex> lock(shared_mutex);
         program = get_program(*state_->device, "", options, &state_->build_seconds);
     }
-    if (state_->kernel) {
-        clReleaseKernel(state_->kernel);
-        state_->kernel = nullptr;
-    }
+    state_->kernel.reset();
     cl_int status = CL_SUCCESS;
-    state_->kernel = clCreateKernel(program, "render_frame", &status);
+    state_->kernel.reset(clCreateKernel(program, "render_frame", &status));
     check(status, "clCreateKernel(render_frame)");
     state_->options = options;
     // The BVH's program renders a tile of 8 x 8 pixels a work-group of 64
@@ -318,7 +318,7 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
     state_->bvh = (scene.features & T0_FEATURE_BVH) != 0u;
     if (state_->bvh) {
         std::size_t most = 0;
-        check(clGetKernelWorkGroupInfo(state_->kernel, state_->device->device,
+        check(clGetKernelWorkGroupInfo(state_->kernel.get(), state_->device->device,
                                        CL_KERNEL_WORK_GROUP_SIZE, sizeof most, &most, nullptr),
               "clGetKernelWorkGroupInfo(CL_KERNEL_WORK_GROUP_SIZE)");
         std::size_t sizes[3] = {0, 0, 0};
@@ -334,19 +334,9 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
         }
     }
     // Uploaded once per scene change; a frame sends only its small arguments.
-    cl_context context = state_->device->context;
-    release(state_->triangles);
-    release(state_->shapes);
-    release(state_->materials);
-    release(state_->nodes);
-    release(state_->packets);
-    release(state_->lights);
-    state_->triangles = upload(context, scene.triangles);
-    state_->shapes = upload(context, scene.shapes);
-    state_->materials = upload(context, scene.materials);
-    state_->nodes = upload(context, scene.nodes);
-    state_->packets = upload(context, scene.packets);
-    state_->lights = upload(context, scene.lights);
+    // The old scene's buffers go first: the device never holds two scenes.
+    state_->scene = SceneBuffers();
+    state_->scene = upload_scene(state_->device->context.get(), scene);
     state_->shape_count = static_cast<cl_uint>(scene.shapes.size());
     state_->light_count = static_cast<cl_uint>(scene.lights.size());
 }
@@ -355,39 +345,39 @@ void OpenClBackend::reset(int width, int height) {
     const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     cl_int status = CL_SUCCESS;
     if (pixels != state_->pixels || !state_->accum) {
-        release(state_->accum);
-        state_->accum = clCreateBuffer(state_->device->context, CL_MEM_READ_WRITE,
-                                       sizeof(kernel::AccumPixel) * pixels, nullptr, &status);
+        state_->accum.reset();  // the old one first, as the scene's buffers
+        state_->accum.reset(clCreateBuffer(state_->device->context.get(), CL_MEM_READ_WRITE,
+                                           sizeof(kernel::AccumPixel) * pixels, nullptr, &status));
         check(status, "clCreateBuffer(accumulator)");
         state_->pixels = pixels;
     }
     const cl_float zero = 0.0f;
-    check(clEnqueueFillBuffer(state_->device->queue, state_->accum, &zero, sizeof zero, 0,
-                              sizeof(kernel::AccumPixel) * pixels, 0, nullptr, nullptr),
+    check(clEnqueueFillBuffer(state_->device->queue.get(), state_->accum.get(), &zero, sizeof zero,
+                              0, sizeof(kernel::AccumPixel) * pixels, 0, nullptr, nullptr),
           "clEnqueueFillBuffer(accumulator)");
 }
 
 void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t seed,
                                  std::uint32_t frame, int max_depth) {
-    cl_kernel k = state_->kernel;
+    cl_kernel k = state_->kernel.get();
     const cl_ulong seed_arg = seed;
     const cl_uint frame_arg = frame;
     const cl_int depth_arg = max_depth;
     const kernel::CameraRecord scaled = scaled_camera(camera, state_->scale);
     // Every argument, in the order of render_frame's signature.
-    set_arg(k, arg_triangles, state_->triangles);
-    set_arg(k, arg_shapes, state_->shapes);
-    set_arg(k, arg_materials, state_->materials);
-    set_arg(k, arg_nodes, state_->nodes);
+    set_arg(k, arg_triangles, state_->scene.triangles.get());
+    set_arg(k, arg_shapes, state_->scene.shapes.get());
+    set_arg(k, arg_materials, state_->scene.materials.get());
+    set_arg(k, arg_nodes, state_->scene.nodes.get());
     set_arg(k, arg_shape_count, state_->shape_count);
     set_arg(k, arg_camera, scaled);
-    set_arg(k, arg_accum, state_->accum);
+    set_arg(k, arg_accum, state_->accum.get());
     set_arg(k, arg_seed, seed_arg);
     set_arg(k, arg_frame, frame_arg);
     set_arg(k, arg_max_depth, depth_arg);
-    set_arg(k, arg_lights, state_->lights);
+    set_arg(k, arg_lights, state_->scene.lights.get());
     set_arg(k, arg_light_count, state_->light_count);
-    set_arg(k, arg_packets, state_->packets);
+    set_arg(k, arg_packets, state_->scene.packets.get());
     std::size_t global = 0;
     const std::size_t* local = nullptr;  // the driver's choice
     if (state_->bvh) {
@@ -400,17 +390,17 @@ void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64
         // A multiple of 64, which a driver choosing the groups can split evenly.
         global = (state_->pixels + 63) / 64 * 64;
     }
-    check(clEnqueueNDRangeKernel(state_->device->queue, k, 1, nullptr, &global, local, 0, nullptr,
-                                 nullptr),
+    check(clEnqueueNDRangeKernel(state_->device->queue.get(), k, 1, nullptr, &global, local, 0,
+                                 nullptr, nullptr),
           "clEnqueueNDRangeKernel(render_frame)");
     // A frame is done when render_frame returns, so timings are honest and
     // the queue never runs far ahead of the viewer.
-    check(clFinish(state_->device->queue), "clFinish");
+    check(clFinish(state_->device->queue.get()), "clFinish");
 }
 
 void OpenClBackend::read_accumulator(std::vector<kernel::AccumPixel>& out) {
     out.resize(state_->pixels);
-    check(clEnqueueReadBuffer(state_->device->queue, state_->accum, CL_TRUE, 0,
+    check(clEnqueueReadBuffer(state_->device->queue.get(), state_->accum.get(), CL_TRUE, 0,
                               sizeof(kernel::AccumPixel) * state_->pixels, out.data(), 0, nullptr,
                               nullptr),
           "clEnqueueReadBuffer(accumulator)");

@@ -3,16 +3,13 @@
 // every OpenClBackend of the process shares, and programs of the embedded
 // kernel source with more source appended, built once per (device, appended
 // source, options) and cached as the backend's own are. Unlike
-// opencl_backend.h this header needs the OpenCL headers.
+// opencl_backend.h this header needs the OpenCL headers (by opencl_owner.h,
+// whose owners suit the buffers and kernels such code makes).
 #ifndef TRAC0R_OPENCL_PROGRAM_H
 #define TRAC0R_OPENCL_PROGRAM_H
 
 #include "trac0r/opencl_backend.h"
-
-#ifndef CL_TARGET_OPENCL_VERSION
-#define CL_TARGET_OPENCL_VERSION 120
-#endif
-#include <CL/cl.h>
+#include "trac0r/opencl_owner.h"
 
 #include <cstdint>
 #include <string>
