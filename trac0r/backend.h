@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace trac0r {
@@ -15,8 +16,8 @@ namespace trac0r {
 class Backend {
   public:
     virtual ~Backend() = default;
-    virtual std::string name() const = 0;    // "cpu", "opencl"
-    virtual std::string device() const = 0;  // what it runs on, for people
+    std::string name() const { return name_; }      // "cpu", "opencl"
+    std::string device() const { return device_; }  // what it runs on, for people
     // From how many triangles Accel::automatic builds a BVH on this backend
     // (packed_scene.h).
     virtual std::size_t auto_bvh_min_triangles() const { return trac0r::auto_bvh_min_triangles; }
@@ -28,6 +29,14 @@ class Backend {
     virtual void render_frame(const kernel::CameraRecord& camera, std::uint64_t seed,
                               std::uint32_t frame, int max_depth) = 0;
     virtual void read_accumulator(std::vector<kernel::AccumPixel>& out) = 0;
+
+  protected:
+    Backend(std::string name, std::string device)
+        : name_(std::move(name)), device_(std::move(device)) {}
+
+  private:
+    std::string name_;
+    std::string device_;
 };
 
 }  // namespace trac0r

@@ -21,11 +21,18 @@ DenormalsAreZero::DenormalsAreZero() : saved_(0) {}
 DenormalsAreZero::~DenormalsAreZero() {}
 #endif
 
-CpuBackend::CpuBackend(int threads) : threads_(threads > 0 ? threads : omp_get_max_threads()) {}
+namespace {
 
-std::string CpuBackend::device() const {
-    return "OpenMP, " + std::to_string(threads_) + " thread" + (threads_ == 1 ? "" : "s");
+int thread_count(int threads) { return threads > 0 ? threads : omp_get_max_threads(); }
+
+std::string openmp_device(int threads) {
+    return "OpenMP, " + std::to_string(threads) + " thread" + (threads == 1 ? "" : "s");
 }
+
+}  // namespace
+
+CpuBackend::CpuBackend(int threads)
+    : Backend("cpu", openmp_device(thread_count(threads))), threads_(thread_count(threads)) {}
 
 void CpuBackend::set_scene(const PackedScene& scene) { scene_ = scene; }
 

@@ -32,8 +32,6 @@ class CpuBackend : public Backend {
   public:
     // threads <= 0: OpenMP's default.
     explicit CpuBackend(int threads = 0);
-    std::string name() const override { return "cpu"; }
-    std::string device() const override;
     void set_scene(const PackedScene& scene) override;
     void reset(int width, int height) override;
     void render_frame(const kernel::CameraRecord& camera, std::uint64_t seed, std::uint32_t frame,

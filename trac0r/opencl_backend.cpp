@@ -280,14 +280,23 @@ struct OpenClBackend::State {
     std::string options;
 };
 
-OpenClBackend::OpenClBackend(int device_index) : state_(new State) {
+namespace {
+
+std::unique_ptr<OpenClBackend::State> opened_state(int device_index) {
+    std::unique_ptr<OpenClBackend::State> state(new OpenClBackend::State);
     std::lock_guard<std::mutex> lock(shared_mutex);
-    state_->device = &shared_device(device_index);
+    state->device = &shared_device(device_index);
+    return state;
 }
 
-OpenClBackend::~OpenClBackend() = default;
+}  // namespace
 
-std::string OpenClBackend::device() const { return state_->device->description; }
+OpenClBackend::OpenClBackend(int device_index) : OpenClBackend(opened_state(device_index)) {}
+
+OpenClBackend::OpenClBackend(std::unique_ptr<State> state)
+    : Backend("opencl", state->device->description), state_(std::move(state)) {}
+
+OpenClBackend::~OpenClBackend() = default;
 
 double OpenClBackend::last_build_seconds() const { return state_->build_seconds; }
 

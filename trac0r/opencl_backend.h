@@ -41,8 +41,6 @@ class OpenClBackend : public Backend {
     explicit OpenClBackend(int device_index = 0);
     ~OpenClBackend() override;
 
-    std::string name() const override { return "opencl"; }
-    std::string device() const override;
     void set_scene(const PackedScene& scene) override;
     void reset(int width, int height) override;
     void render_frame(const kernel::CameraRecord& camera, std::uint64_t seed, std::uint32_t frame,
@@ -57,6 +55,8 @@ class OpenClBackend : public Backend {
     struct State;
 
   private:
+    explicit OpenClBackend(std::unique_ptr<State> state);
+
     std::unique_ptr<State> state_;
 };
 
