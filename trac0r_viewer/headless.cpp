@@ -1,5 +1,7 @@
 #include "headless.h"
 
+#include "stop_rule.h"
+
 #include "trac0r/noise.h"
 
 #include <unistd.h>
@@ -29,11 +31,7 @@ double seconds_since(Clock::time_point start) {
 // relative MSE falls as 1 / spp.
 class Progress {
   public:
-    Progress(long total_spp, double total_seconds, double target_error)
-        : total_spp_(total_spp),
-          total_seconds_(total_seconds),
-          target_error_(target_error),
-          tty_(isatty(2) != 0) {}
+    explicit Progress(const StopRule& rule) : rule_(rule), tty_(isatty(2) != 0) {}
 
     // Whether update() would draw now: the caller computes the noise
     // estimate (a readback and a pass over the image) only then.
@@ -62,14 +60,14 @@ class Progress {
   private:
     double fraction(long spp, double elapsed, double estimate) const {
         double f = 0.0;
-        if (total_spp_ > 0) {
-            f = std::max(f, static_cast<double>(spp) / total_spp_);
+        if (rule_.spp > 0) {
+            f = std::max(f, static_cast<double>(spp) / rule_.spp);
         }
-        if (total_seconds_ > 0.0) {
-            f = std::max(f, elapsed / total_seconds_);
+        if (rule_.seconds > 0.0) {
+            f = std::max(f, elapsed / rule_.seconds);
         }
-        if (target_error_ > 0.0 && std::isfinite(estimate) && estimate > 0.0) {
-            f = std::max(f, target_error_ / estimate);
+        if (rule_.target_error > 0.0 && std::isfinite(estimate) && estimate > 0.0) {
+            f = std::max(f, rule_.target_error / estimate);
         }
         return f;
     }
@@ -90,9 +88,7 @@ class Progress {
         std::fflush(stderr);
     }
 
-    long total_spp_;
-    double total_seconds_;
-    double target_error_;
+    StopRule rule_;
     bool tty_;
     double last_draw_ = -1.0;
     double next_log_fraction_ = 0.0;
@@ -104,6 +100,16 @@ class Progress {
 // checks cost a fraction of a percent), but not before 8 spp, below which the
 // per-pixel variances are too rough to stop on.
 long next_error_check(long spp) { return std::max(8L, spp + std::max(1L, spp / 10)); }
+
+// --spp, --seconds and --target-error; 64 spp when none of them is given.
+StopRule batch_stop_rule(const Options& options) {
+    StopRule rule;
+    rule.spp = options.spp > 0 ? options.spp
+                               : (options.seconds > 0.0 || options.target_error > 0.0 ? 0 : 64);
+    rule.seconds = options.seconds;
+    rule.target_error = options.target_error;
+    return rule;
+}
 
 const char* spp_done_reason(const Options& options) {
     return options.spp > 0 && options.seconds > 0.0 ? "--spp or --seconds"
@@ -142,9 +148,8 @@ void save_outputs(const trac0r::Image& image, const Options& options) {
 }
 
 int run_batch(trac0r::Renderer& renderer, const Options& options) {
-    const bool by_error = options.target_error > 0.0;
-    const long target_spp =
-        options.spp > 0 ? options.spp : (options.seconds > 0.0 || by_error ? 0 : 64);
+    const StopRule rule = batch_stop_rule(options);
+    const bool by_error = rule.target_error > 0.0;
     const double pixels = static_cast<double>(renderer.width()) * renderer.height();
     // The noise estimate reads the accumulator back and passes over the
     // image: computed at most once per spp count.
@@ -159,37 +164,31 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
         }
         return last_estimate;
     };
-    Progress progress(target_spp, options.seconds, options.target_error);
+    Progress progress(rule);
     const Clock::time_point start = Clock::now();
     long error_check = next_error_check(0);
     bool error_reached = false;
-    bool stopped_full = false;
+    StopReason stopped = StopReason::none;
     for (;;) {
-        const double elapsed = seconds_since(start);
-        const bool spp_done = target_spp > 0 && spp >= target_spp;
-        const bool time_done = options.seconds > 0.0 && elapsed >= options.seconds;
-        // At least one sample, however short the time: an image of none
-        // would be black.
-        if (spp > 0 && (spp_done || time_done || error_reached)) {
-            break;
-        }
-        if (renderer.full()) {
+        stopped = rule.reason(spp, seconds_since(start), error_reached, renderer.full());
+        if (stopped == StopReason::full) {
             std::fprintf(stderr,
                          "trac0r_viewer: stopped at %u spp, the most a pixel's sample count "
                          "(a float) holds exactly\n",
                          trac0r::Renderer::max_frames);
-            stopped_full = true;
+        }
+        if (stopped != StopReason::none) {
             break;
         }
         renderer.render_frame();
         ++spp;
         const double now = seconds_since(start);
         if (by_error && spp >= error_check) {
-            error_reached = estimate() <= options.target_error;
+            error_reached = rule.error_reached(estimate());
             error_check = next_error_check(spp);
             // Would never stop unless --spp or --seconds bounds it: say so,
             // keep what was rendered.
-            if (!error_reached && target_spp == 0 && options.seconds <= 0.0 &&
+            if (!error_reached && rule.spp == 0 && rule.seconds <= 0.0 &&
                 trac0r::noise_estimate_overflowed(renderer.accumulator())) {
                 const double so_far = seconds_since(start);
                 progress.finish(spp, so_far, so_far > 0.0 ? spp * pixels / so_far : 0.0,
@@ -233,7 +232,8 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
                          "target error NOT reached: estimated relative MSE %.4g > %.4g "
                          "when the %s limit stopped the render (%ld spp, %.2f s)%s\n",
                          last_estimate, options.target_error,
-                         stopped_full ? "16777216-spp" : spp_done_reason(options), spp, elapsed,
+                         stopped == StopReason::full ? "16777216-spp" : spp_done_reason(options),
+                         spp, elapsed,
                          trac0r::noise_estimate_overflowed(renderer.accumulator())
                              ? "; the noise estimate has overflowed float (radiance samples "
                                "above about 1e19) and cannot fall"

@@ -138,8 +138,8 @@ Session::Session(const Options& options, Window& window, const Font& font,
     WorkerSettings settings;
     settings.seed = options.seed;
     settings.pack.accel = trac0r::parse_accel(options.accel);
-    settings.spp_limit = options.spp;
-    settings.seconds_limit = options.seconds;
+    settings.stop.spp = options.spp;
+    settings.stop.seconds = options.seconds;
     const std::uint32_t event_type = frame_event_;
     worker_ = std::make_unique<RenderWorker>(std::move(renderer), make_backend, settings, [=] {
         // Wakes the event loop at once; SDL_PushEvent may be called from any thread.

@@ -103,16 +103,20 @@ void RenderWorker::tell(const std::string& message) {
 bool RenderWorker::paused() const { return !full_stale_ && !pause_reason_.empty(); }
 
 std::string RenderWorker::pause_reason_now() const {
-    if (settings_.spp_limit > 0 && full_->frames() >= settings_.spp_limit) {
-        return "--spp " + std::to_string(settings_.spp_limit);
-    }
-    if (full_->full()) {
-        return "the most a pixel's sample count holds";
-    }
-    if (settings_.seconds_limit > 0.0 && seconds_since(full_started_) >= settings_.seconds_limit) {
+    const StopRule& stop = settings_.stop;
+    switch (stop.reason(full_->frames(), seconds_since(full_started_), false, full_->full())) {
+    case StopReason::spp:
+        return "--spp " + std::to_string(stop.spp);
+    case StopReason::seconds: {
         char text[64];
-        std::snprintf(text, sizeof text, "--seconds %g", settings_.seconds_limit);
+        std::snprintf(text, sizeof text, "--seconds %g", stop.seconds);
         return text;
+    }
+    case StopReason::full:
+        return "the most a pixel's sample count holds";
+    case StopReason::target_error:  // never: the window has no target error
+    case StopReason::none:
+        break;
     }
     return "";
 }

@@ -11,6 +11,8 @@
 #ifndef TRAC0R_VIEWER_WINDOW_WORKER_H
 #define TRAC0R_VIEWER_WINDOW_WORKER_H
 
+#include "stop_rule.h"
+
 #include "trac0r/camera.h"
 #include "trac0r/image_io.h"
 #include "trac0r/renderer.h"
@@ -58,9 +60,10 @@ struct WorkerFrame {
 
 struct WorkerSettings {
     std::uint64_t seed = 1;
-    trac0r::PackOptions pack;    // for renderers made on a backend switch
-    long spp_limit = 0;          // pause at this many samples per pixel (0: never)
-    double seconds_limit = 0.0;  // pause after this long since a restart (0: never)
+    trac0r::PackOptions pack;  // for renderers made on a backend switch
+    // When the accumulation pauses (its seconds count from a restart). The
+    // window has no target error: it shows the estimate in the overlay.
+    StopRule stop;
 };
 
 class RenderWorker {
