@@ -14,9 +14,9 @@ namespace trac0r {
 // in memory next to the vector, often half of a pointer, a denormal; each
 // operation on one took a microcode assist, which made a BVH frame of
 // cornell.json up to a fifth slower, depending on what had run before on
-// the thread's stack (README, "Performance"). The kernel does not rely on
-// denormals: it steps off 0 to the smallest normal float and takes a
-// denormal triangle area for 0.
+// the thread's stack (docs/performance.md, "Kernel tuning"). The kernel
+// does not rely on denormals: it steps off 0 to the smallest normal float
+// and takes a denormal triangle area for 0.
 class DenormalsAreZero {
   public:
     DenormalsAreZero();

@@ -322,8 +322,8 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
     // side by side, and the BVH's traversal stack (1,184 bytes a
     // work-item) then streams megabytes through the cache; with 64, BVH
     // frames on cornell.json took 4.5 % less time. The flat list, which
-    // has no such array, took 3 % more (bench_backends, alternated; README,
-    // "Performance").
+    // has no such array, took 3 % more (bench_backends, alternated;
+    // docs/performance.md, "Kernel tuning").
     state_->bvh = (scene.features & T0_FEATURE_BVH) != 0u;
     if (state_->bvh) {
         std::size_t most = 0;

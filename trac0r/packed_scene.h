@@ -19,11 +19,12 @@ enum class Accel {
 };
 
 // Below how many triangles `automatic` keeps the flat list, where it is
-// faster: measured by benchmarks/accel_crossover.cpp (README,
-// "Performance"). With 8-wide BVH nodes the BVH is as fast or faster from
-// the smallest scene measured (12 triangles: 1.02 to 1.22 times the flat
-// list's paths per second on the CPU backend, 1.04 to 1.05 on PoCL, three
-// runs) on both backends; with 4-wide nodes PoCL's crossover was at 24.
+// faster: measured by benchmarks/accel_crossover.cpp (docs/performance.md,
+// "Flat list or BVH"). With 8-wide BVH nodes the BVH is as fast or faster
+// from the smallest scene measured (12 triangles: 1.02 to 1.22 times the
+// flat list's paths per second on the CPU backend, 1.04 to 1.05 on PoCL,
+// three runs) on both backends; with 4-wide nodes PoCL's crossover was
+// at 24.
 // Backend::auto_bvh_min_triangles lets a backend have its own.
 const std::size_t auto_bvh_min_triangles = 12;
 

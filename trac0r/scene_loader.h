@@ -1,4 +1,4 @@
-// Reading scenes from JSON (format: README.md, "Scene format").
+// Reading scenes from JSON (the format: docs/scene-format.md).
 #ifndef TRAC0R_SCENE_LOADER_H
 #define TRAC0R_SCENE_LOADER_H
 

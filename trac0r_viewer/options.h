@@ -1,4 +1,4 @@
-// The command line of trac0r_viewer (DESIGN.md, "Command line").
+// The command line of trac0r_viewer (docs/viewer.md).
 #ifndef TRAC0R_VIEWER_OPTIONS_H
 #define TRAC0R_VIEWER_OPTIONS_H
 
