@@ -48,8 +48,8 @@ Scene triangle_soup(int count, unsigned seed) {
 // is larger than the rest, so the collapse spends a wide node's lanes on
 // the cluster and goes down the spine one binary level per node (its depth
 // is levels + 1). At 24 levels the smallest clusters are 1e-14
-// of the scene, far below the scales STABILITY.md covers: rays meet them
-// only on their way to the larger ones.
+// of the scene, far below the scales docs/stability.md covers: rays meet
+// them only on their way to the larger ones.
 Scene nested_clusters(int levels) {
     std::mt19937 rng(17);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
@@ -490,8 +490,9 @@ TEST_CASE("BVH traversal finds the same nearest hit as testing every triangle", 
 
 TEST_CASE("traversal of a BVH collapsed by levels finds the same hits", "[bvh]") {
     // Rays towards a point of a triangle of the eight largest clusters
-    // (down to 6e-5 of the scene: the scales STABILITY.md covers), from
-    // twice its distance to the corner away, through the smaller clusters.
+    // (down to 6e-5 of the scene: the scales docs/stability.md covers),
+    // from twice its distance to the corner away, through the smaller
+    // clusters.
     const Scene scene = nested_clusters(24);
     const std::vector<Triangle>& triangles = scene.shapes[0].triangles;
     std::mt19937 rng(6);
