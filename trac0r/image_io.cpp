@@ -1,6 +1,7 @@
 #include "trac0r/image_io.h"
 
 #include "trac0r/input_checks.h"
+#include "trac0r/output_file.h"
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -10,7 +11,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 namespace trac0r {
@@ -64,10 +64,18 @@ void write_png(const std::string& path, const Image& image, float exposure) {
 }
 
 void write_png(const std::string& path, const Rgb8Image& image) {
-    if (!stbi_write_png(path.c_str(), image.width, image.height, 3, image.bytes.data(),
-                        image.width * 3)) {
-        throw std::runtime_error(path + ": cannot write PNG");
+    // Encoded in memory, then written whole (write_file_replacing): stb's
+    // own file writer does not check its writes or its close.
+    std::string bytes;
+    const auto append = [](void* context, void* data, int size) {
+        static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                                   static_cast<std::size_t>(size));
+    };
+    if (!stbi_write_png_to_func(append, &bytes, image.width, image.height, 3, image.bytes.data(),
+                                image.width * 3)) {
+        throw std::runtime_error(path + ": cannot encode PNG");
     }
+    write_file_replacing(path, bytes.data(), bytes.size());
 }
 
 Rgb8Image read_png(const std::string& path) {
@@ -87,22 +95,17 @@ Rgb8Image read_png(const std::string& path) {
 }
 
 void write_pfm(const std::string& path, const Image& image) {
-    std::ofstream out(path, std::ios::binary);
-    if (!out) {
-        throw std::runtime_error(path + ": cannot open for writing");
-    }
+    ReplacingFile out(path);  // row by row: an image's bytes are not copied whole
     // A negative scale says little-endian.
-    out << "PF\n"
-        << image.width << " " << image.height << "\n"
-        << (host_is_little_endian() ? "-1.0" : "1.0") << "\n";
+    const std::string header = "PF\n" + std::to_string(image.width) + " " +
+                               std::to_string(image.height) + "\n" +
+                               (host_is_little_endian() ? "-1.0" : "1.0") + "\n";
+    out.write(header.data(), header.size());
+    const std::size_t row_bytes = sizeof(glm::vec3) * static_cast<std::size_t>(image.width);
     for (int y = image.height - 1; y >= 0; --y) {  // PFM stores the bottom row first
-        out.write(
-            reinterpret_cast<const char*>(&image.pixels[static_cast<std::size_t>(y) * image.width]),
-            static_cast<std::streamsize>(sizeof(glm::vec3)) * image.width);
+        out.write(&image.pixels[static_cast<std::size_t>(y) * image.width], row_bytes);
     }
-    if (!out) {
-        throw std::runtime_error(path + ": write failed");
-    }
+    out.commit();
 }
 
 Image read_pfm(const std::string& path) {

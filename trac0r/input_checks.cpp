@@ -1,5 +1,7 @@
 #include "trac0r/input_checks.h"
 
+#include "trac0r/output_file.h"
+
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -110,22 +112,13 @@ std::string printable(const std::string& text, std::size_t max_length) {
 }
 
 std::string unwritable_reason(const std::string& path) {
-    if (path.empty()) {
-        return "the path is empty";
+    // An existing file the user may not write is refused, although the
+    // rename that replaces it would succeed.
+    if (!path.empty() && !is_directory(path) && access(path.c_str(), F_OK) == 0 &&
+        access(path.c_str(), W_OK) != 0) {
+        return "exists and is not writable";
     }
-    if (is_directory(path)) {
-        return "is a directory";
-    }
-    if (access(path.c_str(), F_OK) == 0) {
-        return access(path.c_str(), W_OK) == 0 ? "" : "exists and is not writable";
-    }
-    const std::string::size_type slash = path.find_last_of('/');
-    const std::string dir =
-        slash == std::string::npos ? "." : (slash == 0 ? "/" : path.substr(0, slash));
-    if (!is_directory(dir)) {
-        return "directory " + dir + " does not exist";
-    }
-    return access(dir.c_str(), W_OK | X_OK) == 0 ? "" : "directory " + dir + " is not writable";
+    return output_file_problem(path);
 }
 
 bool is_directory(const std::string& path) {

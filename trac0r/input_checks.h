@@ -31,8 +31,10 @@ bool parse_decimal(const std::string& text, double* value);
 std::string printable(const std::string& text, std::size_t max_length);
 
 // Why path cannot be written ("is a directory", "directory d does not
-// exist", ...), or "" when it can, as far as can be told without writing
-// it.
+// exist", "exists and is not writable", ...), or "" when it can: a
+// temporary file is made and removed where the output will be written
+// (output_file_problem), so even for root a place no file can be made in
+// is found before the work that fills it.
 std::string unwritable_reason(const std::string& path);
 
 // Whether path names an existing directory.

@@ -11,6 +11,7 @@
 #include "trac0r/scene_loader.h"
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -170,6 +171,9 @@ std::unique_ptr<trac0r::Backend> make_backend(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Over a file-size limit (ulimit -f) a write then fails with EFBIG, which
+    // the image writers report, instead of the signal killing the program.
+    std::signal(SIGXFSZ, SIG_IGN);
     try {
         const Options options = trac0r_viewer::parse_options(argc, argv);
         if (options.help) {
