@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Builds everything with AddressSanitizer and UndefinedBehaviorSanitizer
+# (-DTRAC0R_SANITIZE=address,undefined) in build-sanitize and runs the
+# tests under them; any report fails its test. test_opencl is left out:
+# PoCL compiles kernels with its own LLVM inside the process, which the
+# sanitizers do not see into (and whose allocations LeakSanitizer cannot
+# tell from ours); the kernel code it runs is the same C the CPU tests
+# cover. Usage: tests/sanitize.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=build-sanitize
+cmake -S . -B "$build" -DTRAC0R_SANITIZE=address,undefined -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    >/dev/null
+cmake --build "$build" -j2
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
+export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1
+ctest --test-dir "$build" --output-on-failure -E '^(test_opencl|test_window)$'
+# The window's tests: memory errors and undefined behaviour as above, but
+# no leak check, for SDL's X11 and GL modules are loaded and unloaded with
+# dlopen, and what they keep cannot even be named (no module to match).
+ASAN_OPTIONS=detect_leaks=0:halt_on_error=1 ctest --test-dir "$build" --output-on-failure \
+    -R '^test_window$'
