@@ -210,7 +210,7 @@ TEST_CASE("a bad --replay file is one message naming the line, before any window
     CHECK(r.exit_code == 1);
     CHECK(r.err.find("bad_replay.txt:2: expected an SDL key name") != std::string::npos);
     CHECK(r.err.find("got 'NoSuchKey'") != std::string::npos);  // the argument, not the line
-    CHECK(r.err.find('\n') == r.err.size() - 1);  // one line
+    CHECK(r.err.find('\n') == r.err.size() - 1);                // one line
     const ViewerRun missing = run_viewer_process("--replay no_such_replay.txt");
     CHECK(missing.exit_code == 1);
     CHECK(missing.err.find("no_such_replay.txt") != std::string::npos);
@@ -219,4 +219,36 @@ TEST_CASE("a bad --replay file is one message naming the line, before any window
         "--output x.png");
     CHECK(headless.exit_code == 2);
     CHECK(headless.err.find("--replay") != std::string::npos);
+}
+
+// Issue 33, point 4: a script that cannot end is an error, not a window
+// that stays open for ever (before, each of these hung until killed).
+TEST_CASE("a replay that cannot finish stops with a message naming the line", "[window]") {
+    // The window pauses at --spp 4: a wait for 8 is refused before it opens.
+    write_file("unreachable.txt", "wait_spp 2\nwait_spp 8\nkey Escape\n");
+    const ViewerRun spp =
+        run_viewer_process("--width 32 --height 24 --spp 4 --replay unreachable.txt");
+    CHECK(spp.exit_code == 1);
+    CHECK(spp.err ==
+          "trac0r_viewer: error: unreachable.txt:2: wait_spp 8 cannot be reached: the "
+          "window stops at 4 spp (--spp)\n");
+
+    // A held W moves the view every frame: it never reaches full resolution.
+    write_file("held.txt", "wait_timeout 1\nkey_down W\nwait_spp 1\nkey Escape\n");
+    const ViewerRun held = run_viewer_process("--width 32 --height 24 --replay held.txt", "", 60);
+    CHECK(held.exit_code == 1);
+    CHECK(held.err.find("held.txt:3: wait_spp 1 not reached in 1 s (wait_timeout)") !=
+          std::string::npos);
+    CHECK(held.err.find("keys held down: W") != std::string::npos);
+
+    // 70,000 events overflowed SDL's queue (65,535), which dropped the
+    // final Escape; fed in batches, every one arrives.
+    std::string many;
+    for (int i = 0; i < 70000; ++i) {
+        many += "mouse_move " + std::to_string(i % 32) + " " + std::to_string(i % 24) + "\n";
+    }
+    write_file("many.txt", many + "key Escape\n");
+    const ViewerRun flood = run_viewer_process("--width 32 --height 24 --replay many.txt", "", 60);
+    INFO(flood.err);
+    CHECK(flood.exit_code == 0);
 }

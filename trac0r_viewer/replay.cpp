@@ -3,6 +3,7 @@
 #include <SDL.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -72,14 +73,19 @@ class LineParser {
 };
 
 std::vector<ReplayCommand> parse_line(const LineParser& p, const std::string& command,
-                                      const std::string& argument) {
+                                      const std::string& argument, long* timeout_ms) {
     ReplayCommand c;
+    if (command == "wait_timeout") {
+        *timeout_ms = 1000 * p.integer(argument, 1, 24 * 3600);
+        return {};
+    }
     if (command == "wait") {
         c.type = Type::wait;
         c.value = p.integer(argument, 0, 3600 * 1000);
     } else if (command == "wait_spp") {
         c.type = Type::wait_spp;
         c.value = p.integer(argument, 1, 1L << 31);
+        c.timeout_ms = *timeout_ms;
     } else if (command == "key") {
         ReplayCommand down;
         down.type = Type::key_down;
@@ -109,8 +115,8 @@ std::vector<ReplayCommand> parse_line(const LineParser& p, const std::string& co
         c.value = p.integer(argument, -1000, 1000);
     } else {
         p.fail("unknown command '" + command +
-               "' (expected wait, wait_spp, key, key_down, key_up, mouse_move, mouse_down, "
-               "mouse_up or wheel)");
+               "' (expected wait, wait_spp, wait_timeout, key, key_down, key_up, mouse_move, "
+               "mouse_down, mouse_up or wheel)");
     }
     return {c};
 }
@@ -141,6 +147,7 @@ std::vector<ReplayCommand> parse_replay(const std::string& text, const std::stri
     std::istringstream in(text);
     std::string raw;
     int line = 0;
+    long timeout_ms = ReplayCommand().timeout_ms;
     while (std::getline(in, raw)) {
         ++line;
         const std::string content = trim(raw.substr(0, raw.find('#')));
@@ -152,7 +159,8 @@ std::vector<ReplayCommand> parse_replay(const std::string& text, const std::stri
         const std::string command = content.substr(0, space);
         const std::string argument = space == std::string::npos ? "" : trim(content.substr(space));
         const LineParser parser(origin, line, content);
-        for (const ReplayCommand& c : parse_line(parser, command, argument)) {
+        for (ReplayCommand c : parse_line(parser, command, argument, &timeout_ms)) {
+            c.line = line;
             commands.push_back(c);
         }
     }
@@ -178,17 +186,29 @@ std::vector<ReplayCommand> load_replay(const std::string& path) {
     return parse_replay(text.str(), path);
 }
 
-ReplayPlayer::ReplayPlayer(std::vector<ReplayCommand> commands) : commands_(std::move(commands)) {}
+void check_replay_reachable(const std::vector<ReplayCommand>& commands, const std::string& origin,
+                            long max_spp) {
+    for (const ReplayCommand& c : commands) {
+        if (max_spp > 0 && c.type == Type::wait_spp && c.value > max_spp) {
+            throw ReplayError(origin + ":" + std::to_string(c.line) + ": wait_spp " +
+                              std::to_string(c.value) + " cannot be reached: the window stops at " +
+                              std::to_string(max_spp) + " spp (--spp)");
+        }
+    }
+}
+
+ReplayPlayer::ReplayPlayer(std::vector<ReplayCommand> commands, std::string origin)
+    : commands_(std::move(commands)), origin_(std::move(origin)) {}
 
 void ReplayPlayer::step(std::uint32_t window_id, std::uint32_t now_ms, long shown_spp) {
     if (awaiting_marker_) {
         return;  // the window has not handled the last batch yet
     }
-    bool pushed = false;
+    int pushed = 0;
     while (next_ < commands_.size()) {
         const ReplayCommand& c = commands_[next_];
         const bool is_wait = c.type == Type::wait || c.type == Type::wait_spp;
-        if (is_wait && pushed) {
+        if ((is_wait && pushed > 0) || pushed == kBatchEvents) {
             // The window handles the events first: a wait_spp right after a
             // camera change must see the new view's samples, not the old.
             push_marker(window_id);
@@ -205,17 +225,40 @@ void ReplayPlayer::step(std::uint32_t window_id, std::uint32_t now_ms, long show
             waiting_ = false;
         } else if (c.type == Type::wait_spp) {
             if (shown_spp < c.value) {
+                if (!waiting_) {
+                    waiting_ = true;
+                    wait_started_ms_ = now_ms;
+                }
+                if (now_ms - wait_started_ms_ >= static_cast<std::uint32_t>(c.timeout_ms)) {
+                    throw_wait_timeout(c, shown_spp);
+                }
                 return;
             }
+            waiting_ = false;
         } else {
             push(window_id, c);
-            pushed = true;
+            ++pushed;
         }
         ++next_;
     }
-    if (pushed) {
+    if (pushed > 0) {
         push_marker(window_id);  // finished() only once the window has seen all
     }
+}
+
+void ReplayPlayer::throw_wait_timeout(const ReplayCommand& c, long shown_spp) const {
+    std::string why;
+    if (!held_.empty()) {
+        why = "; keys held down:";
+        for (SDL_Keycode k : held_) {
+            why += std::string(" ") + SDL_GetKeyName(k);
+        }
+        why += " (a held movement key moves the view every frame: key_up it first)";
+    }
+    throw ReplayError(origin_ + ":" + std::to_string(c.line) + ": wait_spp " +
+                      std::to_string(c.value) + " not reached in " +
+                      std::to_string(c.timeout_ms / 1000) + " s (wait_timeout): the view shows " +
+                      std::to_string(shown_spp) + " spp at full resolution" + why);
 }
 
 void ReplayPlayer::push_marker(std::uint32_t window_id) {
@@ -253,8 +296,10 @@ void ReplayPlayer::push(std::uint32_t window_id, const ReplayCommand& c) {
     case Type::key_up: {
         const SDL_Keycode key = static_cast<SDL_Keycode>(c.value);
         const bool down = c.type == Type::key_down;
+        held_.erase(std::remove(held_.begin(), held_.end(), key), held_.end());
         if (down) {
             modifiers_ = static_cast<std::uint16_t>(modifiers_ | modifier_of(key));
+            held_.push_back(key);
         } else {
             modifiers_ = static_cast<std::uint16_t>(modifiers_ & ~modifier_of(key));
         }

@@ -14,6 +14,9 @@
 //   mouse_down BUTTON    left, middle or right, at the pointer
 //   mouse_up BUTTON
 //   wheel N              scroll N notches (positive: away from the user)
+//   wait_timeout S       later wait_spp commands fail after S seconds
+//                        (default 60): the script stops with an error
+//                        naming the line, instead of waiting for ever
 //
 // NAME is an SDL key name: W, F1, Escape, Space, Left Shift, Keypad +, ...
 #ifndef TRAC0R_VIEWER_REPLAY_H
@@ -40,7 +43,14 @@ struct ReplayCommand {
     long value = 0;  // milliseconds, samples per pixel, SDL key code, SDL button or notches
     int x = 0;       // mouse_move
     int y = 0;
+    int line = 0;                 // in the script, for messages
+    long timeout_ms = 60 * 1000;  // wait_spp: how long it may wait
 };
+
+// Refuses (ReplayError naming the line) a wait_spp the window can never
+// reach because it stops at max_spp samples per pixel (0: no limit).
+void check_replay_reachable(const std::vector<ReplayCommand>& commands, const std::string& origin,
+                            long max_spp);
 
 // Reads and checks the whole file (so a typo fails before a window opens).
 std::vector<ReplayCommand> load_replay(const std::string& path);
@@ -48,11 +58,14 @@ std::vector<ReplayCommand> parse_replay(const std::string& text, const std::stri
 
 class ReplayPlayer {
   public:
-    explicit ReplayPlayer(std::vector<ReplayCommand> commands);
+    ReplayPlayer(std::vector<ReplayCommand> commands, std::string origin);
 
     // Pushes the events of every command that is due, in order, stopping at
     // the first wait that is not over. now_ms: SDL ticks; shown_spp: samples
     // per pixel of the current view on screen (0 while none at full size).
+    // Throws ReplayError when a wait_spp runs past its timeout. At most
+    // kBatchEvents events go in one batch, so SDL's queue (65,535 events)
+    // cannot overflow and drop one (a script's final Escape).
     //
     // A wait only starts once the window has handled every event pushed
     // before it: a batch of events ends with a marker event, and nothing
@@ -69,8 +82,12 @@ class ReplayPlayer {
   private:
     void push(std::uint32_t window_id, const ReplayCommand& command);
     void push_marker(std::uint32_t window_id);
+    [[noreturn]] void throw_wait_timeout(const ReplayCommand& c, long shown_spp) const;
+
+    static constexpr int kBatchEvents = 1000;
 
     std::vector<ReplayCommand> commands_;
+    std::string origin_;
     std::size_t next_ = 0;
     bool waiting_ = false;
     std::uint32_t wait_started_ms_ = 0;
@@ -78,6 +95,7 @@ class ReplayPlayer {
     int mouse_y_ = 0;
     std::uint32_t mouse_buttons_ = 0;  // SDL_BUTTON masks
     std::uint16_t modifiers_ = 0;      // KMOD_* of the held keys
+    std::vector<SDL_Keycode> held_;    // keys pressed and not released, for messages
     std::uint32_t marker_type_ = 0;    // an SDL user event type, registered on first use
     bool awaiting_marker_ = false;     // pushed events the window has not handled yet
 };

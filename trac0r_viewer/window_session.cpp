@@ -128,7 +128,7 @@ Session::Session(const Options& options, Window& window, const Font& font,
       triangles_(renderer->packed().triangles.size()),
       camera_(renderer->scene().camera),
       frame_event_(SDL_RegisterEvents(1)),
-      replay_(std::move(replay)),
+      replay_(std::move(replay), options.replay_path),
       replaying_(!options.replay_path.empty()),
       exposure_(options.exposure) {
     for (const trac0r::Shape& shape : renderer->scene().shapes) {
@@ -476,6 +476,7 @@ int run_window(const Options& options, const std::string& title,
     std::vector<ReplayCommand> replay;
     if (!options.replay_path.empty()) {
         replay = load_replay(options.replay_path);
+        check_replay_reachable(replay, options.replay_path, options.spp);
     }
     const bool benchmark = options.benchmark_frames > 0;
     // The benchmark shows only the image: no text, no font needed.
