@@ -252,3 +252,14 @@ TEST_CASE("a replay that cannot finish stops with a message naming the line", "[
     INFO(flood.err);
     CHECK(flood.exit_code == 0);
 }
+
+// Issue 33, point 7: a NUL cut the message (and SDL read "W\0..." as W,
+// so the script ran on); a binary file is now refused with its bytes shown.
+TEST_CASE("a binary replay file is refused, its bytes shown escaped", "[window]") {
+    write_file("binary_replay.txt", std::string("wait 10\nkey W\0\x01zz\n", 17));
+    const ViewerRun r = run_viewer_process("--replay binary_replay.txt", "", 30);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err ==
+          "trac0r_viewer: error: binary_replay.txt:2: expected a line of text (a binary "
+          "file?), got 'key W\\x00\\x01zz'\n");
+}

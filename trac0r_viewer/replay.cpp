@@ -1,5 +1,7 @@
 #include "replay.h"
 
+#include "trac0r/input_checks.h"
+
 #include <SDL.h>
 #include <sys/stat.h>
 
@@ -33,7 +35,7 @@ class LineParser {
 
     [[noreturn]] void fail(const std::string& what) const { fail_at(what, text_); }
     [[noreturn]] void fail_at(const std::string& what, const std::string& got) const {
-        throw ReplayError(where_ + what + ", got '" + got + "'");
+        throw ReplayError(where_ + what + ", got '" + trac0r::printable(got, 80) + "'");
     }
 
     long integer(const std::string& argument, long min, long max) const {
@@ -153,6 +155,14 @@ std::vector<ReplayCommand> parse_replay(const std::string& text, const std::stri
         const std::string content = trim(raw.substr(0, raw.find('#')));
         if (content.empty()) {
             continue;
+        }
+        // A NUL would end a key name early for SDL ("W\0..." is W), and
+        // any control byte means this is no script (a binary file, UTF-16).
+        if (std::any_of(content.begin(), content.end(), [](char ch) {
+                const unsigned char u = static_cast<unsigned char>(ch);
+                return (u < 0x20 && ch != '\t') || u == 0x7F;
+            })) {
+            LineParser(origin, line, content).fail("expected a line of text (a binary file?)");
         }
         // The argument is the rest of the line: key names may hold spaces.
         const std::size_t space = content.find_first_of(" \t");
