@@ -132,9 +132,11 @@ TEST_CASE("bench_backends: --help, bad flags named, default scenes missing", "[b
     // printed before the message, which says where the defaults are read.
     check_refused("bench_backends",
                   {{"",
-                    "scenes/cornell.json: cannot open scene file (the default scenes are "
+                    "scenes/cornell.json: cannot open scene file: No such file or directory (the "
+                    "default scenes are "
                     "relative to the working directory"},
-                   {"no_such_scene.json", "no_such_scene.json: cannot open scene file"}},
+                   {"no_such_scene.json",
+                    "no_such_scene.json: cannot open scene file: No such file or directory"}},
                   1);
 }
 #endif

@@ -491,7 +491,7 @@ TEST_CASE("scene files: errors name the file; meshes are relative to it", "[scen
     TempDir dir;
     SECTION("a file that does not exist") {
         const std::string path = dir.path() + "/absent.json";
-        REQUIRE_THROWS_WITH(load_scene_file(path), Equals(path + ": cannot open scene file"));
+        REQUIRE_THROWS_WITH(load_scene_file(path), Equals(path + ": cannot open scene file: No such file or directory"));
     }
     SECTION("a directory") {
         REQUIRE_THROWS_WITH(load_scene_file(dir.path()), StartsWith(dir.path() + ": cannot"));

@@ -230,7 +230,7 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
         {"--headless --width", "--width: expected a value"},
         {"--headless --output --spp", "--output: expected a value after it, got the option --spp"},
         {"--headless --benchmark 3 --spp 8", "--benchmark: renders exactly N frames"},
-        {"--replay .", "--replay .: cannot open the file", 1},
+        {"--replay .", "--replay .: cannot read replay script: it is a directory", 1},
         {"no_such_scene.json --headless --output x.png", "no_such_scene.json", 1},
         // Checked before the render, which would otherwise be lost.
         {"--headless --output no_such_dir/x.png",

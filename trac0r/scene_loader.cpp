@@ -46,6 +46,7 @@
 #include "trac0r/scene_loader.h"
 
 #include "trac0r/input_checks.h"
+#include "trac0r/input_file.h"
 #include "trac0r/json_diagnostics.h"
 
 #include <algorithm>
@@ -352,19 +353,11 @@ Scene parse_scene(const std::string& json_text, const std::string& origin,
 }
 
 Scene load_scene_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        throw SceneError(path + ": cannot open scene file");
-    }
     std::string text;
     try {
-        // libstdc++ throws from the read itself when the path is a directory.
-        text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    } catch (const std::exception&) {
-        throw SceneError(path + ": cannot read scene file");
-    }
-    if (in.bad()) {
-        throw SceneError(path + ": cannot read scene file");
+        text = read_input_file(path, "scene file");
+    } catch (const std::runtime_error& e) {
+        throw SceneError(e.what());
     }
     return parse_scene(text, path, directory_of(path));
 }

@@ -6,6 +6,7 @@
 #include "trac0r/input_checks.h"
 #include "trac0r/cpu_backend.h"
 #include "trac0r/image_io.h"
+#include "trac0r/input_file.h"
 #include "trac0r/opencl_backend.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
@@ -189,6 +190,10 @@ int main(int argc, char** argv) {
             return list_devices();
         }
         check_options(options);
+        if (options.max_input_mb > 0) {
+            trac0r::set_input_size_limit(static_cast<std::uint64_t>(options.max_input_mb) *
+                                         1000000u);
+        }
         const trac0r::Scene scene = load_scene(options);
         trac0r::PackOptions pack;
         pack.accel = trac0r::parse_accel(options.accel);

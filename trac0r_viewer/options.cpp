@@ -67,6 +67,8 @@ Output:
   --benchmark N          render N frames, print one JSON line of timings, exit;
                          in the window (no vsync, no overlay) or with --headless
   --replay FILE          window: play the scripted input events in FILE
+  --max-input-mb N       largest scene, mesh or replay file read, in MB
+                         (default 4000)
   -h, --help             this text
 
 Window keys and mouse:
@@ -143,6 +145,8 @@ Options parse_options(int argc, const char* const* argv) {
         {"--target-error", [&](auto f, auto v) { o.target_error = parse_positive(f, v); }},
         {"--exposure", [&](auto f, auto v) { o.exposure = (float)parse_positive(f, v); }},
         {"--replay", [&](auto, auto v) { o.replay_path = v; }},
+        {"--max-input-mb",
+         [&](auto f, auto v) { o.max_input_mb = parse_integer(f, v, 1, 1L << 30); }},
     };
     const std::map<std::string, bool*> switches = {{"--headless", &o.headless},
                                                    {"--verbose", &o.verbose},

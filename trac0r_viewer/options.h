@@ -29,6 +29,7 @@ struct Options {
     double target_error = 0.0;
     float exposure = 1.0f;
     std::string replay_path;  // --replay: scripted window input (replay.h)
+    long max_input_mb = 0;    // --max-input-mb; 0: the library's limit (4000)
     bool verbose = false;
     bool list_devices = false;
     bool help = false;

@@ -1,13 +1,12 @@
 #include "replay.h"
 
 #include "trac0r/input_checks.h"
+#include "trac0r/input_file.h"
 
 #include <SDL.h>
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -178,22 +177,15 @@ std::vector<ReplayCommand> parse_replay(const std::string& text, const std::stri
 }
 
 std::vector<ReplayCommand> load_replay(const std::string& path) {
-    // A directory opens as a stream that reads nothing: an empty script,
-    // and a window that never closes. Only a regular file will do.
-    struct stat st;
-    if (stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) {
-        throw ReplayError("--replay " + path + ": cannot open the file (expected a script file)");
+    // Only a regular file will do: a directory would read as an empty
+    // script, and /dev/zero or a FIFO would never end.
+    try {
+        return parse_replay(trac0r::read_input_file(path, "replay script"), path);
+    } catch (const ReplayError&) {
+        throw;
+    } catch (const std::runtime_error& e) {
+        throw ReplayError(std::string("--replay ") + e.what());
     }
-    std::ifstream in(path);
-    if (!in) {
-        throw ReplayError("--replay " + path + ": cannot open the file");
-    }
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) {
-        throw ReplayError("--replay " + path + ": cannot read the file");
-    }
-    return parse_replay(text.str(), path);
 }
 
 void check_replay_reachable(const std::vector<ReplayCommand>& commands, const std::string& origin,

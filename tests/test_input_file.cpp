@@ -1,0 +1,63 @@
+// Input files (trac0r/input_file.h, issue 33 point 3): only regular files
+// are read, at most the size limit, and a name with a NUL byte is refused
+// rather than cut there. Before, a scene or mesh path naming /dev/zero
+// grew memory to many GB with no message, and a FIFO waited for a writer.
+#include "trac0r/input_file.h"
+#include "trac0r/scene_loader.h"
+#include "viewer_process.h"
+
+#include <catch2/catch.hpp>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+using Catch::Matchers::Equals;
+
+TEST_CASE("only a regular file within the size limit is read", "[input]") {
+    CHECK_THROWS_WITH(trac0r::read_input_file("/dev/zero", "scene file"),
+                      Equals("/dev/zero: cannot read scene file: it is a device, FIFO or socket, "
+                             "not a regular file"));
+    std::remove("input_fifo");
+    REQUIRE(mkfifo("input_fifo", 0600) == 0);  // no writer: open must not wait
+    CHECK_THROWS_WITH(trac0r::read_input_file("input_fifo", "OBJ mesh"),
+                      Equals("input_fifo: cannot read OBJ mesh: it is a device, FIFO or socket, "
+                             "not a regular file"));
+    std::remove("input_fifo");
+    CHECK_THROWS_WITH(trac0r::read_input_file(".", "scene file"),
+                      Equals(".: cannot read scene file: it is a directory"));
+    CHECK_THROWS_WITH(trac0r::read_input_file(std::string("a\0b.json", 8), "scene file"),
+                      Equals("a\\x00b.json: cannot read scene file: the path holds a NUL byte"));
+
+    std::ofstream("input_small.txt") << std::string(3000, 'x');
+    CHECK(trac0r::read_input_file("input_small.txt", "scene file").size() == 3000);
+    const std::uint64_t saved = trac0r::input_size_limit();
+    trac0r::set_input_size_limit(2000);
+    CHECK_THROWS_WITH(trac0r::read_input_file("input_small.txt", "scene file"),
+                      Equals("input_small.txt: cannot read scene file: it is 3000 bytes, over the "
+                             "input size limit of 2000 bytes (--max-input-mb raises it)"));
+    trac0r::set_input_size_limit(saved);
+    std::remove("input_small.txt");
+}
+
+TEST_CASE("a scene or replay path naming a device is one message", "[input]") {
+    CHECK_THROWS_AS(trac0r::load_scene_file("/dev/zero"), trac0r::SceneError);
+    const trac0r_test::ViewerRun r =
+        trac0r_test::run_viewer_process("/dev/zero --headless --spp 1 --output x.png", "", 30);
+    CHECK(r.exit_code == 1);
+    CHECK(r.err ==
+          "trac0r_viewer: /dev/zero: cannot read scene file: it is a device, FIFO or "
+          "socket, not a regular file\n");
+    // --max-input-mb: a scene over it is refused, naming the flag.
+    const std::string cornell = std::string(TRAC0R_SOURCE_DIR) + "/scenes/cornell.json";
+    const trac0r_test::ViewerRun big = trac0r_test::run_viewer_process(
+        cornell + " --max-input-mb 1 --headless --spp 1 --width 4 --height 3 --output x.pfm");
+    CHECK(big.exit_code == 0);  // cornell.json is a few KB
+    const trac0r_test::ViewerRun bad =
+        trac0r_test::run_viewer_process("--max-input-mb 0 --headless --output x.pfm");
+    CHECK(bad.exit_code == 2);
+}
