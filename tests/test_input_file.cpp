@@ -61,3 +61,20 @@ TEST_CASE("a scene or replay path naming a device is one message", "[input]") {
         trac0r_test::run_viewer_process("--max-input-mb 0 --headless --output x.pfm");
     CHECK(bad.exit_code == 2);
 }
+
+TEST_CASE("a mesh path naming a device or holding a NUL is one message", "[input]") {
+    const std::string zero =
+        R"({"shapes": [{"type": "mesh", "file": "/dev/zero", "material": "m"}],
+            "materials": {"m": {"type": "diffuse", "color": [1, 1, 1]}}})";
+    CHECK_THROWS_WITH(trac0r::parse_scene(zero, "z.json", "."),
+                      Catch::Contains("/dev/zero: cannot read OBJ mesh: it is a device, FIFO or "
+                                      "socket, not a regular file"));
+    // Before, the name was cut at the NUL and meshes/tetrahedron.obj read.
+    const std::string nul =
+        R"({"shapes": [{"type": "mesh", "file": "meshes/tetrahedron.obj\u0000.bak", "material": "m"}],
+            "materials": {"m": {"type": "diffuse", "color": [1, 1, 1]}}})";
+    CHECK_THROWS_WITH(
+        trac0r::parse_scene(nul, "n.json", std::string(TRAC0R_SOURCE_DIR) + "/scenes"),
+        Catch::Contains("tetrahedron.obj\\x00.bak: cannot read OBJ mesh: the path "
+                        "holds a NUL byte"));
+}
