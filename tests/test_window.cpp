@@ -263,3 +263,20 @@ TEST_CASE("a binary replay file is refused, its bytes shown escaped", "[window]"
           "trac0r_viewer: error: binary_replay.txt:2: expected a line of text (a binary "
           "file?), got 'key W\\x00\\x01zz'\n");
 }
+
+// Issue 33, point 2: SIGINT or SIGTERM closes the window as Escape does
+// (SDL turns them into a quit event): the --output image is saved, exit 0.
+TEST_CASE("SIGINT and SIGTERM close the window as Escape does", "[window]") {
+    for (const char* signal : {"INT", "TERM"}) {
+        INFO(signal);
+        const std::string pfm = std::string("window_") + signal + ".pfm";
+        std::remove(pfm.c_str());
+        const ViewerRun r = trac0r_test::run_process(
+            "timeout --preserve-status -s " + std::string(signal) + " 2 " + TRAC0R_VIEWER,
+            "--width 32 --height 24 --output " + pfm);
+        INFO(r.err);
+        CHECK(r.exit_code == 0);
+        CHECK(r.err.find("wrote " + pfm) != std::string::npos);
+        CHECK(trac0r::read_pfm(pfm).width == 32);
+    }
+}

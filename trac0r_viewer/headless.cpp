@@ -4,12 +4,15 @@
 
 #include "trac0r/noise.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -47,11 +50,15 @@ class Progress {
         draw(spp, elapsed, paths_per_second, estimate, std::min(1.0, f));
     }
 
-    void finish(long spp, double elapsed, double paths_per_second, double estimate) {
+    // The last line: 100 % for a render that ran to its rule, the fraction
+    // done for one that was interrupted.
+    void finish(long spp, double elapsed, double paths_per_second, double estimate,
+                bool complete = true) {
         if (!tty_ && spp == last_drawn_spp_) {
             return;  // the log already has this line
         }
-        draw(spp, elapsed, paths_per_second, estimate, 1.0);
+        draw(spp, elapsed, paths_per_second, estimate,
+             complete ? 1.0 : std::min(1.0, fraction(spp, elapsed, estimate)));
         if (tty_) {
             std::fputc('\n', stderr);
         }
@@ -100,6 +107,47 @@ class Progress {
 // checks cost a fraction of a percent), but not before 8 spp, below which the
 // per-pixel variances are too rough to stop on.
 long next_error_check(long spp) { return std::max(8L, spp + std::max(1L, spp / 10)); }
+
+// SIGINT or SIGTERM during a batch render (0: none yet). The frame in
+// flight finishes, the image so far is written, and the exit status says
+// which signal came (130, 143). The handler is reset by its first signal,
+// so a second one ends the program at once.
+volatile std::sig_atomic_t interrupt_signal = 0;
+
+extern "C" void on_interrupt(int signal_number) { interrupt_signal = signal_number; }
+
+// Installs on_interrupt for the life of a batch render. A signal that was
+// ignored when the program started (nohup, a background job) stays ignored.
+class InterruptHandlers {
+  public:
+    InterruptHandlers() {
+        interrupt_signal = 0;
+        struct sigaction action;
+        std::memset(&action, 0, sizeof action);
+        action.sa_handler = on_interrupt;
+        action.sa_flags = SA_RESETHAND;
+        sigemptyset(&action.sa_mask);
+        for (int i = 0; i < 2; ++i) {
+            sigaction(kSignals[i], nullptr, &saved_[i]);
+            if (saved_[i].sa_handler != SIG_IGN) {
+                sigaction(kSignals[i], &action, nullptr);
+            }
+        }
+    }
+    ~InterruptHandlers() {
+        for (int i = 0; i < 2; ++i) {
+            sigaction(kSignals[i], &saved_[i], nullptr);
+        }
+    }
+    InterruptHandlers(const InterruptHandlers&) = delete;
+    InterruptHandlers& operator=(const InterruptHandlers&) = delete;
+
+  private:
+    static constexpr int kSignals[2] = {SIGINT, SIGTERM};
+    struct sigaction saved_[2];
+};
+
+constexpr int InterruptHandlers::kSignals[2];
 
 // --spp, --seconds and --target-error; 64 spp when none of them is given.
 StopRule batch_stop_rule(const Options& options) {
@@ -165,11 +213,15 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
         return last_estimate;
     };
     Progress progress(rule);
+    const InterruptHandlers interrupts;
     const Clock::time_point start = Clock::now();
     long error_check = next_error_check(0);
     bool error_reached = false;
     StopReason stopped = StopReason::none;
     for (;;) {
+        if (interrupt_signal != 0 && spp > 0) {
+            break;
+        }
         stopped = rule.reason(spp, seconds_since(start), error_reached, renderer.full());
         if (stopped == StopReason::full) {
             std::fprintf(stderr,
@@ -214,7 +266,16 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
     if (spp >= 2) {
         estimate();
     }
-    progress.finish(spp, elapsed, paths_per_second, last_estimate);
+    progress.finish(spp, elapsed, paths_per_second, last_estimate, interrupt_signal == 0);
+    if (interrupt_signal != 0) {
+        const int signal_number = interrupt_signal;
+        std::fprintf(stderr,
+                     "trac0r_viewer: interrupted by %s after %ld spp (%.2f s): writing the "
+                     "image so far\n",
+                     signal_number == SIGINT ? "SIGINT" : "SIGTERM", spp, elapsed);
+        save_outputs(renderer, options);
+        return 128 + signal_number;
+    }
     const trac0r::RenderStats stats = renderer.stats();
     std::fprintf(stderr,
                  "rendered %ld spp of %dx%d in %.2f s (%.2f Mpaths/s); %.0f non-finite "
