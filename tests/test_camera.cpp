@@ -213,3 +213,26 @@ TEST_CASE("camera_problem names the mistakes; make_camera_record refuses them",
     CHECK_THROWS_AS(make_camera_record(Camera(), 0, 600), std::invalid_argument);
     CHECK_THROWS_AS(make_camera_record(Camera(), 800, -1), std::invalid_argument);
 }
+
+// Issue 33, point 7: a camera vector near float's largest was reported as
+// "parallel to world_up" (its length overflowed), and one that passed would
+// normalise to NaN. Only the direction of these vectors counts.
+TEST_CASE("huge camera vectors are directions like any other", "[kernel][camera]") {
+    Camera huge;
+    huge.direction = glm::vec3(3e38f, 3e38f, 3e38f);
+    huge.world_up = glm::vec3(0.0f, 3e38f, 0.0f);
+    CHECK(camera_problem(huge) == nullptr);
+    Camera unit = huge;
+    unit.direction = glm::vec3(1.0f, 1.0f, 1.0f);
+    unit.world_up = glm::vec3(0.0f, 1.0f, 0.0f);
+    const kernel::CameraRecord a = make_camera_record(huge, 80, 60);
+    const kernel::CameraRecord b = make_camera_record(unit, 80, 60);
+    for (int i = 0; i < 3; ++i) {
+        CHECK(a.forward[i] == Approx(b.forward[i]).margin(1e-6));
+        CHECK(a.right[i] == Approx(b.right[i]).margin(1e-6));
+        CHECK(a.up[i] == Approx(b.up[i]).margin(1e-6));
+    }
+    Camera huge_parallel = huge;
+    huge_parallel.direction = glm::vec3(0.0f, -3e38f, 0.0f);
+    CHECK(std::string(camera_problem(huge_parallel)).find("parallel") != std::string::npos);
+}

@@ -2,11 +2,24 @@
 
 #include "trac0r/geometry.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 namespace trac0r {
+
+namespace {
+
+// v divided by its largest component's magnitude: the same direction, with
+// a length between 1 and sqrt(3), so that lengths and cross products of
+// vectors such as [3e38, 3e38, 3e38] do not overflow (their squares would).
+glm::vec3 direction_of(const glm::vec3& v) {
+    const float largest = std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z)));
+    return largest > 0.0f ? v / largest : v;
+}
+
+}  // namespace
 
 const char* camera_problem(const Camera& camera) {
     if (!is_finite(camera.position)) {
@@ -20,9 +33,10 @@ const char* camera_problem(const Camera& camera) {
         return "camera.world_up must be a finite vector whose length is not zero in float "
                "(a component above about 1e-19)";
     }
-    const glm::vec3 right = glm::cross(camera.world_up, camera.direction);
-    if (glm::length(right) <=
-        1e-6f * glm::length(camera.world_up) * glm::length(camera.direction)) {
+    const glm::vec3 direction = direction_of(camera.direction);
+    const glm::vec3 world_up = direction_of(camera.world_up);
+    const glm::vec3 right = glm::cross(world_up, direction);
+    if (glm::length(right) <= 1e-6f * glm::length(world_up) * glm::length(direction)) {
         return "camera.direction is parallel to camera.world_up, so the image has no "
                "'right'; choose another world_up";
     }
@@ -40,8 +54,8 @@ kernel::CameraRecord make_camera_record(const Camera& camera, int width, int hei
         throw std::invalid_argument("image size must be positive, got " + std::to_string(width) +
                                     " x " + std::to_string(height));
     }
-    const glm::vec3 forward = glm::normalize(camera.direction);
-    const glm::vec3 right = glm::normalize(glm::cross(camera.world_up, forward));
+    const glm::vec3 forward = glm::normalize(direction_of(camera.direction));
+    const glm::vec3 right = glm::normalize(glm::cross(direction_of(camera.world_up), forward));
     const glm::vec3 up = glm::cross(forward, right);
     const float half_height = std::tan(0.5f * glm::radians(camera.vertical_fov));
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
