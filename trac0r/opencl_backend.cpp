@@ -19,10 +19,28 @@ const char* opencl_kernel_source() { return embedded_opencl_source; }
 
 namespace {
 
+// The name of an OpenCL error code, for the ones a user can meet and act
+// on; "" for the rest.
+const char* error_name(cl_int status) {
+    switch (status) {
+    case CL_MEM_OBJECT_ALLOCATION_FAILURE:
+        return "CL_MEM_OBJECT_ALLOCATION_FAILURE: the device is out of memory";
+    case CL_OUT_OF_RESOURCES:
+        return "CL_OUT_OF_RESOURCES: the device is out of memory or other resources";
+    case CL_OUT_OF_HOST_MEMORY:
+        return "CL_OUT_OF_HOST_MEMORY: out of memory";
+    case CL_INVALID_BUFFER_SIZE:
+        return "CL_INVALID_BUFFER_SIZE: larger than the device's largest buffer";
+    default:
+        return "";
+    }
+}
+
 void check(cl_int status, const char* what) {
     if (status != CL_SUCCESS) {
+        const std::string name = error_name(status);
         throw OpenClError(std::string("OpenCL: ") + what + " failed (error " +
-                          std::to_string(status) + ")");
+                          std::to_string(status) + (name.empty() ? "" : ", " + name) + ")");
     }
 }
 
@@ -354,6 +372,18 @@ void OpenClBackend::reset(int width, int height) {
     const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     cl_int status = CL_SUCCESS;
     if (pixels != state_->pixels || !state_->accum) {
+        // Said before asking: the driver's answer is a bare error code.
+        const std::size_t bytes = sizeof(kernel::AccumPixel) * pixels;
+        cl_ulong largest = 0;
+        if (clGetDeviceInfo(state_->device->device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof largest,
+                            &largest, nullptr) == CL_SUCCESS &&
+            bytes > largest) {
+            throw OpenClError("OpenCL: the accumulator of " + std::to_string(width) + " x " +
+                              std::to_string(height) + " pixels needs " +
+                              std::to_string(bytes >> 20) + " MiB, more than the device's " +
+                              "largest buffer (" + std::to_string(largest >> 20) +
+                              " MiB): try a smaller --width and --height, or --backend cpu");
+        }
         state_->accum.reset();  // the old one first, as the scene's buffers
         state_->accum.reset(clCreateBuffer(state_->device->context.get(), CL_MEM_READ_WRITE,
                                            sizeof(kernel::AccumPixel) * pixels, nullptr, &status));
