@@ -210,6 +210,11 @@ glm::vec3 read_vec3(const json& value, const Location& at, NumberRule rule) {
     return glm::vec3(xs[0], xs[1], xs[2]);
 }
 
+glm::dvec3 read_dvec3(const json& value, const Location& at, NumberRule rule) {
+    read_vec3(value, at, rule);  // the same checks and messages
+    return glm::dvec3(value[0].get<double>(), value[1].get<double>(), value[2].get<double>());
+}
+
 glm::vec2 read_vec2(const json& value, const Location& at, NumberRule rule) {
     const std::vector<float> xs = read_floats(value, at, 2, rule);
     return glm::vec2(xs[0], xs[1]);

@@ -73,6 +73,8 @@ bool fits_float(const json& value);
 float read_float(const json& value, const Location& at, NumberRule rule);
 // An array of 3 (2) such numbers; the message shows the whole array.
 glm::vec3 read_vec3(const json& value, const Location& at, NumberRule rule);
+// read_vec3's checks, and the numbers as the file wrote them, in double.
+glm::dvec3 read_dvec3(const json& value, const Location& at, NumberRule rule);
 glm::vec2 read_vec2(const json& value, const Location& at, NumberRule rule);
 // An integer in [lowest, highest]; 800.0 is accepted as 800, 800.5 is not.
 int read_int(const json& value, const Location& at, int lowest, int highest);
@@ -125,6 +127,9 @@ class ObjectReader {
     }
     glm::vec3 optional_vec3(const std::string& key, NumberRule rule, glm::vec3 fallback) const {
         return has(key) ? read_vec3(value_.at(key), at(key), rule) : fallback;
+    }
+    glm::dvec3 optional_dvec3(const std::string& key, NumberRule rule, glm::dvec3 fallback) const {
+        return has(key) ? read_dvec3(value_.at(key), at(key), rule) : fallback;
     }
     int optional_int(const std::string& key, int lowest, int highest, int fallback) const {
         return has(key) ? read_int(value_.at(key), at(key), lowest, highest) : fallback;

@@ -18,6 +18,11 @@ struct RenderSettings {
 };
 
 struct Scene {
+    // Where the scene's own coordinate (0, 0, 0) lies in the file's
+    // coordinates: every position below (camera, shapes) is relative to it.
+    // The loader chooses it in double near the camera (local_origin), so
+    // that a room far from the file's origin keeps its shape in float.
+    glm::dvec3 origin{0.0};
     Camera camera;
     RenderSettings render;
     std::vector<Material> materials;
@@ -25,6 +30,15 @@ struct Scene {
 
     std::size_t triangle_count() const;
 };
+
+// The local origin for a camera at `position` (in the file's coordinates,
+// in double): each component rounded to a multiple of 1024, so that in the
+// scene's coordinates the camera is within 512 of the origin on each axis
+// and a scene near the file's origin (|x| < 512) keeps its coordinates
+// exactly. What is near the camera then has float's precision at 512 or
+// less (2^-15) wherever the file puts it, up to where double's own spacing
+// (2^-52 of the distance) matters: about 1e12 for millimetre detail.
+glm::dvec3 local_origin(const glm::dvec3& position);
 
 }  // namespace trac0r
 

@@ -80,11 +80,16 @@ float read_fov(const json& value, const Location& at) {
     return degrees;
 }
 
-Camera read_camera(const json& value, const Location& at) {
+// The camera, its position relative to *origin, which it chooses
+// (local_origin of the position as the file writes it, in double).
+Camera read_camera(const json& value, const Location& at, glm::dvec3* origin) {
     const ObjectReader o(value, at, "a camera object");
     o.allow_only({"position", "direction", "world_up", "vertical_fov"}, "the camera");
     Camera camera;
-    camera.position = o.optional_vec3("position", NumberRule::finite, camera.position);
+    const glm::dvec3 position =
+        o.optional_dvec3("position", NumberRule::finite, glm::dvec3(camera.position));
+    *origin = local_origin(position);
+    camera.position = glm::vec3(position - *origin);
     camera.direction = o.optional_vec3("direction", NumberRule::finite, camera.direction);
     camera.world_up = o.optional_vec3("world_up", NumberRule::finite, camera.world_up);
     if (o.has("vertical_fov")) {
@@ -192,6 +197,7 @@ std::vector<Material> read_materials(const json& value, const Location& at) {
 
 // What a shape needs besides its geometry, to build it.
 struct ShapeContext {
+    glm::dvec3 origin{0.0};  // Scene::origin: positions are made relative to it
     std::map<std::string, int> material_index;
     std::vector<std::string> material_names;
     std::string base_dir;
@@ -265,7 +271,9 @@ Shape read_shape(const json& value, const Location& at, const ShapeContext& cont
     o.allow_only(allowed, with_article(type) + " shape");
 
     const int material = read_material_reference(o, context);
-    const glm::vec3 position = o.optional_vec3("position", NumberRule::finite, glm::vec3(0.0f));
+    // Relative to the local origin in double, then rounded to float once.
+    const glm::vec3 position = glm::vec3(
+        o.optional_dvec3("position", NumberRule::finite, glm::dvec3(0.0)) - context.origin);
     const glm::vec3 orientation =
         o.optional_vec3("orientation", NumberRule::finite, glm::vec3(0.0f));
     if (type == "plane") {
@@ -314,7 +322,7 @@ Scene read_scene(const json& document, const Location& at, const std::string& ba
     o.allow_only({"camera", "render", "materials", "shapes"}, "the top level");
     Scene scene;
     if (o.has("camera")) {
-        scene.camera = read_camera(o["camera"], o.at("camera"));
+        scene.camera = read_camera(o["camera"], o.at("camera"), &scene.origin);
     }
     if (o.has("render")) {
         scene.render = read_render(o["render"], o.at("render"));
@@ -322,6 +330,7 @@ Scene read_scene(const json& document, const Location& at, const std::string& ba
     scene.materials =
         read_materials(o.required("materials", "an object of named materials"), o.at("materials"));
     ShapeContext context;
+    context.origin = scene.origin;
     context.base_dir = base_dir;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         context.material_index[scene.materials[i].name] = static_cast<int>(i);
