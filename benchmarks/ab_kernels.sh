@@ -6,7 +6,7 @@
 # offsets, which the pairs take in turn, so that where the linker puts a hot
 # loop does not decide the comparison. A version against itself gives
 # medians within half a per cent of 1, where alternated runs of two builds
-# differ by a few per cent (README, "Performance").
+# differ by a few per cent (docs/performance.md, "Measuring side by side").
 #
 #   benchmarks/ab_kernels.sh A B [SCENE.json] [--accel flat|bvh]
 #       [--integrator naive|nee] [--pairs N] [--size W H]

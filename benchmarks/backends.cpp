@@ -7,10 +7,10 @@
 //   build/benchmarks/bench_backends [--frames N] [--width W --height H]
 //                                   [--accel flat,bvh] [SCENE.json ...]
 //
-// Prints Markdown tables (the README's). PoCL's on-disk kernel cache is
-// switched off, and each timed build gets a unique dummy define so the
-// process-wide program cache cannot answer it either: build times are real
-// compiles.
+// Prints Markdown tables (docs/performance.md, "Backends and ray
+// casting"). PoCL's on-disk kernel cache is switched off, and each timed
+// build gets a unique dummy define so the process-wide program cache
+// cannot answer it either: build times are real compiles.
 #include "cli.h"
 #include "ray_cast.h"
 #include "timing.h"

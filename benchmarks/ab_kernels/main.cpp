@@ -7,10 +7,11 @@
 // processor's 64-byte fetch blocks moved frame times by 2 % where the code
 // itself did not change. A slow spell of the
 // machine then slows both frames of a pair, and not one build's runs, so
-// the ratio resolves differences of a few tenths of a per cent (README,
-// "Performance") where alternated runs of two builds resolve a few per
-// cent. Built and run by benchmarks/ab_kernels.sh, which compiles
-// variant.cpp once for each version.
+// the ratio resolves differences of a few tenths of a per cent
+// (docs/performance.md, "Measuring side by side") where alternated runs
+// of two builds resolve a few per cent. Built and run by
+// benchmarks/ab_kernels.sh, which compiles variant.cpp once for each
+// version.
 #include "../cli.h"
 #include "../timing.h"
 #include "buffers.h"
