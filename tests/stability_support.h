@@ -32,14 +32,7 @@ inline kernel::Hit nearest_hit(const kernel::SceneView* view, kernel::Ray ray) {
 
 inline Material make_material(MaterialType type, glm::vec3 color, float emittance = 0.0f,
                               float roughness = 0.0f, float ior = 1.5f) {
-    Material m;
-    m.name = to_string(type);
-    m.type = type;
-    m.color = color;
-    m.emittance = emittance;
-    m.roughness = roughness;
-    m.ior = ior;
-    return m;
+    return Material{to_string(type), type, color, emittance, roughness, ior};
 }
 
 // A closed room (a box of side 2 s centred on `offset`) with a lamp under the
