@@ -32,6 +32,14 @@ class ObjChecker {
     std::string checked_text() {
         // Only a regular file within the input size limit (input_file.h).
         std::string text = read_input_file(path_, "OBJ mesh");
+        // tinyobjloader would read such a file as no statements at all.
+        const std::size_t nul = text.find('\0');
+        if (nul != std::string::npos) {
+            const long line = 1 + std::count(text.begin(), text.begin() + nul, '\n');
+            throw std::runtime_error(
+                path_ + ":" + std::to_string(line) +
+                ": a NUL byte: this is no OBJ text (a binary file, or UTF-16: save it as UTF-8)");
+        }
         // A UTF-8 byte-order mark, which some Windows tools write first.
         if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) {
             text.replace(0, 3, 3, ' ');
