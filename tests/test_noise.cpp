@@ -136,8 +136,9 @@ TEST_CASE("the noise estimate tracks the true error: thesis Cornell box", "[nois
 // Next-event estimation finds the light at every diffuse hit, so its
 // samples are less heavy-tailed; but the glass and mirror paths that carry
 // the caustics still find it by chance, and at 8 spp their rare bright
-// samples can make the sample variance low (estimate / truth 0.68 at 8 spp
-// on the 160 x 120 convergence run in the README, just inside 1 / 1.5).
+// samples can make the sample variance low (estimate / truth 0.67 at 8 spp
+// on the 160 x 120 convergence run in docs/noise.md, "How good the
+// estimate is", just inside 1 / 1.5).
 TEST_CASE("the noise estimate tracks the true error: thesis Cornell box with NEE", "[noise]") {
     check_estimate("cornell.json", 8, Integrator::nee);
 }

@@ -213,7 +213,7 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
     struct Case {
         std::string args;
         std::string expected;  // part of the message
-        int exit_code = 2;     // 2: the command line; 1: anything else (README)
+        int exit_code = 2;     // 2: the command line; 1: anything else (README, "Running a scene")
     };
     const Case cases[] = {
         {"--headless --spp abc --output x.png", "--spp: expected an integer"},
