@@ -5,7 +5,9 @@
 # PoCL compiles kernels with its own LLVM inside the process, which the
 # sanitizers do not see into (and whose allocations LeakSanitizer cannot
 # tell from ours); the kernel code it runs is the same C the CPU tests
-# cover. Usage: tests/sanitize.sh
+# cover. test_out_of_memory limits virtual memory (ulimit -v), under
+# which the sanitizers' shadow memory cannot be reserved.
+# Usage: tests/sanitize.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build-sanitize
@@ -15,7 +17,7 @@ cmake --build "$build" -j2
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
 export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1
-ctest --test-dir "$build" --output-on-failure -E '^(test_opencl|test_window)$'
+ctest --test-dir "$build" --output-on-failure -E '^(test_opencl|test_window|test_out_of_memory)$'
 # The window's tests: memory errors and undefined behaviour as above, but
 # no leak check, for SDL's X11 and GL modules are loaded and unloaded with
 # dlopen, and what they keep cannot even be named (no module to match).

@@ -175,6 +175,9 @@ int main(int argc, char** argv) {
     // Over a file-size limit (ulimit -f) a write then fails with EFBIG, which
     // the image writers report, instead of the signal killing the program.
     std::signal(SIGXFSZ, SIG_IGN);
+    // What an out-of-memory error is blamed on: the scene file and its
+    // meshes while they load, then the packed scene and the accumulator.
+    std::string memory_user = "the scene file and its meshes, while loading: a smaller mesh";
     try {
         const Options options = trac0r_viewer::parse_options(argc, argv);
         if (options.help) {
@@ -195,6 +198,9 @@ int main(int argc, char** argv) {
                                          1000000u);
         }
         const trac0r::Scene scene = load_scene(options);
+        memory_user = "the scene's " + std::to_string(scene.triangle_count()) +
+                      " triangles and their tree, and 48 bytes a pixel for the accumulator: "
+                      "a smaller --width and --height, or a smaller mesh";
         trac0r::PackOptions pack;
         pack.accel = trac0r::parse_accel(options.accel);
         pack.integrator = trac0r::parse_integrator(options.integrator);
@@ -236,9 +242,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "trac0r_viewer: %s\n", e.what());
         return 1;
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr,
-                     "trac0r_viewer: error: out of memory (the scene's triangles and tree, and "
-                     "48 bytes a pixel for the accumulator: try a smaller --width and --height)\n");
+        std::fprintf(stderr, "trac0r_viewer: error: out of memory (%s may help)\n",
+                     memory_user.c_str());
         return 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "trac0r_viewer: error: %s\n", e.what());
