@@ -4,8 +4,11 @@
 #include <cmath>
 #include <random>
 
-#include "trac0r/kernel/intersect.h"
+#include "trac0r/kernel/aabb.h"
+#include "trac0r/kernel/ray.h"
+#include "trac0r/kernel/ray_offset.h"
 #include "trac0r/kernel/rng.h"
+#include "trac0r/kernel/triangle.h"
 
 using namespace trac0r::kernel;
 
@@ -277,7 +280,7 @@ TEST_CASE("offset_ray_origin moves to the requested side, by a small amount",
             wrong_side += !(dot_d(out - p, n) > 0.0);
             wrong_side += !(dot_d(in - p, n) < 0.0);
             // The offset is 8 eps of the magnitude plus one float per
-            // coordinate (kernel/intersect.h): the whole offset stays under
+            // coordinate (kernel/ray_offset.h): the whole offset stays under
             // 1e-4 of the magnitude, invisible at the scene's scale.
             too_far += !(length(out - p) < 1e-4f * magnitude);
             too_far += !(length(in - p) < 1e-4f * magnitude);

@@ -6,7 +6,7 @@
 #include "trac0r/camera.h"
 #include "trac0r/cpu_backend.h"
 #include "trac0r/kernel/accumulate.h"
-#include "trac0r/kernel/intersect.h"
+#include "trac0r/kernel/ray_offset.h"
 #include "trac0r/kernel/sampling.h"
 #include "trac0r/kernel/trace.h"
 #include "trac0r/opencl_backend.h"

@@ -1,6 +1,6 @@
 #include "trac0r/bvh.h"
 
-#include "trac0r/kernel/intersect.h"
+#include "trac0r/kernel/traverse.h"
 
 #include <algorithm>
 #include <cmath>
@@ -508,7 +508,7 @@ Bvh build_bvh(const std::vector<AABB>& triangle_bounds, int max_leaf_size) {
     const int leaf_size = std::min(std::max(1, max_leaf_size), 4);  // one packet
     const std::vector<BinaryNode> binary = Builder(std::move(items)).build(bvh.order);
     // The traversal stack holds at most seven entries per level, and one
-    // more for a moment (kernel/intersect.h). The optimal tree may be as
+    // more for a moment (kernel/traverse.h). The optimal tree may be as
     // deep as the binary one; where that is too deep, the collapse by
     // levels divides the depth by three.
     Collapser(binary, true, leaf_size).collapse(bvh);

@@ -1,6 +1,6 @@
 // A bounding volume hierarchy over triangles: a binary tree by binned SAH,
 // collapsed at least SAH cost into the 8-wide node array both backends
-// traverse (kernel/intersect.h).
+// traverse (kernel/traverse.h).
 #ifndef TRAC0R_BVH_H
 #define TRAC0R_BVH_H
 

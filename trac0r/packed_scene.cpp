@@ -3,8 +3,8 @@
 #include "trac0r/bvh.h"
 #include "trac0r/enum_names.h"
 #include "trac0r/kernel/accumulate.h"
-#include "trac0r/kernel/intersect.h"
 #include "trac0r/kernel/material.h"
+#include "trac0r/kernel/ray_offset.h"
 
 #include <algorithm>
 #include <cmath>
@@ -172,7 +172,7 @@ void pack_lights(PackedScene& packed, const std::vector<std::uint32_t>& packed_i
 
 // The power of two the packer multiplies a scene's coordinates by. The
 // triangle test's distance has a numerator that grows as the cube of the
-// scene's size (kernel/intersect.h): a scene 1e13 across overflowed it and
+// scene's size (kernel/triangle.h): a scene 1e13 across overflowed it and
 // one 1e-13 across was flushed to zero, and neither was ever hit.
 // Multiplying every coordinate by a power of two is exact, and the kernel
 // is the same at every scale (its offsets and thresholds are relative, and

@@ -16,7 +16,7 @@
 #pragma OPENCL FP_CONTRACT OFF
 
 // Doubles where the device has them: the triangle test's exact edge
-// functions (kernel/intersect.h). Without, the same exact signs in floats.
+// functions (kernel/triangle.h). Without, the same exact signs in floats.
 #ifdef cl_khr_fp64
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
 #define T0_HAVE_DOUBLE 1
@@ -84,7 +84,7 @@ T0_INLINE t0_u32 buffer_uint_component(__global const uint4* v, int k) {
 T0_INLINE int lowest_set_bit(int m) { return 31 - (int)clz(m & -m); }
 
 // Four floats that one instruction works on: the BVH tests a packet's four
-// triangles at once (kernel/intersect.h). OpenCL's float4 is one.
+// triangles at once (kernel/triangle.h). OpenCL's float4 is one.
 typedef float4 t0_lanes;
 T0_INLINE t0_lanes lanes_load(__global const float4* p) { return *p; }
 T0_INLINE t0_lanes lanes_splat(float v) { return (float4)(v); }

@@ -4,9 +4,12 @@
 #define TRAC0R_KERNEL_TRACE_H
 
 #include "accumulate.h"
-#include "intersect.h"
+#include "bundle.h"
 #include "material.h"
+#include "ray.h"
+#include "ray_offset.h"
 #include "rng.h"
+#include "traverse.h"
 #include "types.h"
 
 T0_NAMESPACE_BEGIN

@@ -29,18 +29,18 @@
 // Tiles of T0_TILE x T0_TILE pixels; the last row and column of an image's
 // tiles may be narrower. The CPU backend renders a tile at a time, the
 // OpenCL program (with the BVH) a tile a work-group, and a tile's camera
-// rays share the BVH leaves they may enter (kernel/intersect.h,
+// rays share the BVH leaves they may enter (kernel/bundle.h,
 // bundle_leaves).
 #define T0_TILE 8
 
 T0_NAMESPACE_BEGIN
 
-// One triangle for the watertight test (kernel/intersect.h): its three
+// One triangle for the watertight test (kernel/triangle.h): its three
 // vertices exactly as the scene has them, so triangles sharing an edge or a
 // vertex share its floats bit for bit; the unit geometric normal (w: twice
 // the area, |e1 x e2| with e1 = v1 - v0, e2 = v2 - v0) and indices; and
 // numbers of the hit point's computation that depend on the triangle alone
-// (kernel/intersect.h, make_triangle_record, which fills a record).
+// (kernel/ray_offset.h, make_triangle_record, which fills a record).
 typedef struct T0_ALIGN16 TriangleRecord {
     float4 v0;      // xyz: first vertex, w: hit_position's lower bound for its weight
     float4 v1;      // xyz: second vertex, w: the same for v1
