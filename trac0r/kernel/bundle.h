@@ -3,6 +3,7 @@
 #ifndef TRAC0R_KERNEL_BUNDLE_H
 #define TRAC0R_KERNEL_BUNDLE_H
 
+#include "lanes.h"
 #include "ray.h"
 #include "traverse.h"
 #include "types.h"

@@ -3,6 +3,8 @@
 #ifndef TRAC0R_KERNEL_RAY_H
 #define TRAC0R_KERNEL_RAY_H
 
+#include "lanes.h"
+#include "tuning.h"
 #include "types.h"
 
 // A ray is parallel to a triangle when |cos(angle to its plane's normal)|

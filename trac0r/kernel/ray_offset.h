@@ -5,6 +5,7 @@
 #define TRAC0R_KERNEL_RAY_OFFSET_H
 
 #include "ray.h"
+#include "tuning.h"
 #include "types.h"
 
 T0_NAMESPACE_BEGIN

@@ -5,8 +5,10 @@
 #define TRAC0R_KERNEL_TRAVERSE_H
 
 #include "aabb.h"
+#include "lanes.h"
 #include "ray.h"
 #include "triangle.h"
+#include "tuning.h"
 #include "types.h"
 
 T0_NAMESPACE_BEGIN

@@ -3,7 +3,10 @@
 #ifndef TRAC0R_KERNEL_TRIANGLE_H
 #define TRAC0R_KERNEL_TRIANGLE_H
 
+#include "lanes.h"
 #include "ray.h"
+#include "tuning.h"
+#include "types.h"
 
 T0_NAMESPACE_BEGIN
 
