@@ -50,6 +50,8 @@ T0_INLINE float lanes_first(t0_lanes v) { return v.x; }
 // Eight floats: the BVH tests a node's eight child boxes at once. One AVX
 // instruction where PoCL targets AVX (float8); on other devices what the
 // driver makes of float8. Loaded from two consecutive float4s of a buffer.
+// Not two of the four above, as C++ makes them (below): that would give
+// up the one AVX instruction.
 typedef float8 t0_wide;
 typedef int8 t0_wide_mask;
 T0_INLINE t0_wide wide_load(__global const float4* p) {
@@ -90,7 +92,9 @@ T0_NAMESPACE_BEGIN
 inline int lowest_set_bit(int m) { return __builtin_ctz(static_cast<unsigned>(m)); }
 
 // Four floats that one instruction works on (see the OpenCL side): SSE,
-// which every x86-64 CPU has, or a plain array elsewhere.
+// which every x86-64 CPU has, or a plain array elsewhere. Not OpenCL's
+// own code: its float4 has operators and select, SSE has intrinsics, and
+// the array needs a loop; what each writes differs, not what it computes.
 #if defined(__SSE__)
 typedef __m128 t0_lanes;
 inline t0_lanes lanes_load(const float4* p) { return _mm_loadu_ps(glm::value_ptr(*p)); }
@@ -113,36 +117,6 @@ inline t0_mask mask_and_not(t0_mask a, t0_mask b) { return _mm_andnot_ps(b, a); 
 inline int mask_bits(t0_mask m) { return _mm_movemask_ps(m); }
 inline void lanes_store(t0_lanes v, float* out) { _mm_storeu_ps(out, v); }
 inline float lanes_first(t0_lanes v) { return _mm_cvtss_f32(v); }
-// Eight floats (see the OpenCL side): two SSE vectors, lanes 0-3 and 4-7.
-struct t0_wide {
-    __m128 lo;
-    __m128 hi;
-};
-typedef t0_wide t0_wide_mask;
-inline t0_wide wide_load(const float4* p) { return t0_wide{lanes_load(p), lanes_load(p + 1)}; }
-inline t0_wide wide_splat(float v) { return t0_wide{_mm_set1_ps(v), _mm_set1_ps(v)}; }
-inline t0_wide wide_sub(t0_wide a, t0_wide b) {
-    return t0_wide{_mm_sub_ps(a.lo, b.lo), _mm_sub_ps(a.hi, b.hi)};
-}
-inline t0_wide wide_mul(t0_wide a, t0_wide b) {
-    return t0_wide{_mm_mul_ps(a.lo, b.lo), _mm_mul_ps(a.hi, b.hi)};
-}
-inline t0_wide wide_min(t0_wide a, t0_wide b) {
-    return t0_wide{_mm_min_ps(a.lo, b.lo), _mm_min_ps(a.hi, b.hi)};
-}
-inline t0_wide wide_max(t0_wide a, t0_wide b) {
-    return t0_wide{_mm_max_ps(a.lo, b.lo), _mm_max_ps(a.hi, b.hi)};
-}
-inline t0_wide_mask wide_le(t0_wide a, t0_wide b) {
-    return t0_wide{_mm_cmple_ps(a.lo, b.lo), _mm_cmple_ps(a.hi, b.hi)};
-}
-inline int wide_mask_bits(t0_wide_mask m) {
-    return _mm_movemask_ps(m.lo) | (_mm_movemask_ps(m.hi) << 4);
-}
-inline void wide_store(t0_wide v, float* out) {
-    _mm_storeu_ps(out, v.lo);
-    _mm_storeu_ps(out + 4, v.hi);
-}
 #else
 struct t0_lanes {
     float v[4];
@@ -150,8 +124,7 @@ struct t0_lanes {
 inline t0_lanes lanes_load(const float4* p) { return t0_lanes{{p->x, p->y, p->z, p->w}}; }
 inline t0_lanes lanes_splat(float v) { return t0_lanes{{v, v, v, v}}; }
 inline t0_lanes lanes_make(float a, float b, float c, float d) { return t0_lanes{{a, b, c, d}}; }
-// Returns a `type` (t0_lanes, t0_mask, t0_wide or t0_wide_mask) whose
-// lane i is expr.
+// Returns a `type` (t0_lanes or t0_mask) whose lane i is expr.
 #define T0_LANEWISE(type, expr)                                   \
     type r;                                                       \
     for (int i = 0; i < (int)(sizeof r.v / sizeof r.v[0]); ++i) { \
@@ -178,45 +151,46 @@ inline t0_mask lanes_eq(t0_lanes a, t0_lanes b) { T0_LANEWISE(t0_mask, a.v[i] ==
 inline t0_mask mask_and(t0_mask a, t0_mask b) { T0_LANEWISE(t0_mask, a.v[i] & b.v[i]); }
 inline t0_mask mask_or(t0_mask a, t0_mask b) { T0_LANEWISE(t0_mask, a.v[i] | b.v[i]); }
 inline t0_mask mask_and_not(t0_mask a, t0_mask b) { T0_LANEWISE(t0_mask, a.v[i] & ~b.v[i]); }
-struct t0_wide {
-    float v[8];
-};
-struct t0_wide_mask {
-    int v[8];
-};
-inline t0_wide wide_load(const float4* p) {
-    t0_wide r;
-    std::memcpy(r.v, glm::value_ptr(p[0]), 4 * sizeof(float));
-    std::memcpy(r.v + 4, glm::value_ptr(p[1]), 4 * sizeof(float));
-    return r;
-}
-inline t0_wide wide_splat(float v) { T0_LANEWISE(t0_wide, v); }
-inline t0_wide wide_sub(t0_wide a, t0_wide b) { T0_LANEWISE(t0_wide, a.v[i] - b.v[i]); }
-inline t0_wide wide_mul(t0_wide a, t0_wide b) { T0_LANEWISE(t0_wide, a.v[i] * b.v[i]); }
-inline t0_wide wide_min(t0_wide a, t0_wide b) {
-    T0_LANEWISE(t0_wide, a.v[i] < b.v[i] ? a.v[i] : b.v[i]);
-}
-inline t0_wide wide_max(t0_wide a, t0_wide b) {
-    T0_LANEWISE(t0_wide, a.v[i] > b.v[i] ? a.v[i] : b.v[i]);
-}
-inline t0_wide_mask wide_le(t0_wide a, t0_wide b) {
-    T0_LANEWISE(t0_wide_mask, a.v[i] <= b.v[i] ? -1 : 0);
-}
 #undef T0_LANEWISE
 inline int mask_bits(t0_mask m) {
     return (m.v[0] & 1) | (m.v[1] & 2) | (m.v[2] & 4) | (m.v[3] & 8);
 }
-inline int wide_mask_bits(t0_wide_mask m) {
-    int bits = 0;
-    for (int i = 0; i < 8; ++i) {
-        bits |= (m.v[i] & 1) << i;
-    }
-    return bits;
-}
 inline void lanes_store(t0_lanes v, float* out) { std::memcpy(out, v.v, sizeof v.v); }
 inline float lanes_first(t0_lanes v) { return v.v[0]; }
-inline void wide_store(t0_wide v, float* out) { std::memcpy(out, v.v, sizeof v.v); }
 #endif
+
+// Eight floats (see the OpenCL side): two of the four above, lanes 0-3 and
+// 4-7, the same on SSE and elsewhere.
+struct t0_wide {
+    t0_lanes lo;
+    t0_lanes hi;
+};
+struct t0_wide_mask {
+    t0_mask lo;
+    t0_mask hi;
+};
+inline t0_wide wide_load(const float4* p) { return t0_wide{lanes_load(p), lanes_load(p + 1)}; }
+inline t0_wide wide_splat(float v) { return t0_wide{lanes_splat(v), lanes_splat(v)}; }
+inline t0_wide wide_sub(t0_wide a, t0_wide b) {
+    return t0_wide{lanes_sub(a.lo, b.lo), lanes_sub(a.hi, b.hi)};
+}
+inline t0_wide wide_mul(t0_wide a, t0_wide b) {
+    return t0_wide{lanes_mul(a.lo, b.lo), lanes_mul(a.hi, b.hi)};
+}
+inline t0_wide wide_min(t0_wide a, t0_wide b) {
+    return t0_wide{lanes_min(a.lo, b.lo), lanes_min(a.hi, b.hi)};
+}
+inline t0_wide wide_max(t0_wide a, t0_wide b) {
+    return t0_wide{lanes_max(a.lo, b.lo), lanes_max(a.hi, b.hi)};
+}
+inline t0_wide_mask wide_le(t0_wide a, t0_wide b) {
+    return t0_wide_mask{lanes_le(a.lo, b.lo), lanes_le(a.hi, b.hi)};
+}
+inline int wide_mask_bits(t0_wide_mask m) { return mask_bits(m.lo) | (mask_bits(m.hi) << 4); }
+inline void wide_store(t0_wide v, float* out) {
+    lanes_store(v.lo, out);
+    lanes_store(v.hi, out + 4);
+}
 
 T0_NAMESPACE_END
 
