@@ -6,6 +6,7 @@
 #include "trac0r/cpu_backend.h"
 #include "trac0r/camera.h"
 #include "trac0r/kernel/bundle.h"
+#include "trac0r/kernel/tile_grid.h"
 #include "trac0r/kernel/trace.h"
 #include "trac0r/kernel/traverse.h"
 #include "trac0r/packed_scene.h"
@@ -240,36 +241,36 @@ BundleCounts bundled_camera_hits(const Scene& scene, int width, int height) {
     const kernel::CameraRecord camera =
         scaled_camera(make_camera_record(scene.camera, width, height), packed.scale);
     BundleCounts counts;
-    for (int y0 = 0; y0 < height; y0 += T0_TILE) {
-        for (int x0 = 0; x0 < width; x0 += T0_TILE) {
-            std::vector<kernel::PixelSample> samples;
-            kernel::RayBundle bundle;
-            kernel::bundle_start(&bundle, glm::vec3(camera.position));
-            for (int y = y0; y < std::min(y0 + T0_TILE, height); ++y) {
-                for (int x = x0; x < std::min(x0 + T0_TILE, width); ++x) {
-                    kernel::PixelSample s;
-                    kernel::begin_pixel(camera, static_cast<std::uint32_t>(y * width + x), 7, 3,
-                                        &s);
-                    if (!s.ray.any_parallel) {
-                        kernel::bundle_add(&bundle, s.ray.inv_direction);
-                    }
-                    samples.push_back(s);
+    const std::uint32_t w = static_cast<std::uint32_t>(width);
+    const std::uint32_t h = static_cast<std::uint32_t>(height);
+    for (std::uint32_t t = 0; t < kernel::tile_count(w, h); ++t) {
+        const kernel::TileRect tile = kernel::tile_rect(t, w, h);
+        std::vector<kernel::PixelSample> samples;
+        kernel::RayBundle bundle;
+        kernel::bundle_start(&bundle, glm::vec3(camera.position));
+        for (std::uint32_t y = tile.y0; y < tile.y1; ++y) {
+            for (std::uint32_t x = tile.x0; x < tile.x1; ++x) {
+                kernel::PixelSample s;
+                kernel::begin_pixel(camera, y * w + x, 7, 3, &s);
+                if (!s.ray.any_parallel) {
+                    kernel::bundle_add(&bundle, s.ray.inv_direction);
                 }
+                samples.push_back(s);
             }
-            kernel::LeafCandidate leaves[T0_BUNDLE_LEAVES];
-            const int count = kernel::bundle_finish_leaves(&view, &bundle, leaves);
-            (count >= 0 ? counts.bundled_tiles : counts.traversed_tiles) += 1;
-            for (const kernel::PixelSample& s : samples) {
-                const kernel::Hit a = kernel::camera_hit(&view, &s.ray, leaves, count);
-                const kernel::Hit b = kernel::traverse_bvh(&view, &s.ray, T0_NO_HIT, 0);
-                CAPTURE(x0, y0, count, b.t, s.ray.direction.x, s.ray.direction.y,
-                        s.ray.direction.z);
-                REQUIRE(a.triangle == b.triangle);
-                REQUIRE(bits_of(a.t) == bits_of(b.t));
-                REQUIRE(bits_of(a.u) == bits_of(b.u));
-                REQUIRE(bits_of(a.v) == bits_of(b.v));
-                counts.hits += b.triangle >= 0 ? 1 : 0;
-            }
+        }
+        kernel::LeafCandidate leaves[T0_BUNDLE_LEAVES];
+        const int count = kernel::bundle_finish_leaves(&view, &bundle, leaves);
+        (count >= 0 ? counts.bundled_tiles : counts.traversed_tiles) += 1;
+        for (const kernel::PixelSample& s : samples) {
+            const kernel::Hit a = kernel::camera_hit(&view, &s.ray, leaves, count);
+            const kernel::Hit b = kernel::traverse_bvh(&view, &s.ray, T0_NO_HIT, 0);
+            CAPTURE(tile.x0, tile.y0, count, b.t, s.ray.direction.x, s.ray.direction.y,
+                    s.ray.direction.z);
+            REQUIRE(a.triangle == b.triangle);
+            REQUIRE(bits_of(a.t) == bits_of(b.t));
+            REQUIRE(bits_of(a.u) == bits_of(b.u));
+            REQUIRE(bits_of(a.v) == bits_of(b.v));
+            counts.hits += b.triangle >= 0 ? 1 : 0;
         }
     }
     return counts;

@@ -8,6 +8,7 @@
 #include "trac0r/kernel/accumulate.h"
 #include "trac0r/kernel/ray_offset.h"
 #include "trac0r/kernel/sampling.h"
+#include "trac0r/kernel/tile_grid.h"
 #include "trac0r/kernel/trace.h"
 #include "trac0r/opencl_backend.h"
 #include "trac0r/opencl_program.h"
@@ -355,8 +356,8 @@ DeviceTiles device_tile_hits(const Scene& scene, int width, int height) {
         return m;
     };
     const std::size_t pixels = static_cast<std::size_t>(width) * height;
-    const std::size_t tiles = static_cast<std::size_t>((width + T0_TILE - 1) / T0_TILE) *
-                              ((height + T0_TILE - 1) / T0_TILE);
+    const std::size_t tiles =
+        kernel::tile_count(static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height));
     const cl_uint unwritten = 0xffffffffu;
     const cl_uint unwritten_count = 0x7fffffffu;
     cl_mem buffers[] = {upload(packed.triangles),

@@ -4,7 +4,7 @@
 
 #include <omp.h>
 
-#include <algorithm>
+#include <cstdint>
 #if defined(__SSE__)
 #include <xmmintrin.h>
 #endif
@@ -51,22 +51,17 @@ void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t 
     // rays visit the same nodes and triangles (cache), and with the BVH share
     // the leaves their camera rays may enter (render_tile); and the image's
     // regions differ a lot in cost (background against glass).
-    const long width = static_cast<long>(camera.size.x);
-    const long height = pixel_count / width;
-    const long tile = T0_TILE;
-    const long tiles_x = (width + tile - 1) / tile;
-    const long tile_count = tiles_x * ((height + tile - 1) / tile);
+    const std::uint32_t width = camera.size.x;
+    const std::uint32_t height = static_cast<std::uint32_t>(pixel_count / width);
+    const long tile_count = kernel::tile_count(width, height);
 #pragma omp parallel num_threads(threads_)
     {
         const DenormalsAreZero denormals;  // in every thread of the team
 #pragma omp for schedule(dynamic, 1)
         for (long t = 0; t < tile_count; ++t) {
-            const long x0 = (t % tiles_x) * tile;
-            const long y0 = (t / tiles_x) * tile;
-            const long x1 = std::min(x0 + tile, width);
-            const long y1 = std::min(y0 + tile, height);
-            kernel::render_tile(&view, scaled, accum, seed, frame, max_depth, x0, y0, x1, y1,
-                                width);
+            const kernel::TileRect rect =
+                kernel::tile_rect(static_cast<std::uint32_t>(t), width, height);
+            kernel::render_tile(&view, scaled, accum, seed, frame, max_depth, rect, width);
         }
     }
 }

@@ -1,5 +1,6 @@
 #include "trac0r/opencl_backend.h"
 
+#include "trac0r/kernel/tile_grid.h"
 #include "trac0r/opencl_owner.h"
 #include "trac0r/opencl_program.h"
 
@@ -420,9 +421,7 @@ void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64
     std::size_t global = 0;
     const std::size_t* local = nullptr;  // the driver's choice
     if (state_->bvh) {
-        const std::size_t tiles =
-            ((camera.size.x + T0_TILE - 1u) / T0_TILE) *
-            static_cast<std::size_t>((camera.size.y + T0_TILE - 1u) / T0_TILE);
+        const std::size_t tiles = kernel::tile_count(camera.size.x, camera.size.y);
         global = tiles * kTileItems;
         local = &kTileItems;
     } else {

@@ -16,7 +16,6 @@ __asm__(".text\n.p2align 6\n.skip " AB_STR(AB_PAD) ", 0xcc\n");
 
 #include "buffers.h"
 
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -30,14 +29,11 @@ extern "C" void AB_CAT(AB_NAMESPACE, _frame)(const void* scene, const void* came
                                              int max_depth) {
     const k::SceneView view = *static_cast<const k::SceneView*>(scene);
     const k::CameraRecord cam = *static_cast<const k::CameraRecord*>(camera);
-    const long width = static_cast<long>(cam.size.x);
-    const long height = static_cast<long>(cam.size.y);
-    const long tile = 8;  // as CpuBackend::render_frame
-    for (long y0 = 0; y0 < height; y0 += tile) {
-        for (long x0 = 0; x0 < width; x0 += tile) {
-            k::render_tile(&view, cam, static_cast<k::AccumPixel*>(accum), seed, frame, max_depth,
-                           x0, y0, std::min(x0 + tile, width), std::min(y0 + tile, height), width);
-        }
+    const std::uint32_t width = cam.size.x;
+    const std::uint32_t height = cam.size.y;
+    for (std::uint32_t t = 0; t < k::tile_count(width, height); ++t) {
+        k::render_tile(&view, cam, static_cast<k::AccumPixel*>(accum), seed, frame, max_depth,
+                       k::tile_rect(t, width, height), width);
     }
 }
 

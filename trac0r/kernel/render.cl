@@ -1,6 +1,7 @@
 // The OpenCL entry point: the same kernel headers the CPU backend compiles.
 // The library embeds this file after the headers (cmake/embed.cmake), and
 // builds it with -DT0_FEATURES=<mask> so unused branches are compiled out.
+#include "tile_grid.h"
 #include "trace.h"
 
 // The kernel's view of the packed buffers (PackedScene::view on the host).
@@ -28,11 +29,11 @@ SceneView scene_view(__global const TriangleRecord* triangles, __global const Sh
 // tile_pixel makes the work-item's pixel's generator and camera ray, and
 // whether the pixel is in the image (the last tiles may be cut off).
 int tile_pixel(CameraRecord camera, ulong seed, uint frame, PixelSample* s, uint* pixel) {
-    const uint tile = (uint)get_group_id(0);
+    const TileRect tile = tile_rect((uint)get_group_id(0), camera.size.x, camera.size.y);
     const uint item = (uint)get_local_id(0);
-    const uint x = tile % tiles_across(camera) * T0_TILE + item % T0_TILE;
-    const uint y = tile / tiles_across(camera) * T0_TILE + item / T0_TILE;
-    if (x >= camera.size.x || y >= camera.size.y) {
+    const uint x = tile.x0 + item % T0_TILE;
+    const uint y = tile.y0 + item / T0_TILE;
+    if (x >= tile.x1 || y >= tile.y1) {
         return 0;
     }
     *pixel = y * camera.size.x + x;

@@ -6,6 +6,7 @@
 #ifndef TRAC0R_KERNEL_TILE_H
 #define TRAC0R_KERNEL_TILE_H
 
+#include "tile_grid.h"
 #include "trace.h"
 
 #ifndef __OPENCL_VERSION__
@@ -50,14 +51,17 @@ inline bool render_tile_bundled(const SceneView* scene, CameraRecord cam, AccumP
     return true;
 }
 
-// One sample of each pixel of the tile [x0, x1) x [y0, y1) of an image
-// `width` pixels wide, in order, each pixel's random numbers and camera ray
+// One sample of each pixel of `tile` (tile_rect) of an image `width`
+// pixels wide, in order, each pixel's random numbers and camera ray
 // made before the path of the pixel before it is traced, so that their
 // latency overlaps that path (README, "Each pixel's camera ray made
 // ahead"); with the BVH, as render_tile_bundled.
 inline void render_tile(const SceneView* scene, CameraRecord cam, AccumPixel* accum, t0_u64 seed,
-                        t0_u32 frame, int max_depth, long x0, long y0, long x1, long y1,
-                        long width) {
+                        t0_u32 frame, int max_depth, TileRect tile, long width) {
+    const long x0 = tile.x0;
+    const long y0 = tile.y0;
+    const long x1 = tile.x1;
+    const long y1 = tile.y1;
     if (render_tile_bundled(scene, cam, accum, seed, frame, max_depth, x0, y0, x1, y1, width)) {
         return;
     }

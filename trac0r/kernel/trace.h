@@ -260,9 +260,6 @@ T0_INLINE void finish_pixel(const SceneView* scene, T0_GLOBAL AccumPixel* accum,
     accumulate_sample(&accum[pixel], trace_path(scene, s->ray, max_depth, &s->rng));
 }
 
-// Tiles (T0_TILE, types.h) numbered row by row.
-T0_INLINE t0_u32 tiles_across(CameraRecord cam) { return (cam.size.x + T0_TILE - 1u) / T0_TILE; }
-
 // A camera ray's nearest hit: among the `count` leaves of its tile
 // (count >= 0; a ray parallel to an axis was left out of the bundle), or
 // through the scene (count -1).

@@ -26,13 +26,6 @@
 #define T0_FEATURE_NEE (1u << 7)        // next-event estimation with MIS
 #define T0_FEATURE_COUNT 8
 
-// Tiles of T0_TILE x T0_TILE pixels; the last row and column of an image's
-// tiles may be narrower. The CPU backend renders a tile at a time, the
-// OpenCL program (with the BVH) a tile a work-group, and a tile's camera
-// rays share the BVH leaves they may enter (kernel/bundle.h,
-// bundle_leaves).
-#define T0_TILE 8
-
 T0_NAMESPACE_BEGIN
 
 // One triangle for the watertight test (kernel/triangle.h): its three
