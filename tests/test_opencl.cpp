@@ -289,7 +289,7 @@ TEST_CASE("the quarter turn and the ray offset give the same floats on OpenCL as
 namespace {
 
 // The BVH program's camera hits, as render_frame finds them (a tile a
-// work-group, tile_camera_hit), and through the tree (intersect_scene),
+// work-group, tile_sample), and through the tree (intersect_scene),
 // per pixel (t, u, v, the triangle's bits), with the pixel's camera ray
 // direction and each tile's leaf count.
 const char* const tile_hits_kernel_source = R"(
@@ -299,15 +299,13 @@ __kernel void tile_hits(__global const TriangleRecord* triangles, __global const
                         __global float4* directions, __global int* counts) {
     const SceneView scene = scene_view(triangles, 0, 0, nodes, packets, 0, 0u, 0u);
     __local TileShared shared;
-    PixelSample s;
-    uint pixel = 0u;
-    const int inside = tile_pixel(camera, seed, frame, &s, &pixel);
-    const Hit a = tile_camera_hit(&scene, camera, inside, &s.ray, &shared);
-    if (inside) {
-        const Hit b = intersect_scene(&scene, &s.ray);
-        bundled[pixel] = (float4)(a.t, a.u, a.v, as_float(a.triangle));
-        traversed[pixel] = (float4)(b.t, b.u, b.v, as_float(b.triangle));
-        directions[pixel] = (float4)(s.ray.direction, 0.0f);
+    const TileSample t = tile_sample(&scene, camera, seed, frame, &shared);
+    if (t.inside) {
+        const Hit a = t.first;
+        const Hit b = intersect_scene(&scene, &t.sample.ray);
+        bundled[t.pixel] = (float4)(a.t, a.u, a.v, as_float(a.triangle));
+        traversed[t.pixel] = (float4)(b.t, b.u, b.v, as_float(b.triangle));
+        directions[t.pixel] = (float4)(t.sample.ray.direction, 0.0f);
     }
     if (get_local_id(0) == 0u) {
         counts[get_group_id(0)] = shared.leaf_count;

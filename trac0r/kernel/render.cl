@@ -74,6 +74,26 @@ Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, con
     return inside ? camera_hit(scene, ray, shared->leaves, shared->leaf_count) : no_hit(T0_NO_HIT);
 }
 
+// What a work-item of the BVH program starts from: its pixel of the
+// group's tile (tile_pixel), the pixel's generator and camera ray, and the
+// ray's nearest hit (tile_camera_hit). Every work-item of the group calls
+// it (barriers), with the group's `shared`.
+typedef struct TileSample {
+    PixelSample sample;
+    Hit first;   // the camera ray's nearest hit, where inside
+    uint pixel;  // the pixel's index in the image, where inside
+    int inside;  // whether the pixel is in the image
+} TileSample;
+
+T0_INLINE TileSample tile_sample(const SceneView* scene, CameraRecord camera, ulong seed,
+                                 uint frame, __local TileShared* shared) {
+    TileSample t;
+    t.pixel = 0u;
+    t.inside = tile_pixel(camera, seed, frame, &t.sample, &t.pixel);
+    t.first = tile_camera_hit(scene, camera, t.inside, &t.sample.ray, shared);
+    return t;
+}
+
 __kernel void render_frame(__global const TriangleRecord* triangles,
                            __global const ShapeRecord* shapes,
                            __global const MaterialRecord* materials, __global const BvhNode* nodes,
@@ -91,13 +111,11 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
         }
         return;
     }
-    // With the BVH, a tile a work-group (tile_camera_hit).
+    // With the BVH, a tile a work-group (tile_sample).
     __local TileShared shared;
-    PixelSample s;
-    uint pixel = 0u;
-    const int inside = tile_pixel(camera, seed, frame, &s, &pixel);
-    const Hit first = tile_camera_hit(&scene, camera, inside, &s.ray, &shared);
-    if (inside) {
-        accumulate_sample(&accum[pixel], trace_path_from(&scene, s.ray, first, max_depth, &s.rng));
+    TileSample t = tile_sample(&scene, camera, seed, frame, &shared);
+    if (t.inside) {
+        accumulate_sample(&accum[t.pixel],
+                          trace_path_from(&scene, t.sample.ray, t.first, max_depth, &t.sample.rng));
     }
 }
