@@ -105,9 +105,8 @@ typedef struct RayLanes {
     // The origin in the triangle test's axis order (Ray.permuted_origin),
     // read by fixed index. Indexed by the ray's axes at run time, LLVM
     // (PoCL) kept this struct in memory and reached each vector through a
-    // pointer it had to load first: PoCL frames 2.4 and 3.0 % faster this
-    // way (two series), the CPU's the same, for three more splats a ray
-    // (README).
+    // pointer it had to load first; so three more splats a ray
+    // (kernel/tuning.h).
     t0_lanes permuted_origin[3];
     t0_lanes shear[3];
     t0_lanes parallel_det;

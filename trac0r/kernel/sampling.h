@@ -49,8 +49,7 @@ T0_INLINE float3 frame_to_world(Frame f, float3 local_dir) {
 // polynomials (error about 1 ulp there), and the result is rotated by k
 // quarter turns. The same operations on both backends, so the
 // same floats; and no library sin/cos, which PoCL runs through a slow
-// argument reduction for every angle (16 % of a path's time on
-// cornell.json; glibc's sincosf about 3 %).
+// argument reduction for every angle (kernel/tuning.h).
 T0_INLINE float2_cs turn_cos_sin(float u) {
     const float quarters = 4.0f * u;
     const float k = floor(quarters + 0.5f);
@@ -138,8 +137,7 @@ T0_INLINE float cosine_cone_pdf(float3 axis, float sin2_max, float3 d) {
 // sqrt(2^-24), a thousand times its length's error, so which side of the
 // surface it leaves is never in doubt, and the normalisation's square root
 // and division would sit in every diffuse bounce between one hit and the
-// next ray (2.6 % of a BVH frame's time on cornell.json; README,
-// "Performance").
+// next ray (kernel/tuning.h).
 T0_INLINE DirectionSample sample_cosine_hemisphere(float3 normal, float u1, float u2) {
     return cosine_cone_direction(normal, 1.0f, u1, u2);
 }

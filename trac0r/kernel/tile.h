@@ -17,8 +17,8 @@ T0_NAMESPACE_BEGIN
 // generator and camera ray first, then the leaves that the camera rays may
 // enter, found once for all of them (bundle_leaves), then each path from
 // its camera ray's hit among those leaves (camera_hit): the same hits as
-// traversal, with a tenth of a BVH frame's time less on cornell.json
-// (README, "A tile's camera rays bundled"). Whether it rendered the tile.
+// traversal, in less time (kernel/tuning.h; docs/performance.md, "Camera
+// rays per tile"). Whether it rendered the tile.
 inline bool render_tile_bundled(const SceneView* scene, CameraRecord cam, AccumPixel* accum,
                                 t0_u64 seed, t0_u32 frame, int max_depth, long x0, long y0, long x1,
                                 long y1, long width) {
@@ -54,8 +54,8 @@ inline bool render_tile_bundled(const SceneView* scene, CameraRecord cam, AccumP
 // One sample of each pixel of `tile` (tile_rect) of an image `width`
 // pixels wide, in order, each pixel's random numbers and camera ray
 // made before the path of the pixel before it is traced, so that their
-// latency overlaps that path (README, "Each pixel's camera ray made
-// ahead"); with the BVH, as render_tile_bundled.
+// latency overlaps that path (docs/performance.md, "Camera rays per
+// tile"); with the BVH, as render_tile_bundled.
 inline void render_tile(const SceneView* scene, CameraRecord cam, AccumPixel* accum, t0_u64 seed,
                         t0_u32 frame, int max_depth, TileRect tile, long width) {
     const long x0 = tile.x0;

@@ -40,7 +40,7 @@ T0_INLINE float continuation_probability(int depth, int max_depth, float3 throug
 // only once the throughput has fallen below 1/2 (the rule above with the
 // throughput doubled). On cornell_diffuse.json, thresholds of 1, 1/2, 1/3,
 // 1/4 and 1/8 gave 4.2, 5.3, 5.3, 5.2 and 4.9 times the naive integrator's
-// efficiency (variance ratio over cost ratio; README, "Next-event
+// efficiency (variance ratio over cost ratio; docs/noise.md, "Next-event
 // estimation").
 #define T0_NEE_ROULETTE_THRESHOLD 0.5f
 

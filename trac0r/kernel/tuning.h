@@ -1,5 +1,9 @@
-// The kernel's switches that differ per compiler, each with the
-// measurement that chose it: OpenCL C as PoCL compiles it, C++ as GCC does.
+// The kernel's measured choices, each with the figure that chose it: the
+// switches that differ per compiler (defined here), then the choices both
+// compilers share (in the code where named). docs/performance.md, "Kernel
+// tuning", summarises them; OpenCL C is as PoCL compiles it, C++ as GCC.
+//
+// Per compiler:
 //
 //   T0_NOINLINE, a rare path (outside_exactly, packet_outside_exactly)
 //     OpenCL  inline: PoCL's frames were 3 % slower with a call.
@@ -22,6 +26,26 @@
 //     C++     memory and arithmetic, no branch: GCC made the choices
 //             branches, on axes which for bounce rays are anyone's
 //             guess; 2.5 % of a BVH frame of cornell.json.
+//
+// The same on both:
+//
+//   aabb_entry, three slabs without clip_slab's per-axis branch
+//             the BVH's inner loop, 17 % more rays per second.
+//   RayLanes.permuted_origin, read by fixed index, not by the ray's axes
+//             PoCL's frames 2.4 and 3.0 % faster (two series), the CPU's
+//             the same, for three more splats a ray.
+//   intersect_packet, a hit with a zero edge function checked again in
+//   every packet with a hit
+//             2 % of a BVH frame; checking only the hit a traversal ends
+//             with, and traversing again where it is outside, cost as
+//             much with GCC and twice that with PoCL.
+//   turn_cos_sin, Cephes' polynomials, no library sin and cos
+//             PoCL's argument reduction for every angle took 16 % of a
+//             path's time on cornell.json; glibc's sincosf about 3 %.
+//   sample_cosine_hemisphere, the direction not renormalised
+//             2.6 % of a BVH frame's time on cornell.json.
+//   render_tile_bundled, a tile's camera rays finding their leaves once
+//             a tenth of a BVH frame's time less on cornell.json.
 #ifndef TRAC0R_KERNEL_TUNING_H
 #define TRAC0R_KERNEL_TUNING_H
 
