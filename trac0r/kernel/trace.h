@@ -5,6 +5,7 @@
 
 #include "accumulate.h"
 #include "bundle.h"
+#include "light_sampling.h"
 #include "material.h"
 #include "ray.h"
 #include "ray_offset.h"
@@ -56,91 +57,6 @@ T0_INLINE int survives_roulette(float q, float3* throughput, Rng* rng) {
     }
     *throughput /= q;
     return 1;
-}
-
-// The light list's inverse CDF: the first light whose cdf.x exceeds u.
-T0_INLINE t0_u32 pick_light(const SceneView* scene, float u) {
-    t0_u32 lo = 0u;
-    t0_u32 hi = scene->light_count - 1u;
-    while (lo < hi) {
-        const t0_u32 mid = lo + (hi - lo) / 2u;
-        if (u < scene->lights[mid].cdf.x) {
-            hi = mid;
-        } else {
-            lo = mid + 1u;
-        }
-    }
-    return lo;
-}
-
-// A density per area on a light turned into one per solid angle, seen from
-// squared distance distance2 at cosine cos_light to the light's surface.
-T0_INLINE float area_to_solid_angle(float pdf_area, float distance2, float cos_light) {
-    return pdf_area * distance2 / cos_light;
-}
-
-// The density per solid angle, seen from distance away along unit
-// direction, with which next-event estimation picks a point on the emitting
-// triangle tri; zero for a triangle that is not in the light list. Emitters
-// are two-sided, so the cosine at the light is taken on either side.
-T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const TriangleRecord* tri,
-                                      float3 direction, float distance) {
-    if (tri->ids.z == T0_NO_LIGHT) {
-        return 0.0f;
-    }
-    const float cos_light = fabs(dot(direction, xyz(tri->normal)));
-    return area_to_solid_angle(scene->lights[tri->ids.z].cdf.z, distance * distance, cos_light);
-}
-
-// Next-event estimation at a surface point: picks an emitting triangle in
-// proportion to its power and a uniform point on it, and returns the
-// radiance it sends back along -incoming through the material, if nothing
-// is in between, weighted by MIS against the material's own sampling (whose
-// hits on emitters carry the complementary weight). facing_normal is the
-// side the light must be on; magnitude is hit_magnitude of position.
-T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                              float3 incoming, float3 facing_normal, float3 position,
-                              float magnitude, Rng* rng) {
-    const float u_pick = rng_float(rng);
-    const float u1 = rng_float(rng);
-    const float u2 = rng_float(rng);
-    T0_GLOBAL const LightRecord* light = &scene->lights[pick_light(scene, u_pick)];
-    T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->triangle.x];
-    float b1 = 0.0f;
-    float b2 = 0.0f;
-    sample_triangle_barycentrics(u1, u2, &b1, &b2);
-    const float3 v0 = xyz(tri->v0);
-    const float3 point = v0 + (xyz(tri->v1) - v0) * b1 + (xyz(tri->v2) - v0) * b2;
-    const float3 to_light = point - position;
-    const float distance2 = dot(to_light, to_light);
-    if (!(distance2 > 0.0f)) {
-        return float3_splat(0.0f);
-    }
-    const float distance = sqrt(distance2);
-    const float3 direction = to_light / distance;
-    const float3 light_normal = xyz(tri->normal);
-    const float cos_light = fabs(dot(direction, light_normal));
-    const MaterialEval e = eval_material(scene, m, incoming, facing_normal, direction);
-    if (!(cos_light > 0.0f) || !(e.pdf > 0.0f)) {
-        return float3_splat(0.0f);  // edge-on, or outside the material's lobe
-    }
-    // The shadow ray runs between the two points, each moved off its surface
-    // towards the other, so neither surface can block it.
-    const float3 light_side = dot(direction, light_normal) < 0.0f ? light_normal : -light_normal;
-    const float3 target = offset_ray_origin(point, light_side, hit_magnitude(tri, point));
-    const float3 origin = offset_ray_origin(position, facing_normal, magnitude);
-    const float3 shadow = target - origin;
-    const float shadow_length = length(shadow);
-    if (!(shadow_length > 0.0f)) {
-        return float3_splat(0.0f);
-    }
-    const Ray shadow_ray = make_ray(origin, shadow / shadow_length);
-    if (occluded(scene, &shadow_ray, shadow_length)) {
-        return float3_splat(0.0f);
-    }
-    const float light_pdf = area_to_solid_angle(light->cdf.z, distance2, cos_light);
-    const float3 emitted = material_emission(&scene->materials[tri->ids.x]);
-    return e.f_cos * emitted * (power_heuristic(light_pdf, e.pdf) / light_pdf);
 }
 
 // One path from the camera; returns its radiance estimate. With next-event
