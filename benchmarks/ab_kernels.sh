@@ -71,8 +71,10 @@ fetch() {
         echo "ab_kernels.sh: '$version' is neither a directory nor a git revision" >&2
         exit 2
     fi
-    if [ ! -f "$work/$name/trac0r/kernel/tile.h" ]; then
-        echo "ab_kernels.sh: $version has no trac0r/kernel/tile.h (it predates this tool)" >&2
+    # variant.cpp calls render_tile with a TileRect (tile_grid.h).
+    if [ ! -f "$work/$name/trac0r/kernel/tile_grid.h" ]; then
+        echo "ab_kernels.sh: $version has no trac0r/kernel/tile_grid.h (it predates the" \
+            "kernel's split by concept, which this tool's variant.cpp needs)" >&2
         exit 2
     fi
 }
