@@ -96,3 +96,21 @@ TEST_CASE("a UTF-16 or binary OBJ is named as such", "[input]") {
                                       "binary file, or UTF-16: save it as UTF-8)"));
     std::remove("input_utf16.obj");
 }
+
+// Issue 33, point 3: a load of over a second says so on stderr (a huge
+// mesh ran a minute in silence); --verbose says it at once, which this
+// test uses rather than a file slow enough on every machine.
+TEST_CASE("long steps before the render are announced, at once with --verbose", "[input]") {
+    const trac0r_test::ViewerRun r = trac0r_test::run_viewer_process(
+        "--verbose --headless --spp 1 --width 8 --height 6 --output slow_step.pfm");
+    INFO(r.err);
+    CHECK(r.exit_code == 0);
+    CHECK(r.err.find("trac0r_viewer: loading the built-in scene ... 0 s\n") != std::string::npos);
+    CHECK(r.err.find("trac0r_viewer: loading the built-in scene: done in ") != std::string::npos);
+    CHECK(r.err.find("trac0r_viewer: packing 676 triangles and building the acceleration "
+                     "structure: done in ") != std::string::npos);
+    // Without --verbose a quick load says nothing.
+    const trac0r_test::ViewerRun quiet = trac0r_test::run_viewer_process(
+        "--headless --spp 1 --width 8 --height 6 --output slow_step.pfm");
+    CHECK(quiet.err.find("loading") == std::string::npos);
+}

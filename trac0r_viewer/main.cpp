@@ -1,6 +1,7 @@
 // trac0r_viewer: the command-line entry point.
 #include "headless.h"
 #include "options.h"
+#include "slow_step.h"
 #include "window_session.h"
 
 #include "trac0r/input_checks.h"
@@ -197,7 +198,13 @@ int main(int argc, char** argv) {
             trac0r::set_input_size_limit(static_cast<std::uint64_t>(options.max_input_mb) *
                                          1000000u);
         }
-        const trac0r::Scene scene = load_scene(options);
+        const trac0r::Scene scene = [&] {
+            const trac0r_viewer::SlowStep notice(
+                "loading " +
+                    (options.scene_path.empty() ? "the built-in scene" : options.scene_path),
+                options.verbose);
+            return load_scene(options);
+        }();
         memory_user = "the scene's " + std::to_string(scene.triangle_count()) +
                       " triangles and their tree, and 48 bytes a pixel for the accumulator: "
                       "a smaller --width and --height, or a smaller mesh";
@@ -206,8 +213,15 @@ int main(int argc, char** argv) {
         pack.integrator = trac0r::parse_integrator(options.integrator);
         bool warned_dark = false;
         const auto make_renderer = [&] {
-            auto renderer = std::make_unique<trac0r::Renderer>(scene, make_backend(options),
-                                                               options.seed, pack);
+            std::unique_ptr<trac0r::Renderer> renderer;
+            {
+                const trac0r_viewer::SlowStep notice(
+                    "packing " + std::to_string(scene.triangle_count()) +
+                        " triangles and building the acceleration structure",
+                    options.verbose);
+                renderer = std::make_unique<trac0r::Renderer>(scene, make_backend(options),
+                                                              options.seed, pack);
+            }
             if (options.verbose) {
                 print_verbose(*renderer, options);
             }
