@@ -17,9 +17,12 @@ cmake --build "$build" -j2
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
 export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1
-ctest --test-dir "$build" --output-on-failure -E '^(test_opencl|test_window|test_out_of_memory)$'
-# The window's tests: memory errors and undefined behaviour as above, but
-# no leak check, for SDL's X11 and GL modules are loaded and unloaded with
-# dlopen, and what they keep cannot even be named (no module to match).
+ctest --test-dir "$build" --output-on-failure \
+    -E '^(test_opencl|test_window|test_stability_opencl|test_out_of_memory)$'
+# Memory errors and undefined behaviour as above, but no leak check:
+# - test_window: SDL's X11 and GL modules are loaded and unloaded with
+#   dlopen, and what they keep cannot even be named (no module to match);
+# - test_stability_opencl: its cases pass, but LeakSanitizer's own tracer
+#   crashes (signal 11) at exit while PoCL's worker threads are stopping.
 ASAN_OPTIONS=detect_leaks=0:halt_on_error=1 ctest --test-dir "$build" --output-on-failure \
-    -R '^test_window$'
+    -R '^(test_window|test_stability_opencl)$'
