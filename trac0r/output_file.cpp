@@ -79,11 +79,14 @@ std::string replacement_target(const std::string& path) {
     return path;
 }
 
-std::string output_file_problem(const std::string& path) {
+namespace {
+
+// What output_file_problem finds without making a file: the target's kind
+// and its directory.
+std::string target_problem(const std::string& path, const std::string& target) {
     if (path.empty()) {
         return "the path is empty";
     }
-    const std::string target = replacement_target(path);
     struct stat info;
     if (stat(target.c_str(), &info) == 0) {
         if (S_ISDIR(info.st_mode)) {
@@ -99,26 +102,44 @@ std::string output_file_problem(const std::string& path) {
     if (stat(dir.c_str(), &info) != 0 || !S_ISDIR(info.st_mode)) {
         return "directory " + dir + " does not exist";
     }
+    return "";
+}
+
+std::string cannot_create_in(const std::string& target, int error) {
+    return "cannot create a file in " + directory_of(target) + ": " + std::strerror(error);
+}
+
+}  // namespace
+
+std::string output_file_problem(const std::string& path) {
+    const std::string target = replacement_target(path);
+    const std::string problem = target_problem(path, target);
+    if (!problem.empty()) {
+        return problem;
+    }
     std::string temporary;
     const int fd = create_temporary_beside(target, &temporary);
     if (fd < 0) {
-        return "cannot create a file in " + dir + ": " + std::strerror(errno);
+        return cannot_create_in(target, errno);
     }
     close(fd);
     unlink(temporary.c_str());
     return "";
 }
 
+// The temporary file itself is the test that one can be made: no probe
+// first, as output_file_problem makes for a check before the work.
 ReplacingFile::ReplacingFile(const std::string& path)
     : path_(path), target_(replacement_target(path)) {
-    const std::string problem = output_file_problem(path);
+    std::string problem = target_problem(path, target_);
+    if (problem.empty()) {
+        fd_ = create_temporary_beside(target_, &temporary_);
+        if (fd_ < 0) {
+            problem = cannot_create_in(target_, errno);
+        }
+    }
     if (!problem.empty()) {
         throw std::runtime_error(path + ": cannot be written: " + problem);
-    }
-    fd_ = create_temporary_beside(target_, &temporary_);
-    if (fd_ < 0) {
-        throw std::runtime_error(path + ": cannot create a file in " + directory_of(target_) +
-                                 ": " + std::strerror(errno));
     }
     copy_permissions(fd_, target_);
 }
