@@ -179,13 +179,13 @@ std::vector<ReplayCommand> parse_replay(const std::string& text, const std::stri
 std::vector<ReplayCommand> load_replay(const std::string& path) {
     // Only a regular file will do: a directory would read as an empty
     // script, and /dev/zero or a FIFO would never end.
+    std::string text;
     try {
-        return parse_replay(trac0r::read_input_file(path, "replay script"), path);
-    } catch (const ReplayError&) {
-        throw;
+        text = trac0r::read_input_file(path, "replay script");
     } catch (const std::runtime_error& e) {
         throw ReplayError(std::string("--replay ") + e.what());
     }
+    return parse_replay(text, path);
 }
 
 void check_replay_reachable(const std::vector<ReplayCommand>& commands, const std::string& origin,
