@@ -35,6 +35,18 @@ inline Material make_material(MaterialType type, glm::vec3 color, float emittanc
     return Material{to_string(type), type, color, emittance, roughness, ior};
 }
 
+// The camera at `position` looking along `direction` with `vertical_fov`
+// degrees, an image of size x size pixels, and paths of max_depth vertices.
+inline void set_view(Scene& scene, glm::vec3 position, glm::vec3 direction, float vertical_fov,
+                     int size, int max_depth) {
+    scene.camera.position = position;
+    scene.camera.direction = direction;
+    scene.camera.vertical_fov = vertical_fov;
+    scene.render.width = size;
+    scene.render.height = size;
+    scene.render.max_depth = max_depth;
+}
+
 // A closed room (a box of side 2 s centred on `offset`) with a lamp under the
 // ceiling and a block on the floor; the camera stands inside. At s = 1 every
 // coordinate relative to `offset` is a multiple of 1/128, so moving the room
@@ -52,12 +64,8 @@ inline Scene room(float s, glm::vec3 offset, float lamp_emittance = 8.0f) {
                                       glm::vec2(0.75f * s), 1));
     scene.shapes.push_back(make_box(offset + s * glm::vec3(0.25f, -0.625f, 0.25f), no_rotation,
                                     glm::vec3(0.75f * s), 2));
-    scene.camera.position = offset + s * glm::vec3(0.0f, 0.0f, -0.875f);
-    scene.camera.direction = glm::vec3(0.0f, -0.1f, 1.0f);
-    scene.camera.vertical_fov = 70.0f;
-    scene.render.width = 16;
-    scene.render.height = 16;
-    scene.render.max_depth = 5;
+    set_view(scene, offset + s * glm::vec3(0.0f, 0.0f, -0.875f), glm::vec3(0.0f, -0.1f, 1.0f),
+             70.0f, 16, 5);
     return scene;
 }
 

@@ -21,12 +21,7 @@ TEST_CASE("a camera inside a closed emissive mesh sees it in every pixel, flat a
     scene.materials.push_back(make_material(MaterialType::emissive, glm::vec3(1.0f), 3.0f));
     scene.shapes.push_back(
         make_icosphere(glm::vec3(0.3f, -0.1f, 0.2f), glm::vec3(0.5f, -0.3f, 1.2f), 2.0f, 3, 0));
-    scene.camera.position = glm::vec3(0.45f, 0.2f, -0.3f);
-    scene.camera.direction = glm::vec3(0.3f, 0.5f, 1.0f);
-    scene.camera.vertical_fov = 150.0f;
-    scene.render.width = 32;
-    scene.render.height = 32;
-    scene.render.max_depth = 1;
+    set_view(scene, glm::vec3(0.45f, 0.2f, -0.3f), glm::vec3(0.3f, 0.5f, 1.0f), 150.0f, 32, 1);
     for (Accel accel : {Accel::flat, Accel::bvh}) {
         CAPTURE(to_string(accel));
         std::unique_ptr<Renderer> r = render(scene, 4, 1, accel);

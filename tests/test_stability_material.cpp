@@ -52,12 +52,7 @@ Scene glass_slab(float ior, glm::vec3 tint, float le) {
         make_box(glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(50.0f, 50.0f, 0.5f), 0));
     scene.shapes.push_back(make_plane(glm::vec3(0.0f, 0.0f, 3.0f), glm::vec3(-1.5707964f, 0, 0),
                                       glm::vec2(100.0f), 1));
-    scene.camera.position = glm::vec3(0.0f, 0.0f, -3.0f);
-    scene.camera.direction = glm::vec3(0.0f, 0.0f, 1.0f);
-    scene.camera.vertical_fov = 5.0f;
-    scene.render.width = 16;
-    scene.render.height = 16;
-    scene.render.max_depth = 1000;
+    set_view(scene, glm::vec3(0.0f, 0.0f, -3.0f), glm::vec3(0.0f, 0.0f, 1.0f), 5.0f, 16, 1000);
     return scene;
 }
 
@@ -135,12 +130,7 @@ TEST_CASE("total internal reflection traps light inside a glass cube", "[stabili
         s.materials.push_back(make_material(MaterialType::emissive, glm::vec3(1.0f), 1.0f));
         s.shapes.push_back(make_box(glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(2.0f), 0));
         s.shapes.push_back(make_box(glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(10.0f), 1));
-        s.camera.position = glm::vec3(0.1f, -0.2f, 0.05f);
-        s.camera.direction = glm::vec3(1.0f, 1.0f, 1.0f);
-        s.camera.vertical_fov = 8.0f;
-        s.render.width = 16;
-        s.render.height = 16;
-        s.render.max_depth = 1000;
+        set_view(s, glm::vec3(0.1f, -0.2f, 0.05f), glm::vec3(1.0f, 1.0f, 1.0f), 8.0f, 16, 1000);
         return s;
     };
     std::unique_ptr<Renderer> trapped = render(scene(1.5f), 4);

@@ -35,12 +35,7 @@ Scene tiny_emitters() {
         shape.aabb.extend(shape.triangles.back().bounds());
     }
     scene.shapes.push_back(shape);
-    scene.camera.position = glm::vec3(0.2f, 0.3f, -3.0f);
-    scene.camera.direction = glm::vec3(0.0f, 0.0f, 1.0f);
-    scene.camera.vertical_fov = 50.0f;
-    scene.render.width = 24;
-    scene.render.height = 24;
-    scene.render.max_depth = 2;
+    set_view(scene, glm::vec3(0.2f, 0.3f, -3.0f), glm::vec3(0.0f, 0.0f, 1.0f), 50.0f, 24, 2);
     return scene;
 }
 
