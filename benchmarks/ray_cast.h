@@ -162,18 +162,19 @@ class OpenClCaster {
         if (rays.size() == 0) {
             return CastResult{};
         }
-        cl_kernel kernel = make_kernel(packed.features);
-        std::vector<cl_mem> buffers;
+        const trac0r::OpenClKernel owned_kernel = make_kernel(packed.features);
+        cl_kernel kernel = owned_kernel.get();
+        std::vector<trac0r::OpenClMem> buffers;
         auto upload = [&](const void* data, std::size_t bytes) {
             cl_int status = CL_SUCCESS;
             // OpenCL buffers may not be empty; nothing reads a dummy one.
             static const glm::vec4 dummy[5] = {};
-            cl_mem m = clCreateBuffer(cl_.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                                      bytes > 0 ? bytes : sizeof dummy,
-                                      bytes > 0 ? const_cast<void*>(data) : (void*)dummy, &status);
+            buffers.emplace_back(
+                clCreateBuffer(cl_.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                               bytes > 0 ? bytes : sizeof dummy,
+                               bytes > 0 ? const_cast<void*>(data) : (void*)dummy, &status));
             check(status, "clCreateBuffer");
-            buffers.push_back(m);
-            return m;
+            return buffers.back().get();
         };
         cl_mem triangles =
             upload(packed.triangles.data(), packed.triangles.size() * sizeof(packed.triangles[0]));
@@ -185,10 +186,10 @@ class OpenClCaster {
         cl_mem origins = upload(rays.origins.data(), rays.size() * sizeof(glm::vec4));
         cl_mem directions = upload(rays.directions.data(), rays.size() * sizeof(glm::vec4));
         cl_int status = CL_SUCCESS;
-        cl_mem hit = clCreateBuffer(cl_.context, CL_MEM_WRITE_ONLY,
-                                    rays.size() * sizeof(cl_int) + 4, nullptr, &status);
+        buffers.emplace_back(clCreateBuffer(cl_.context, CL_MEM_WRITE_ONLY,
+                                            rays.size() * sizeof(cl_int) + 4, nullptr, &status));
         check(status, "clCreateBuffer(hit)");
-        buffers.push_back(hit);
+        cl_mem hit = buffers.back().get();
         const cl_uint shape_count = static_cast<cl_uint>(packed.shapes.size());
         const cl_uint count = static_cast<cl_uint>(rays.size());
         const cl_mem args[] = {triangles, shapes, nodes};
@@ -222,10 +223,6 @@ class OpenClCaster {
         for (cl_int h : hits) {
             result.hits += static_cast<std::size_t>(h);
         }
-        for (cl_mem m : buffers) {
-            clReleaseMemObject(m);
-        }
-        clReleaseKernel(kernel);
         return result;
     }
 
@@ -237,11 +234,11 @@ class OpenClCaster {
         }
     }
 
-    cl_kernel make_kernel(std::uint32_t features) {
+    trac0r::OpenClKernel make_kernel(std::uint32_t features) {
         cl_program program = trac0r::embedded_opencl_program(
-            0, cast_kernel_source, trac0r::opencl_build_options(features));
+            cl_, cast_kernel_source, trac0r::opencl_build_options(features));
         cl_int status = CL_SUCCESS;
-        cl_kernel kernel = clCreateKernel(program, "cast_rays", &status);
+        trac0r::OpenClKernel kernel(clCreateKernel(program, "cast_rays", &status));
         check(status, "clCreateKernel(cast_rays)");
         return kernel;
     }

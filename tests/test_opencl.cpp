@@ -74,6 +74,54 @@ TEST_CASE("a program is built once per feature mask and then reused", "[opencl]"
     REQUIRE(second.last_build_seconds() == 0.0);
 }
 
+// An OpenCL call's status: CL_SUCCESS, or the test fails naming the call.
+static void require_cl(cl_int status, const char* what) {
+    INFO(what);
+    REQUIRE(status == CL_SUCCESS);
+}
+
+// The count of references to `context`, as the driver keeps it: its queue,
+// programs and buffers each hold one (PoCL, and the OpenCL 1.2 spec's
+// retain rules for objects made on a context).
+static cl_uint context_references(cl_context context) {
+    cl_uint count = 0;
+    require_cl(clGetContextInfo(context, CL_CONTEXT_REFERENCE_COUNT, sizeof count, &count, nullptr),
+               "clGetContextInfo(CL_CONTEXT_REFERENCE_COUNT)");
+    return count;
+}
+
+TEST_CASE("the device's queue and programs go with the last backend on it", "[opencl]") {
+    const PackedScene packed = pack_scene(load_test_scene("cornell_diffuse.json", 8, 8));
+    cl_context context = nullptr;
+    {
+        OpenClBackend backend(0);
+        backend.set_scene(packed);
+        backend.reset(8, 8);
+        context = shared_opencl_queue(0).context;
+        require_cl(clRetainContext(context), "clRetainContext");  // ours, to ask after
+        REQUIRE(context_references(context) > 2);                 // ours, the queue, ...
+        OpenClBackend again(0);  // the same device, open: the same context
+        REQUIRE(shared_opencl_queue(0).context == context);
+    }
+    // Only our own reference is left: queue, program, kernel and buffers are
+    // released, and the context with ours.
+    REQUIRE(context_references(context) == 1);
+    clReleaseContext(context);
+    // A backend made now opens the device again and builds its program anew.
+    OpenClBackend next(0);
+    next.set_scene(packed);
+    REQUIRE(next.last_build_seconds() > 0.0);
+}
+
+TEST_CASE("a kept device shares its programs with backends made one after another", "[opencl]") {
+    const PackedScene packed = pack_scene(load_test_scene("cornell_diffuse.json", 8, 8));
+    const std::shared_ptr<OpenClDeviceCache> keep = keep_opencl_device(0);
+    { OpenClBackend(0).set_scene(packed); }
+    OpenClBackend later(0);
+    later.set_scene(packed);
+    REQUIRE(later.last_build_seconds() == 0.0);
+}
+
 // Both backends run the same code on the same random numbers, so most pixels
 // agree to float rounding; a path that takes another branch because of a
 // last-bit difference (e.g. fused multiply-add on one side) diverges, so the
@@ -176,11 +224,6 @@ __kernel void bit_helpers(__global const float* u, uint turns, __global float* t
 }
 )";
 
-void require_cl(cl_int status, const char* what) {
-    INFO(what);
-    REQUIRE(status == CL_SUCCESS);
-}
-
 }  // namespace
 
 TEST_CASE("the quarter turn and the ray offset give the same floats on OpenCL as in C++",
@@ -218,15 +261,17 @@ TEST_CASE("the quarter turn and the ray offset give the same floats on OpenCL as
     // would; the helpers do not depend on it.
     const OpenClQueue cl = shared_opencl_queue(0);
     cl_program program = embedded_opencl_program(
-        0, helpers_kernel_source, opencl_build_options(pack_scene(builtin_scene()).features));
+        cl, helpers_kernel_source, opencl_build_options(pack_scene(builtin_scene()).features));
     cl_int status = CL_SUCCESS;
-    cl_kernel kernel = clCreateKernel(program, "bit_helpers", &status);
+    const OpenClKernel owned_kernel(clCreateKernel(program, "bit_helpers", &status));
     require_cl(status, "clCreateKernel");
+    cl_kernel kernel = owned_kernel.get();
 
+    std::vector<OpenClMem> owned;
     auto buffer = [&](cl_mem_flags flags, std::size_t bytes, void* data) {
-        cl_mem m = clCreateBuffer(cl.context, flags, bytes, data, &status);
+        owned.emplace_back(clCreateBuffer(cl.context, flags, bytes, data, &status));
         require_cl(status, "clCreateBuffer");
-        return m;
+        return owned.back().get();
     };
     cl_mem u_buffer =
         buffer(CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, u.size() * sizeof(float), u.data());
@@ -255,10 +300,6 @@ TEST_CASE("the quarter turn and the ray offset give the same floats on OpenCL as
     require_cl(clEnqueueReadBuffer(cl.queue, moved_buffer, CL_TRUE, 0, moved.size() * sizeof(float),
                                    moved.data(), 0, nullptr, nullptr),
                "clEnqueueReadBuffer");
-    for (cl_mem m : {u_buffer, turned_buffer, moves_buffer, moved_buffer}) {
-        clReleaseMemObject(m);
-    }
-    clReleaseKernel(kernel);
 
     int turn_mismatches = 0;
     for (std::size_t i = 0; i < u.size(); ++i) {
@@ -332,22 +373,25 @@ DeviceTiles device_tile_hits(const Scene& scene, int width, int height) {
         scaled_camera(make_camera_record(scene.camera, width, height), packed.scale);
     const OpenClQueue cl = shared_opencl_queue(0);
     cl_program program =
-        embedded_opencl_program(0, tile_hits_kernel_source, opencl_build_options(packed.features));
+        embedded_opencl_program(cl, tile_hits_kernel_source, opencl_build_options(packed.features));
     cl_int status = CL_SUCCESS;
-    cl_kernel kernel = clCreateKernel(program, "tile_hits", &status);
+    const OpenClKernel owned_kernel(clCreateKernel(program, "tile_hits", &status));
     require_cl(status, "clCreateKernel");
+    cl_kernel kernel = owned_kernel.get();
+    std::vector<OpenClMem> owned;
     auto upload = [&](const auto& v) {
-        cl_mem m = clCreateBuffer(cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                                  v.size() * sizeof(v[0]),
-                                  const_cast<void*>(static_cast<const void*>(v.data())), &status);
+        owned.emplace_back(clCreateBuffer(
+            cl.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, v.size() * sizeof(v[0]),
+            const_cast<void*>(static_cast<const void*>(v.data())), &status));
         require_cl(status, "clCreateBuffer");
-        return m;
+        return owned.back().get();
     };
     // Outputs filled with a pattern no written value has (all bits set: a
     // NaN distance; for the counts, a count above any bundle's).
     auto output = [&](std::size_t bytes, cl_uint pattern) {
-        cl_mem m = clCreateBuffer(cl.context, CL_MEM_READ_WRITE, bytes, nullptr, &status);
+        owned.emplace_back(clCreateBuffer(cl.context, CL_MEM_READ_WRITE, bytes, nullptr, &status));
         require_cl(status, "clCreateBuffer");
+        cl_mem m = owned.back().get();
         require_cl(clEnqueueFillBuffer(cl.queue, m, &pattern, sizeof pattern, 0, bytes, 0, nullptr,
                                        nullptr),
                    "clEnqueueFillBuffer");
@@ -395,10 +439,6 @@ DeviceTiles device_tile_hits(const Scene& scene, int width, int height) {
     require_cl(clEnqueueReadBuffer(cl.queue, buffers[6], CL_TRUE, 0, tiles * sizeof(cl_int),
                                    counts.data(), 0, nullptr, nullptr),
                "clEnqueueReadBuffer");
-    for (cl_mem m : buffers) {
-        clReleaseMemObject(m);
-    }
-    clReleaseKernel(kernel);
 
     int unwritten_pixels = 0;
     int misplaced = 0;

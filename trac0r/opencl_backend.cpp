@@ -104,11 +104,14 @@ std::string type_name(cl_device_id device) {
     return "other";
 }
 
-// One context and queue per device for the whole process, and the programs
-// built on it, by appended source (empty for the renderer's own) and build
-// options (which hold the feature mask): PoCL takes seconds to build one, so
-// every backend, test and benchmark shares them.
-struct SharedDevice {
+}  // namespace
+
+// A device's context and queue, and the programs built on it, by appended
+// source (empty for the renderer's own) and build options (which hold the
+// feature mask): PoCL takes seconds to build one, so every backend, test
+// and benchmark that runs while one holds it shares them. Released (queue,
+// programs, context) when the last holder goes.
+struct OpenClDeviceCache {
     cl_device_id device = nullptr;
     OpenClContext context;
     OpenClCommandQueue queue;
@@ -116,17 +119,20 @@ struct SharedDevice {
     std::map<std::pair<std::string, std::string>, OpenClProgram> programs;
 };
 
+namespace {
+
+using SharedDevice = OpenClDeviceCache;
+
+// Guards the registry and every cache's programs.
 std::mutex shared_mutex;
 
-SharedDevice& shared_device(int index) {
-    // Never destroyed: the process keeps every context, queue and program
-    // to its end (embedded_opencl_program hands programs out), and a static
-    // destructor would release them at exit in no set order with the
-    // OpenCL driver's own teardown.
-    static std::map<int, SharedDevice>& devices = *new std::map<int, SharedDevice>;
-    auto found = devices.find(index);
-    if (found != devices.end()) {
-        return found->second;
+// The device open now as `index`, or a newly opened one. The registry holds
+// no device open: only the backends and keep_opencl_device's callers do.
+// Called with shared_mutex held.
+std::shared_ptr<SharedDevice> shared_device(int index) {
+    static std::map<int, std::weak_ptr<SharedDevice>> devices;
+    if (std::shared_ptr<SharedDevice> open = devices[index].lock()) {
+        return open;
     }
     const std::vector<DeviceHandle> all = enumerate_devices();
     if (all.empty()) {
@@ -138,17 +144,18 @@ SharedDevice& shared_device(int index) {
         throw OpenClError("--device " + std::to_string(index) + ": no such OpenCL device; " +
                           std::to_string(all.size()) + " found (see --list-devices)");
     }
-    SharedDevice d;
-    d.device = all[static_cast<std::size_t>(index)].device;
+    auto d = std::make_shared<SharedDevice>();
+    d->device = all[static_cast<std::size_t>(index)].device;
     cl_int status = CL_SUCCESS;
-    d.context.reset(clCreateContext(nullptr, 1, &d.device, nullptr, nullptr, &status));
+    d->context.reset(clCreateContext(nullptr, 1, &d->device, nullptr, nullptr, &status));
     check(status, "clCreateContext");
-    d.queue.reset(clCreateCommandQueue(d.context.get(), d.device, 0, &status));
+    d->queue.reset(clCreateCommandQueue(d->context.get(), d->device, 0, &status));
     check(status, "clCreateCommandQueue");
-    d.description =
-        device_string(d.device, CL_DEVICE_NAME) + " (" +
+    d->description =
+        device_string(d->device, CL_DEVICE_NAME) + " (" +
         platform_string(all[static_cast<std::size_t>(index)].platform, CL_PLATFORM_NAME) + ")";
-    return devices.emplace(index, std::move(d)).first->second;
+    devices[index] = d;
+    return d;
 }
 
 std::string build_log(cl_program program, cl_device_id device) {
@@ -249,10 +256,14 @@ SceneBuffers upload_scene(cl_context context, const PackedScene& scene) {
 
 }  // namespace
 
-OpenClQueue shared_opencl_queue(int device_index) {
+std::shared_ptr<OpenClDeviceCache> keep_opencl_device(int device_index) {
     std::lock_guard<std::mutex> lock(shared_mutex);
-    const SharedDevice& d = shared_device(device_index);
-    return {d.device, d.context.get(), d.queue.get(), d.description};
+    return shared_device(device_index);
+}
+
+OpenClQueue shared_opencl_queue(int device_index) {
+    const std::shared_ptr<OpenClDeviceCache> d = keep_opencl_device(device_index);
+    return {d->device, d->context.get(), d->queue.get(), d->description, d};
 }
 
 std::string opencl_build_options(std::uint32_t features) {
@@ -265,11 +276,11 @@ std::string opencl_build_options(std::uint32_t features) {
     return options;
 }
 
-cl_program embedded_opencl_program(int device_index, const std::string& appended_source,
+cl_program embedded_opencl_program(const OpenClQueue& cl, const std::string& appended_source,
                                    const std::string& options) {
     std::lock_guard<std::mutex> lock(shared_mutex);
     double seconds = 0.0;
-    return get_program(shared_device(device_index), appended_source, options, &seconds);
+    return get_program(*cl.cache, appended_source, options, &seconds);
 }
 
 std::vector<OpenClDeviceInfo> list_opencl_devices() {
@@ -286,8 +297,8 @@ std::vector<OpenClDeviceInfo> list_opencl_devices() {
 const std::size_t kTileItems = T0_TILE * T0_TILE;
 
 struct OpenClBackend::State {
-    SharedDevice* device = nullptr;
-    float scale = 1.0f;  // the packed scene's (scaled_camera)
+    std::shared_ptr<SharedDevice> device;  // kept open while the backend lives
+    float scale = 1.0f;                    // the packed scene's (scaled_camera)
     OpenClKernel kernel;
     SceneBuffers scene;
     OpenClMem accum;
@@ -304,7 +315,7 @@ namespace {
 std::unique_ptr<OpenClBackend::State> opened_state(int device_index) {
     std::unique_ptr<OpenClBackend::State> state(new OpenClBackend::State);
     std::lock_guard<std::mutex> lock(shared_mutex);
-    state->device = &shared_device(device_index);
+    state->device = shared_device(device_index);
     return state;
 }
 

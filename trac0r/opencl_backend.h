@@ -33,11 +33,24 @@ std::vector<OpenClDeviceInfo> list_opencl_devices();
 // The OpenCL C source embedded at build time (kernel headers + render.cl).
 const char* opencl_kernel_source();
 
+// A device's context, command queue and built programs. Every backend on
+// the device holds it while it lives, and it is released with the last
+// holder: a program (seconds to build on PoCL) is built once while any
+// holder lives, and nothing stays behind once all are gone.
+struct OpenClDeviceCache;
+
+// Holds device `device_index` open, so that backends made and destroyed one
+// after another while the handle lives share its programs: a library user
+// who makes renderers in a loop keeps one. Throws OpenClError when there is
+// no such device.
+std::shared_ptr<OpenClDeviceCache> keep_opencl_device(int device_index);
+
 class OpenClBackend : public Backend {
   public:
-    // Opens device `device_index` (see list_opencl_devices). Programs are
-    // built once per (device, feature mask) and shared by every backend of
-    // the process. Extra build options come from $TRAC0R_OPENCL_OPTIONS.
+    // Opens device `device_index` (see list_opencl_devices), or shares it
+    // with the backends and keep_opencl_device handles that hold it open:
+    // programs are built once per (device, feature mask) while it is open.
+    // Extra build options come from $TRAC0R_OPENCL_OPTIONS.
     explicit OpenClBackend(int device_index = 0);
     ~OpenClBackend() override;
 

@@ -1,7 +1,7 @@
 // For code that runs kernels of its own beside render_frame (the ray-casting
 // benchmark, the bit-for-bit helpers test): the OpenCL context and queue that
-// every OpenClBackend of the process shares, and programs of the embedded
-// kernel source with more source appended, built once per (device, appended
+// the OpenClBackends on a device share, and programs of the embedded kernel
+// source with more source appended, built once per (device, appended
 // source, options) and cached as the backend's own are. Unlike
 // opencl_backend.h this header needs the OpenCL headers (by opencl_owner.h,
 // whose owners suit the buffers and kernels such code makes).
@@ -12,6 +12,7 @@
 #include "trac0r/opencl_owner.h"
 
 #include <cstdint>
+#include <memory>
 #include <string>
 
 namespace trac0r {
@@ -20,11 +21,13 @@ struct OpenClQueue {
     cl_device_id device;
     cl_context context;
     cl_command_queue queue;
-    std::string description;  // "device (platform)"
+    std::string description;                   // "device (platform)"
+    std::shared_ptr<OpenClDeviceCache> cache;  // holds the above open
 };
 
-// Device `device_index` (see list_opencl_devices), opened once per process.
-// Throws OpenClError when there is no such device.
+// Device `device_index` (see list_opencl_devices), shared with the backends
+// and handles that hold it open, else opened. Throws OpenClError when there
+// is no such device.
 OpenClQueue shared_opencl_queue(int device_index);
 
 // The build options of the renderer's program for feature mask `features`:
@@ -32,10 +35,10 @@ OpenClQueue shared_opencl_queue(int device_index);
 std::string opencl_build_options(std::uint32_t features);
 
 // opencl_kernel_source() followed by appended_source, built with options on
-// device `device_index`, or the program already built from the same. The
-// process keeps it (do not release it). Throws OpenClError with the build
-// log if it does not build.
-cl_program embedded_opencl_program(int device_index, const std::string& appended_source,
+// cl's device, or the program already built from the same. cl's cache owns
+// it (do not release it): it lives while cl, or a copy, does. Throws
+// OpenClError with the build log if it does not build.
+cl_program embedded_opencl_program(const OpenClQueue& cl, const std::string& appended_source,
                                    const std::string& options);
 
 }  // namespace trac0r
