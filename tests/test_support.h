@@ -28,6 +28,16 @@ inline std::uint32_t bits_of(float f) {
     return b;
 }
 
+// How far apart, relative to the mean, one render's pixel and the same
+// frames rendered in parts and merged (accumulator_merge.h) may be: every
+// frame's sample is the same bits in both, summed in another order. One
+// accumulator's Kahan sum is within 2 units of 2^-24 of the exact sum,
+// relative to it (samples are not negative), and so is each part's; the
+// merge adds exactly in double and rounds once, and the mean's subtraction
+// and division round once each: 8 units bound the difference, and 16 allow
+// for the reference's own rounding.
+inline double split_render_tolerance() { return 16.0 * std::ldexp(1.0, -24); }
+
 // scenes/NAME from the source tree, rendered at width x height.
 inline Scene load_test_scene(const std::string& name, int width, int height) {
     Scene scene = load_scene_file(std::string(TRAC0R_SOURCE_DIR) + "/scenes/" + name);

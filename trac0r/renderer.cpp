@@ -34,6 +34,12 @@ void Renderer::set_camera(const Camera& camera) {
     restart();
 }
 
+void Renderer::set_frame_sequence(std::uint32_t first, std::uint32_t stride) {
+    first_frame_ = first;
+    frame_stride_ = stride > 0 ? stride : 1;
+    restart();
+}
+
 void Renderer::restart() {
     backend_->reset(width(), height());
     frame_ = 0;
@@ -41,7 +47,8 @@ void Renderer::restart() {
 }
 
 void Renderer::render_frame() {
-    backend_->render_frame(camera_record_, seed_, frame_, scene_.render.max_depth);
+    backend_->render_frame(camera_record_, seed_, first_frame_ + frame_stride_ * frame_,
+                           scene_.render.max_depth);
     ++frame_;
     readback_valid_ = false;
 }
@@ -54,17 +61,18 @@ const std::vector<kernel::AccumPixel>& Renderer::accumulator() {
     return readback_;
 }
 
-Image Renderer::image() {
-    const std::vector<kernel::AccumPixel>& accum = accumulator();
+Image accumulated_image(const std::vector<kernel::AccumPixel>& accum, int width, int height) {
     Image img;
-    img.width = width();
-    img.height = height();
+    img.width = width;
+    img.height = height;
     img.pixels.resize(accum.size());
     for (std::size_t i = 0; i < accum.size(); ++i) {
         img.pixels[i] = kernel::accumulated_mean(accum[i]);
     }
     return img;
 }
+
+Image Renderer::image() { return accumulated_image(accumulator(), width(), height()); }
 
 RenderStats Renderer::stats() {
     RenderStats s;

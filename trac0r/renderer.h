@@ -18,6 +18,9 @@ struct RenderStats {
     double samples_dropped = 0;  // non-finite samples, never accumulated
 };
 
+// The running mean of an accumulator of width x height pixels.
+Image accumulated_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height);
+
 class Renderer {
   public:
     Renderer(const Scene& scene, std::unique_ptr<Backend> backend, std::uint64_t seed = 1,
@@ -36,6 +39,14 @@ class Renderer {
     static const std::uint32_t max_frames = 1u << 24;
     bool full() const { return frame_ >= max_frames; }
 
+    // The frames this renderer renders, by their index in the render's
+    // sequence (a pixel's random numbers are a function of the seed, the
+    // pixel and that index): first, first + stride, first + 2 stride, ...
+    // (0, 1 unless set: every frame). Rank r of N ranks renders r, N, and
+    // their accumulators merged (accumulator_merge.h) are the render of
+    // every frame. Restarts accumulation.
+    void set_frame_sequence(std::uint32_t first, std::uint32_t stride);
+
     void set_camera(const Camera& camera);  // restarts accumulation
     void restart();
     void render_frame();
@@ -50,7 +61,9 @@ class Renderer {
     PackedScene packed_;
     std::unique_ptr<Backend> backend_;
     std::uint64_t seed_;
-    std::uint32_t frame_ = 0;
+    std::uint32_t frame_ = 0;  // frames rendered since the restart
+    std::uint32_t first_frame_ = 0;
+    std::uint32_t frame_stride_ = 1;
     kernel::CameraRecord camera_record_;
     std::vector<kernel::AccumPixel> readback_;
     bool readback_valid_ = false;

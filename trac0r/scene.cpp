@@ -18,4 +18,66 @@ glm::dvec3 local_origin(const glm::dvec3& position) {
                       grid * std::round(position.z / grid));
 }
 
+namespace {
+
+class Fnv1a {
+  public:
+    void bytes(const void* data, std::size_t size) {
+        const unsigned char* p = static_cast<const unsigned char*>(data);
+        for (std::size_t i = 0; i < size; ++i) {
+            hash_ = (hash_ ^ p[i]) * 0x100000001b3ull;
+        }
+    }
+    template <typename T>
+    void value(T v) {
+        bytes(&v, sizeof v);
+    }
+    void vec3(const glm::vec3& v) {
+        value(v.x);
+        value(v.y);
+        value(v.z);
+    }
+    std::uint64_t hash() const { return hash_; }
+
+  private:
+    std::uint64_t hash_ = 0xcbf29ce484222325ull;
+};
+
+}  // namespace
+
+std::uint64_t scene_digest(const Scene& scene) {
+    Fnv1a h;
+    h.value(scene.origin.x);
+    h.value(scene.origin.y);
+    h.value(scene.origin.z);
+    h.vec3(scene.camera.position);
+    h.vec3(scene.camera.direction);
+    h.vec3(scene.camera.world_up);
+    h.value(scene.camera.vertical_fov);
+    h.value(scene.render.width);
+    h.value(scene.render.height);
+    h.value(scene.render.max_depth);
+    h.value(scene.materials.size());
+    for (const Material& m : scene.materials) {
+        h.value(m.name.size());
+        h.bytes(m.name.data(), m.name.size());
+        h.value(static_cast<int>(m.type));
+        h.vec3(m.color);
+        h.value(m.emittance);
+        h.value(m.roughness);
+        h.value(m.ior);
+    }
+    h.value(scene.shapes.size());
+    for (const Shape& s : scene.shapes) {
+        h.value(s.material);
+        h.value(s.triangles.size());
+        for (const Triangle& t : s.triangles) {
+            h.vec3(t.v0);
+            h.vec3(t.v1);
+            h.vec3(t.v2);
+        }
+    }
+    return h.hash();
+}
+
 }  // namespace trac0r

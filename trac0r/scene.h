@@ -6,6 +6,7 @@
 #include "trac0r/material.h"
 #include "trac0r/shape.h"
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,12 @@ struct Scene {
 // less (2^-15) wherever the file puts it, up to where double's own spacing
 // (2^-52 of the distance) matters: about 1e12 for millimetre detail.
 glm::dvec3 local_origin(const glm::dvec3& position);
+
+// A 64-bit FNV-1a hash of everything that decides the image: the origin,
+// camera, render settings, materials and every triangle's vertices, field
+// by field (no padding bytes). Equal scenes hash equal on every machine of
+// the same byte order; trac0r_mpi's ranks compare theirs.
+std::uint64_t scene_digest(const Scene& scene);
 
 }  // namespace trac0r
 
