@@ -12,6 +12,14 @@
 
 namespace trac0r_viewer {
 
+namespace {
+const char* current_program_name = "trac0r_viewer";
+}  // namespace
+
+const char* program_name() { return current_program_name; }
+
+void set_program_name(const char* name) { current_program_name = name; }
+
 const char* key_help_text() {
     return R"(  W A S D            move forward, left, back, right
   Q / E              move down / up (also Ctrl / Space)

@@ -43,6 +43,11 @@ class UsageError : public std::runtime_error {
 };
 
 Options parse_options(int argc, const char* const* argv);
+
+// The name messages begin with: "trac0r_viewer", or what set_program_name
+// set (trac0r_mpi sets its own before it starts).
+const char* program_name();
+void set_program_name(const char* name);
 const char* usage_text();
 // The window's keys and mouse, one per line: in --help and behind H.
 const char* key_help_text();

@@ -1,4 +1,5 @@
 #include "slow_step.h"
+#include "options.h"
 
 #include <unistd.h>
 
@@ -31,8 +32,8 @@ void SlowStep::watch() {
     }
     for (;;) {
         if (!shown || tty) {
-            std::fprintf(stderr, "%strac0r_viewer: %s ... %.0f s%s", tty ? "\r" : "", what_.c_str(),
-                         seconds(), tty ? "" : "\n");
+            std::fprintf(stderr, "%s%s: %s ... %.0f s%s", tty ? "\r" : "", program_name(),
+                         what_.c_str(), seconds(), tty ? "" : "\n");
             std::fflush(stderr);
             shown = true;
         }
@@ -40,8 +41,8 @@ void SlowStep::watch() {
             break;
         }
     }
-    std::fprintf(stderr, "%strac0r_viewer: %s: done in %.2f s\n", tty ? "\r" : "", what_.c_str(),
-                 seconds());
+    std::fprintf(stderr, "%s%s: %s: done in %.2f s\n", tty ? "\r" : "", program_name(),
+                 what_.c_str(), seconds());
 }
 
 }  // namespace trac0r_viewer

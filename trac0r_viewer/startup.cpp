@@ -1,0 +1,226 @@
+#include "startup.h"
+
+#include "slow_step.h"
+
+#include "trac0r/cpu_backend.h"
+#include "trac0r/image_io.h"
+#include "trac0r/input_file.h"
+#include "trac0r/input_checks.h"
+#include "trac0r/opencl_backend.h"
+#include "trac0r/output_file.h"
+#include "trac0r/scene_loader.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <new>
+#include <stdexcept>
+
+namespace trac0r_viewer {
+
+void check_options(const Options& o, bool writes_outputs) {
+#ifndef TRAC0R_HAVE_OPENCL
+    if (o.backend == "opencl" || o.device >= 0 || o.list_devices) {
+        throw UsageError(
+            "--backend opencl / --device / --list-devices: this build has no "
+            "OpenCL backend (configure with -DTRAC0R_OPENCL=ON)");
+    }
+#endif
+    if (o.device >= 0 && o.backend != "opencl") {
+        throw UsageError("--device " + std::to_string(o.device) +
+                         ": picks an OpenCL device; add --backend opencl");
+    }
+    if (o.headless && o.benchmark_frames == 0 && o.outputs.empty()) {
+        throw UsageError(
+            "--headless: nothing to do; give --output FILE (.png or .pfm) or "
+            "--benchmark N");
+    }
+    if (o.benchmark_frames > 0 && (o.spp > 0 || o.seconds > 0.0 || o.target_error > 0.0)) {
+        throw UsageError(
+            "--benchmark: renders exactly N frames; it does not go with --spp, "
+            "--seconds or --target-error");
+    }
+    if (!o.replay_path.empty() && (o.headless || o.benchmark_frames > 0)) {
+        throw UsageError(
+            "--replay: scripts the interactive window; it does not go with "
+            "--headless or --benchmark");
+    }
+    if (o.headless && o.given.count("--exposure") != 0 &&
+        std::none_of(o.outputs.begin(), o.outputs.end(), trac0r::is_png_path)) {
+        throw UsageError(
+            "--exposure: scales the tone mapping of PNG outputs (and the window); no --output is "
+            "a .png");
+    }
+    // Checked before rendering, not after.
+    for (const std::string& f : o.outputs) {
+        if (!trac0r::is_supported_image_path(f)) {
+            throw UsageError("--output " + f + ": expected a .png or .pfm file name");
+        }
+        const std::string reason = writes_outputs ? trac0r::unwritable_reason(f) : "";
+        if (!reason.empty()) {
+            throw UsageError("--output " + f + ": cannot be written (" + reason + ")");
+        }
+    }
+}
+
+trac0r::Scene load_scene(const Options& o) {
+    trac0r::Scene scene =
+        o.scene_path.empty() ? trac0r::builtin_scene() : trac0r::load_scene_file(o.scene_path);
+    if (o.width > 0) {
+        scene.render.width = o.width;
+    }
+    if (o.height > 0) {
+        scene.render.height = o.height;
+    }
+    if (o.max_depth > 0) {
+        scene.render.max_depth = o.max_depth;
+    }
+    return scene;
+}
+
+void print_verbose(trac0r::Renderer& r, const Options& o) {
+    const trac0r::PackedScene& p = r.packed();
+    std::fprintf(stderr,
+                 "scene: %s, %zu shapes, %zu triangles (%zu degenerate left out), %dx%d, "
+                 "max depth %d, seed %llu\n",
+                 o.scene_path.empty() ? "built-in Cornell box" : o.scene_path.c_str(),
+                 r.scene().shapes.size(), p.triangles.size(), p.dropped_degenerate_triangles,
+                 r.width(), r.height(), r.scene().render.max_depth,
+                 static_cast<unsigned long long>(o.seed));
+    if (p.nodes.empty()) {
+        std::fprintf(stderr, "acceleration: flat list of %zu shapes (--accel %s)\n",
+                     p.shapes.size(), o.accel.c_str());
+    } else {
+        std::fprintf(stderr, "acceleration: BVH of %zu nodes, depth %d%s (--accel %s)\n",
+                     p.nodes.size(), p.bvh_depth, p.bvh_by_levels ? ", collapsed by levels" : "",
+                     o.accel.c_str());
+    }
+    std::fprintf(stderr, "backend: %s (%s)\n", r.backend().name().c_str(),
+                 r.backend().device().c_str());
+    std::fprintf(stderr, "features: %s (mask 0x%02x); left out: %s\n",
+                 trac0r::feature_names(p.features).c_str(), p.features,
+                 trac0r::left_out_feature_names(p.features).c_str());
+#ifdef TRAC0R_HAVE_OPENCL
+    if (auto* cl = dynamic_cast<trac0r::OpenClBackend*>(&r.backend())) {
+        std::fprintf(stderr, "OpenCL program: built in %.2f s (0: reused) with '%s'\n",
+                     cl->last_build_seconds(), cl->build_options().c_str());
+    }
+#endif
+}
+
+int list_devices() {
+#ifdef TRAC0R_HAVE_OPENCL
+    const std::vector<trac0r::OpenClDeviceInfo> devices = trac0r::list_opencl_devices();
+    if (devices.empty()) {
+        std::fprintf(stderr,
+                     "trac0r_viewer: no OpenCL platform or device found (install an "
+                     "OpenCL driver, e.g. Debian's pocl-opencl-icd)\n");
+        return 1;
+    }
+    for (const trac0r::OpenClDeviceInfo& d : devices) {
+        std::printf("%d: %s [%s] on %s\n", d.index, d.name.c_str(), d.type.c_str(),
+                    d.platform.c_str());
+    }
+#endif
+    return 0;
+}
+
+std::unique_ptr<trac0r::Backend> backend_named(const std::string& name, const Options& o) {
+    if (name == "opencl") {
+#ifdef TRAC0R_HAVE_OPENCL
+        if (o.device < 0 && trac0r::list_opencl_devices().empty()) {
+            throw std::runtime_error(
+                "no OpenCL device found (install an OpenCL driver, e.g. "
+                "Debian's pocl-opencl-icd)");
+        }
+        return std::make_unique<trac0r::OpenClBackend>(o.device >= 0 ? o.device : 0);
+#else
+        throw std::runtime_error(
+            "this build has no OpenCL backend (configure with "
+            "-DTRAC0R_OPENCL=ON)");
+#endif
+    }
+    return std::make_unique<trac0r::CpuBackend>(o.threads);
+}
+
+std::unique_ptr<trac0r::Backend> make_backend(const Options& o) {
+#ifdef TRAC0R_HAVE_OPENCL
+    if (o.backend == "opencl" && o.device < 0 && trac0r::list_opencl_devices().empty()) {
+        std::fprintf(stderr,
+                     "%s: no OpenCL device found; falling back to the "
+                     "CPU backend (--device N insists on OpenCL)\n",
+                     program_name());
+        return backend_named("cpu", o);
+    }
+#endif
+    return backend_named(o.backend, o);
+}
+
+Startup::Startup(bool speaks) : speaks_(speaks) {}
+
+std::unique_ptr<SlowStep> Startup::announce(const std::string& what, bool at_once) const {
+    return speaks_ ? std::make_unique<SlowStep>(what, at_once) : nullptr;
+}
+
+void Startup::prepare(const Options& options, bool writes_outputs) {
+    check_options(options, writes_outputs);
+    if (options.max_input_mb > 0) {
+        trac0r::set_input_size_limit(static_cast<std::uint64_t>(options.max_input_mb) * 1000000u);
+    }
+}
+
+const trac0r::Scene& Startup::load(const Options& options) {
+    {
+        const std::unique_ptr<SlowStep> notice = announce(
+            "loading " + (options.scene_path.empty() ? "the built-in scene" : options.scene_path),
+            options.verbose);
+        scene_ = load_scene(options);
+    }
+    memory_user_ = "the scene's " + std::to_string(scene_.triangle_count()) +
+                   " triangles and their tree, and 48 bytes a pixel for the accumulator: "
+                   "a smaller --width and --height, or a smaller mesh";
+    return scene_;
+}
+
+std::unique_ptr<trac0r::Renderer> Startup::make_renderer(const Options& options) {
+    trac0r::PackOptions pack;
+    pack.accel = trac0r::parse_accel(options.accel);
+    pack.integrator = trac0r::parse_integrator(options.integrator);
+    std::unique_ptr<trac0r::Renderer> renderer;
+    {
+        const std::unique_ptr<SlowStep> notice =
+            announce("packing " + std::to_string(scene_.triangle_count()) +
+                         " triangles and building the acceleration structure",
+                     options.verbose);
+        renderer =
+            std::make_unique<trac0r::Renderer>(scene_, make_backend(options), options.seed, pack);
+    }
+    if (options.verbose && speaks_) {
+        print_verbose(*renderer, options);
+    }
+    // Not an error (a scene may be built up light by light), but nothing
+    // else would say why the image stays black.
+    if ((renderer->packed().features & T0_FEATURE_EMITTANCE) == 0u && !warned_dark_ && speaks_) {
+        std::fprintf(stderr,
+                     "%s: warning: no shape emits light (no material with an emittance and "
+                     "a colour above 0 is used), so the image will be black\n",
+                     program_name());
+        warned_dark_ = true;
+    }
+    return renderer;
+}
+
+Failure Startup::failure(std::exception_ptr error) const {
+    try {
+        std::rethrow_exception(error);
+    } catch (const UsageError& e) {
+        return {2, e.what()};
+    } catch (const trac0r::SceneError& e) {
+        return {1, e.what()};
+    } catch (const std::bad_alloc&) {
+        return {1, "error: out of memory (" + memory_user_ + " may help)"};
+    } catch (const std::exception& e) {
+        return {1, std::string("error: ") + e.what()};
+    }
+}
+
+}  // namespace trac0r_viewer
