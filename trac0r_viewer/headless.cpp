@@ -106,7 +106,11 @@ class Progress {
 // (so a render stops at most 10% of its samples past the target, and the
 // checks cost a fraction of a percent), but not before 8 spp, below which the
 // per-pixel variances are too rough to stop on.
-long next_error_check(long spp) { return std::max(8L, spp + std::max(1L, spp / 10)); }
+// Split across N ranks, the first check waits for 8 frames a rank: each
+// rank's estimate comes from its own frames.
+long next_error_check(long spp, long ranks) {
+    return std::max(8L * ranks, spp + std::max(1L, spp / 10));
+}
 
 // SIGINT or SIGTERM during a batch render (0: none yet). The frame in
 // flight finishes, the image so far is written, and the exit status says
@@ -180,12 +184,6 @@ std::string json_escape(const std::string& s) {
     return out;
 }
 
-void save_outputs(trac0r::Renderer& renderer, const Options& options) {
-    if (!options.outputs.empty()) {
-        save_outputs(renderer.image(), options);
-    }
-}
-
 }  // namespace
 
 void save_outputs(const trac0r::Image& image, const Options& options) {
@@ -195,93 +193,171 @@ void save_outputs(const trac0r::Image& image, const Options& options) {
     }
 }
 
-int run_batch(trac0r::Renderer& renderer, const Options& options) {
+int run_batch(trac0r::Renderer& renderer, const Options& options, Cluster& cluster) {
     const StopRule rule = batch_stop_rule(options);
     const bool by_error = rule.target_error > 0.0;
+    const int rank = cluster.rank();
+    const long ranks = cluster.size();
+    const bool first = rank == 0;  // draws the progress, merges, writes
+    // Rank r of N renders the frames r, r + N, ...: round k is the frames
+    // k N to k N + N - 1, one a rank (fewer when --spp ends inside it).
+    renderer.set_frame_sequence(static_cast<std::uint32_t>(rank),
+                                static_cast<std::uint32_t>(ranks));
     const double pixels = static_cast<double>(renderer.width()) * renderer.height();
-    // The noise estimate reads the accumulator back and passes over the
-    // image: computed at most once per spp count.
+    long spp = 0;  // frames rendered by all ranks together
+    // The noise estimate of the whole render from a rank's own: each falls
+    // as 1 / its frames, so the mean of (estimate x frames) over the ranks,
+    // over all frames, estimates the whole render's. With one process it is
+    // that process's estimate.
     double last_estimate = std::numeric_limits<double>::infinity();
-    long estimate_spp = 0;
-    long spp = 0;
-    const auto estimate = [&] {
-        if (estimate_spp != spp) {
-            last_estimate = trac0r::estimate_relative_mse(renderer.accumulator(), renderer.width(),
-                                                          renderer.height());
-            estimate_spp = spp;
-        }
-        return last_estimate;
+    long estimate_spp = 0;  // of the last --target-error check
+    const auto own_estimate = [&] {
+        return trac0r::estimate_relative_mse(renderer.accumulator(), renderer.width(),
+                                             renderer.height());
     };
     Progress progress(rule);
     const InterruptHandlers interrupts;
     const Clock::time_point start = Clock::now();
-    long error_check = next_error_check(0);
+    long error_check = next_error_check(0, ranks);
     bool error_reached = false;
+    bool overflowed = false;
+    int signal_number = 0;  // the first signal any rank received
+    double now = 0.0;       // rank 0's clock: every rank decides by it
+    std::vector<RoundReport> reports;
     StopReason stopped = StopReason::none;
     for (;;) {
-        if (interrupt_signal != 0 && spp > 0) {
+        if (signal_number != 0 && spp > 0) {
             break;
         }
-        stopped = rule.reason(spp, seconds_since(start), error_reached, renderer.full());
-        if (stopped == StopReason::full) {
+        const bool full = spp >= static_cast<long>(trac0r::Renderer::max_frames);
+        stopped = rule.reason(spp, now, error_reached, full);
+        if (stopped == StopReason::full && first) {
             std::fprintf(stderr,
-                         "trac0r_viewer: stopped at %u spp, the most a pixel's sample count "
+                         "%s: stopped at %u spp, the most a pixel's sample count "
                          "(a float) holds exactly\n",
-                         trac0r::Renderer::max_frames);
+                         program_name(), trac0r::Renderer::max_frames);
         }
         if (stopped != StopReason::none) {
             break;
         }
-        renderer.render_frame();
-        ++spp;
-        const double now = seconds_since(start);
-        if (by_error && spp >= error_check) {
-            error_reached = rule.error_reached(estimate());
-            error_check = next_error_check(spp);
-            // Would never stop unless --spp or --seconds bounds it: say so,
-            // keep what was rendered.
-            if (!error_reached && rule.spp == 0 && rule.seconds <= 0.0 &&
-                trac0r::noise_estimate_overflowed(renderer.accumulator())) {
-                const double so_far = seconds_since(start);
-                progress.finish(spp, so_far, so_far > 0.0 ? spp * pixels / so_far : 0.0,
-                                last_estimate);
-                std::fprintf(stderr,
-                             "trac0r_viewer: --target-error cannot be reached: the noise "
-                             "estimate has overflowed (a pixel's squared deviations exceed "
-                             "float's range: radiance samples above about 1e19); give --spp "
-                             "or --seconds instead (the image so far is written)\n");
-                save_outputs(renderer, options);
-                return 1;
+        long round = std::min(ranks, static_cast<long>(trac0r::Renderer::max_frames) - spp);
+        if (rule.spp > 0) {
+            round = std::min(round, rule.spp - spp);
+        }
+        if (rank < round) {
+            renderer.render_frame();
+        }
+        spp += round;
+        RoundReport mine;
+        mine.signal = interrupt_signal;
+        mine.frames = renderer.frames();
+        mine.elapsed = seconds_since(start);
+        const bool check = by_error && spp >= error_check;
+        if (check) {
+            mine.estimate = own_estimate();
+            mine.overflowed = trac0r::noise_estimate_overflowed(renderer.accumulator());
+        }
+        reports = cluster.exchange(mine);
+        now = reports[0].elapsed;
+        for (const RoundReport& r : reports) {
+            if (signal_number == 0) {
+                signal_number = r.signal;
             }
         }
-        if (progress.due(spp, now, last_estimate)) {
-            if (!by_error && spp >= 2) {
-                estimate();
+        if (check) {
+            double weighted = 0.0;
+            overflowed = false;
+            for (const RoundReport& r : reports) {
+                if (r.frames > 0) {  // one with none has no estimate, and no weight
+                    weighted += r.estimate * static_cast<double>(r.frames);
+                }
+                overflowed = overflowed || r.overflowed != 0;
+            }
+            last_estimate = weighted / static_cast<double>(ranks) / static_cast<double>(spp);
+            estimate_spp = spp;
+            error_reached = rule.error_reached(last_estimate);
+            error_check = next_error_check(spp, ranks);
+            // Would never stop unless --spp or --seconds bounds it: say so,
+            // keep what was rendered.
+            if (!error_reached && rule.spp == 0 && rule.seconds <= 0.0 && overflowed) {
+                break;
+            }
+        }
+        if (first && progress.due(spp, now, last_estimate)) {
+            if (!by_error && renderer.frames() >= 2) {
+                // For the display: rank 0's own, scaled to all frames.
+                last_estimate = own_estimate() * static_cast<double>(renderer.frames()) /
+                                static_cast<double>(spp);
             }
             progress.update(spp, now, spp * pixels / now, last_estimate);
         }
     }
+    const bool cannot_reach = by_error && !error_reached && overflowed && rule.spp == 0 &&
+                              rule.seconds <= 0.0 && stopped == StopReason::none &&
+                              signal_number == 0;
+    // One process's accumulator as it is; the ranks' merged into a copy.
+    const std::vector<trac0r::kernel::AccumPixel>* merged = &renderer.accumulator();
+    std::vector<trac0r::kernel::AccumPixel> merged_copy;
+    const Clock::time_point merge_start = Clock::now();
+    if (ranks > 1) {
+        merged_copy = *merged;
+        cluster.merge_to_first(merged_copy);
+        merged = &merged_copy;
+    }
+    const std::vector<trac0r::kernel::AccumPixel>& accumulator = *merged;
+    const double merge_seconds = seconds_since(merge_start);
+    const int code = cannot_reach ? 1 : (signal_number != 0 ? 128 + signal_number : 0);
+    if (!first) {
+        return code;
+    }
+    const trac0r::Image image =
+        trac0r::accumulated_image(accumulator, renderer.width(), renderer.height());
     const double elapsed = seconds_since(start);
     const double paths_per_second = elapsed > 0.0 ? spp * pixels / elapsed : 0.0;
-    if (spp >= 2) {
-        estimate();
+    // The final estimate: the last check's, if it was at this spp (what the
+    // target was judged by), else the merged accumulator's.
+    if (spp >= 2 && estimate_spp != spp) {
+        last_estimate =
+            trac0r::estimate_relative_mse(accumulator, renderer.width(), renderer.height());
     }
-    progress.finish(spp, elapsed, paths_per_second, last_estimate, interrupt_signal == 0);
-    if (interrupt_signal != 0) {
-        const int signal_number = interrupt_signal;
+    progress.finish(spp, elapsed, paths_per_second, last_estimate, signal_number == 0);
+    if (options.verbose && ranks > 1) {
+        std::string frames;
+        for (const RoundReport& r : reports) {
+            frames += " " + std::to_string(r.frames);
+        }
+        std::fprintf(stderr, "frames per rank (0 to %ld):%s\n", ranks - 1, frames.c_str());
+        std::fprintf(stderr, "merged %ld ranks' accumulators (%.1f MB each) in %.3f s\n", ranks,
+                     1e-6 * static_cast<double>(accumulator.size() * sizeof(accumulator[0])),
+                     merge_seconds);
+    }
+    if (cannot_reach) {
         std::fprintf(stderr,
-                     "trac0r_viewer: interrupted by %s after %ld spp (%.2f s): writing the "
-                     "image so far\n",
-                     signal_number == SIGINT ? "SIGINT" : "SIGTERM", spp, elapsed);
-        save_outputs(renderer, options);
-        return 128 + signal_number;
+                     "%s: --target-error cannot be reached: the noise "
+                     "estimate has overflowed (a pixel's squared deviations exceed "
+                     "float's range: radiance samples above about 1e19); give --spp "
+                     "or --seconds instead (the image so far is written)\n",
+                     program_name());
+        save_outputs(image, options);
+        return code;
     }
-    const trac0r::RenderStats stats = renderer.stats();
+    if (signal_number != 0) {
+        std::fprintf(stderr,
+                     "%s: interrupted by %s after %ld spp (%.2f s): writing the "
+                     "image so far\n",
+                     program_name(), signal_number == SIGINT ? "SIGINT" : "SIGTERM", spp, elapsed);
+        save_outputs(image, options);
+        return code;
+    }
+    double dropped = 0.0;
+    for (const trac0r::kernel::AccumPixel& p : accumulator) {
+        dropped += p.moments.w;
+    }
     std::fprintf(stderr,
                  "rendered %ld spp of %dx%d in %.2f s (%.2f Mpaths/s); %.0f non-finite "
                  "samples dropped\n",
                  spp, renderer.width(), renderer.height(), elapsed, paths_per_second * 1e-6,
-                 stats.samples_dropped);
+                 dropped);
     if (by_error) {
         if (error_reached) {
             std::fprintf(stderr,
@@ -295,14 +371,14 @@ int run_batch(trac0r::Renderer& renderer, const Options& options) {
                          last_estimate, options.target_error,
                          stopped == StopReason::full ? "16777216-spp" : spp_done_reason(options),
                          spp, elapsed,
-                         trac0r::noise_estimate_overflowed(renderer.accumulator())
+                         trac0r::noise_estimate_overflowed(accumulator)
                              ? "; the noise estimate has overflowed float (radiance samples "
                                "above about 1e19) and cannot fall"
                              : "");
         }
     }
-    save_outputs(renderer, options);
-    return 0;
+    save_outputs(image, options);
+    return code;
 }
 
 int run_benchmark(trac0r::Renderer& renderer, const Options& options,
@@ -339,7 +415,9 @@ int run_benchmark(trac0r::Renderer& renderer, const Options& options,
          << json_escape(renderer.backend().name()) << "\", \"device\": \""
          << json_escape(renderer.backend().device()) << "\"}";
     std::cout << json.str() << std::endl;
-    save_outputs(renderer, options);
+    if (!options.outputs.empty()) {
+        save_outputs(renderer.image(), options);
+    }
     return 0;
 }
 

@@ -2,6 +2,7 @@
 #ifndef TRAC0R_VIEWER_HEADLESS_H
 #define TRAC0R_VIEWER_HEADLESS_H
 
+#include "cluster.h"
 #include "options.h"
 
 #include "trac0r/renderer.h"
@@ -10,9 +11,11 @@
 
 namespace trac0r_viewer {
 
-// Renders until --spp or --seconds, with a progress bar on stderr, and
-// saves --output. Returns the exit code.
-int run_batch(trac0r::Renderer& renderer, const Options& options);
+// Renders until --spp, --seconds or --target-error, with a progress bar on
+// stderr, and saves --output. Split across `cluster`'s processes, each
+// renders its share of the frames, all stop after the same round, and the
+// first merges the accumulators, prints and writes. Returns the exit code.
+int run_batch(trac0r::Renderer& renderer, const Options& options, Cluster& cluster);
 
 // Renders --benchmark N frames and prints one JSON line on stdout. Each
 // frame's time includes `after_frame` (the window shows the frame there);

@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
         if (options.benchmark_frames > 0) {
             return trac0r_viewer::run_benchmark(*renderer, options);
         }
-        return trac0r_viewer::run_batch(*renderer, options);
+        trac0r_viewer::SingleProcess one;
+        return trac0r_viewer::run_batch(*renderer, options, one);
     } catch (...) {
         const trac0r_viewer::Failure failure = startup.failure(std::current_exception());
         std::fprintf(stderr, "trac0r_viewer: %s\n", failure.message.c_str());
