@@ -148,6 +148,9 @@ TEST_CASE("trac0r_mpi names the rank that cannot start, and none waits for it", 
     CHECK(differs.exit_code == 1);
     CHECK(differs.err.find("trac0r_mpi: rank 1's scene or options differ from rank 0's") !=
           std::string::npos);
+    const ViewerRun version = mpi("--version");
+    CHECK(version.exit_code == 0);
+    CHECK(version.out.find("trac0r_mpi trac0r " + std::string(TRAC0R_PROJECT_VERSION)) == 0);
     // A bad flag on every rank: one message, the command line's exit code.
     const ViewerRun flag = mpi(kRender + " --spp zero --output mpi_fault.png");
     INFO(flag.err);

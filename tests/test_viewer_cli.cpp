@@ -209,6 +209,12 @@ TEST_CASE("--help lists the options and exits 0", "[cli]") {
     REQUIRE(r.output.find("--spp") != std::string::npos);
 }
 
+TEST_CASE("--version says the version and exits 0", "[cli]") {
+    const Run r = run_viewer("--version");
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.output.find("trac0r_viewer trac0r " + std::string(TRAC0R_PROJECT_VERSION)) == 0);
+}
+
 TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]") {
     struct Case {
         std::string args;

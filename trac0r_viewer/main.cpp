@@ -4,6 +4,8 @@
 #include "startup.h"
 #include "window_session.h"
 
+#include "trac0r/version.h"
+
 #include <csignal>
 #include <cstdio>
 #include <exception>
@@ -22,6 +24,10 @@ int main(int argc, char** argv) {
         const Options options = trac0r_viewer::parse_options(argc, argv);
         if (options.help) {
             std::fputs(trac0r_viewer::usage_text(), stdout);
+            return 0;
+        }
+        if (options.version) {
+            std::printf("trac0r_viewer %s\n", trac0r::version_line().c_str());
             return 0;
         }
         if (options.list_devices) {

@@ -15,7 +15,7 @@ namespace trac0r_viewer {
 // What a rank says once it has started (or failed to).
 struct StartReport {
     std::int32_t code = 0;     // 0: ready; else the exit code of its failure
-    std::int32_t help = 0;     // --help: print it and exit 0
+    std::int32_t help = 0;     // 1: --help, 2: --version; print it and exit 0
     std::uint64_t digest = 0;  // of the scene and the options that decide the image
     char message[2048] = {};   // its failure, cut to fit
 };

@@ -8,6 +8,7 @@
 
 #include "trac0r/opencl_backend.h"
 #include "trac0r/scene.h"
+#include "trac0r/version.h"
 
 #include <mpi.h>
 
@@ -104,8 +105,8 @@ int run(int argc, char** argv) {
     trac0r_viewer::StartReport mine;
     try {
         options = trac0r_viewer::parse_options(argc, argv);
-        if (options.help) {
-            mine.help = 1;
+        if (options.help || options.version) {
+            mine.help = options.help ? 1 : 2;
         } else {
             options.headless = true;
             refuse_window_options(options);
@@ -139,7 +140,9 @@ int run(int argc, char** argv) {
         }
     }
     if (std::any_of(all.begin(), all.end(), [](const auto& s) { return s.help != 0; })) {
-        if (first) {
+        if (first && mine.help == 2) {
+            std::printf("trac0r_mpi %s\n", trac0r::version_line().c_str());
+        } else if (first) {
             std::fputs(mpi_usage_text(), stdout);
             std::fputs(trac0r_viewer::usage_text(), stdout);
         }

@@ -78,6 +78,7 @@ Output:
   --max-input-mb N       largest scene, mesh or replay file read, in MB
                          (default 4000)
   -h, --help             this text
+  --version              the version and whether OpenCL is built in
 
 Window keys and mouse:
 )") + key_help_text() + R"(
@@ -156,11 +157,9 @@ Options parse_options(int argc, const char* const* argv) {
         {"--max-input-mb",
          [&](auto f, auto v) { o.max_input_mb = parse_integer(f, v, 1, 1L << 30); }},
     };
-    const std::map<std::string, bool*> switches = {{"--headless", &o.headless},
-                                                   {"--verbose", &o.verbose},
-                                                   {"--list-devices", &o.list_devices},
-                                                   {"--help", &o.help},
-                                                   {"-h", &o.help}};
+    const std::map<std::string, bool*> switches = {
+        {"--headless", &o.headless}, {"--verbose", &o.verbose}, {"--list-devices", &o.list_devices},
+        {"--help", &o.help},         {"--version", &o.version}, {"-h", &o.help}};
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
         // Every option but --output (which may name several files) at most

@@ -33,6 +33,7 @@ struct Options {
     bool verbose = false;
     bool list_devices = false;
     bool help = false;
+    bool version = false;
     std::set<std::string> given;  // the options on the command line (-h as --help)
 };
 
