@@ -6,7 +6,9 @@
 # sanitizers do not see into (and whose allocations LeakSanitizer cannot
 # tell from ours); the kernel code it runs is the same C the CPU tests
 # cover. test_out_of_memory limits virtual memory (ulimit -v), under
-# which the sanitizers' shadow memory cannot be reserved.
+# which the sanitizers' shadow memory cannot be reserved. test_install
+# builds a project of its own against the installed library, without the
+# sanitizers' runtime that an instrumented library needs.
 # Usage: tests/sanitize.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,7 +20,7 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
 export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1
 ctest --test-dir "$build" --output-on-failure \
-    -E '^(test_opencl|test_window|test_stability_opencl|test_mpi|test_out_of_memory)$'
+    -E '^(test_opencl|test_window|test_stability_opencl|test_mpi|test_out_of_memory|test_install)$'
 # Memory errors and undefined behaviour as above, but no leak check:
 # - test_window: SDL's X11 and GL modules are loaded and unloaded with
 #   dlopen, and what they keep cannot even be named (no module to match);
