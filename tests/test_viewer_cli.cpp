@@ -228,7 +228,7 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
         {"--headless --spp 16777217 --output x.png",
          "--spp: expected an integer in [1, 16777216], got '16777217'"},
         {"--frobnicate", "--frobnicate: unknown option"},
-        {"--headless --output x.jpg", "expected a .png or .pfm"},
+        {"--headless --output x.jpg", "expected a .png, .pfm or .exr"},
         {"--headless", "give --output FILE"},
         {"--headless --seconds -1 --output x.png", "--seconds: expected a positive number"},
         {"--headless --target-error 0 --output x.png", "--target-error: expected a positive"},
@@ -241,7 +241,7 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
         // Checked before the render, which would otherwise be lost.
         {"--headless --output no_such_dir/x.png",
          "--output no_such_dir/x.png: cannot be written (directory no_such_dir does not exist)"},
-        {"--headless --output . --output x.pfm", "--output .: expected a .png or .pfm"},
+        {"--headless --output . --output x.pfm", "--output .: expected a .png, .pfm or .exr"},
         {"--headless --width 32 --width 16 --output x.png", "--width: given more than once"},
         {"--headless --seconds 0x10 --output x.png", "--seconds: expected a positive number"},
         {"--headless --spp +3 --output x.png", "--spp: expected an integer"},

@@ -5,10 +5,12 @@
 
 #include <stb_image.h>
 #include <stb_image_write.h>
+#include <tinyexr.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <stdexcept>
@@ -143,8 +145,56 @@ Image read_pfm(const std::string& path) {
     return image;
 }
 
+void write_exr(const std::string& path, const Image& image) {
+    // One plane a channel, in the order OpenEXR sorts their names: B, G, R.
+    const std::size_t pixels = image.pixels.size();
+    std::vector<float> planes[3];
+    for (int c = 0; c < 3; ++c) {
+        planes[c].resize(pixels);
+        for (std::size_t i = 0; i < pixels; ++i) {
+            planes[c][i] = image.pixels[i][2 - c];
+        }
+    }
+    unsigned char* plane_pointers[3] = {reinterpret_cast<unsigned char*>(planes[0].data()),
+                                        reinterpret_cast<unsigned char*>(planes[1].data()),
+                                        reinterpret_cast<unsigned char*>(planes[2].data())};
+    EXRImage exr;
+    InitEXRImage(&exr);
+    exr.images = plane_pointers;
+    exr.width = image.width;
+    exr.height = image.height;
+    exr.num_channels = 3;
+    EXRHeader header;
+    InitEXRHeader(&header);
+    EXRChannelInfo channels[3];
+    std::memset(channels, 0, sizeof channels);
+    const char* names[3] = {"B", "G", "R"};
+    int types[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
+    for (int c = 0; c < 3; ++c) {
+        std::strcpy(channels[c].name, names[c]);
+    }
+    header.num_channels = 3;
+    header.channels = channels;
+    header.pixel_types = types;
+    header.requested_pixel_types = types;  // stored as float, as computed
+    header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
+    unsigned char* memory = nullptr;
+    const char* error = nullptr;
+    const std::size_t size = SaveEXRImageToMemory(&exr, &header, &memory, &error);
+    if (size == 0) {
+        const std::string reason = error ? error : "unknown error";
+        FreeEXRErrorMessage(error);
+        throw std::runtime_error(path + ": cannot encode the EXR image (" + reason + ")");
+    }
+    struct Freed {
+        unsigned char* p;
+        ~Freed() { std::free(p); }
+    } freed{memory};
+    write_file_replacing(path, memory, size);
+}
+
 bool is_supported_image_path(const std::string& path) {
-    return is_png_path(path) || ends_with(path, ".pfm");
+    return is_png_path(path) || ends_with(path, ".pfm") || ends_with(path, ".exr");
 }
 
 bool is_png_path(const std::string& path) { return ends_with(path, ".png"); }
@@ -154,8 +204,10 @@ void write_image(const std::string& path, const Image& image, float exposure) {
         write_png(path, image, exposure);
     } else if (ends_with(path, ".pfm")) {
         write_pfm(path, image);
+    } else if (ends_with(path, ".exr")) {
+        write_exr(path, image);
     } else {
-        throw std::runtime_error(path + ": unknown image format (expected .png or .pfm)");
+        throw std::runtime_error(path + ": unknown image format (expected .png, .pfm or .exr)");
     }
 }
 

@@ -34,12 +34,13 @@ std::uint8_t tonemap_channel(float linear, float exposure);
 // tonemap_channel applied to every channel of every pixel.
 Rgb8Image tonemap_image(const Image& image, float exposure);
 
-// True for the extensions write_image knows (.png, .pfm, any case).
+// True for the extensions write_image knows (.png, .pfm, .exr, any case).
 bool is_supported_image_path(const std::string& path);
 // Whether path names a PNG (ends in .png, in any case), as write_image reads it.
 bool is_png_path(const std::string& path);
 
-// .png (tone-mapped sRGB) or .pfm (linear float), chosen by the extension.
+// .png (tone-mapped sRGB), .pfm or .exr (linear float), chosen by the
+// extension.
 // Throws std::runtime_error naming the file on failure or another extension.
 void write_image(const std::string& path, const Image& image, float exposure = 1.0f);
 void write_png(const std::string& path, const Image& image, float exposure = 1.0f);
@@ -49,6 +50,9 @@ Rgb8Image read_png(const std::string& path);
 // PFM ("PF", little-endian scale -1), rows bottom first as the format says.
 void write_pfm(const std::string& path, const Image& image);
 Image read_pfm(const std::string& path);
+// OpenEXR, scanlines with ZIP compression: channels R, G, B as 32-bit
+// float, the pixels exactly as the PFM of the same image holds them.
+void write_exr(const std::string& path, const Image& image);
 
 }  // namespace trac0r
 

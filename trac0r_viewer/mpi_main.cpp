@@ -50,7 +50,7 @@ void refuse_window_options(const Options& o) {
             "in batch only");
     }
     if (o.outputs.empty()) {
-        throw UsageError("nothing to do; give --output FILE (.png or .pfm): rank 0 writes it");
+        throw UsageError("nothing to do; give --output FILE (.png, .pfm or .exr): rank 0 writes it");
     }
 }
 

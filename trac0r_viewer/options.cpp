@@ -66,9 +66,9 @@ Rendering:
   --verbose              backend, device, feature mask and what was left out
 
 Output:
-  --output FILE          save the result: .png (tone-mapped sRGB) or .pfm (linear);
-                         may be repeated (e.g. both a .png and a .pfm); in the
-                         window, saved when it closes
+  --output FILE          save the result: .png (tone-mapped sRGB), .pfm or .exr
+                         (linear float); may be repeated (e.g. both a .png and
+                         a .exr); in the window, saved when it closes
   --headless             no window; with --output a batch render with a
                          progress bar on stderr (default --spp 64 when
                          neither --seconds nor --target-error is given)

@@ -31,7 +31,7 @@ void check_options(const Options& o, bool writes_outputs) {
     }
     if (o.headless && o.benchmark_frames == 0 && o.outputs.empty()) {
         throw UsageError(
-            "--headless: nothing to do; give --output FILE (.png or .pfm) or "
+            "--headless: nothing to do; give --output FILE (.png, .pfm or .exr) or "
             "--benchmark N");
     }
     if (o.benchmark_frames > 0 && (o.spp > 0 || o.seconds > 0.0 || o.target_error > 0.0)) {
@@ -53,7 +53,7 @@ void check_options(const Options& o, bool writes_outputs) {
     // Checked before rendering, not after.
     for (const std::string& f : o.outputs) {
         if (!trac0r::is_supported_image_path(f)) {
-            throw UsageError("--output " + f + ": expected a .png or .pfm file name");
+            throw UsageError("--output " + f + ": expected a .png, .pfm or .exr file name");
         }
         const std::string reason = writes_outputs ? trac0r::unwritable_reason(f) : "";
         if (!reason.empty()) {
