@@ -57,8 +57,8 @@ Rendering:
   --max-depth D          maximum path length in vertices (default: the scene's)
   --threads N            CPU threads (default: all)
   --accel flat|bvh|auto  acceleration structure (default auto)
-  --integrator naive|nee the thesis' algorithm (default), or next-event
-                         estimation with MIS
+  --integrator nee|naive next-event estimation with MIS (default), or the
+                         thesis' algorithm
   --target-error E       stop when the estimated relative MSE (no reference
                          needed: from each pixel's sample variance) reaches E,
                          e.g. 0.01; with --spp or --seconds, whichever first

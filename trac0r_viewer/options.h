@@ -25,7 +25,7 @@ struct Options {
     int max_depth = 0;  // 0: the scene's
     int threads = 0;    // 0: OpenMP's default
     std::string accel = "auto";
-    std::string integrator = "naive";
+    std::string integrator = "nee";
     double target_error = 0.0;
     float exposure = 1.0f;
     std::string replay_path;  // --replay: scripted window input (replay.h)
