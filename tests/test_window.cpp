@@ -197,6 +197,35 @@ key Escape
     CHECK(r.err.find("switching to the opencl backend") != std::string::npos);
 }
 
+TEST_CASE("after B the window renders what --backend opencl renders, integrator and all",
+          "[window]") {
+    // Before, the renderer made on a switch had the library's default
+    // integrator (naive), not the command line's: its 3 spp were another
+    // image than the batch render's.
+    const std::string dir = empty_directory("window_switch");
+    write_file(dir + "/script.txt", R"(wait_spp 3
+key B            # to OpenCL (PoCL): accumulation starts again there
+wait 1000
+wait_spp 3
+key P
+key Escape
+)");
+    const std::string view = cornell + " --width 64 --height 48 --spp 3";
+    const ViewerRun r = run_viewer_process(view + " --replay script.txt", "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    REQUIRE(r.err.find("backend: opencl") != std::string::npos);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 1);
+    const ViewerRun batch = run_viewer_process(
+        view + " --headless --backend opencl --output batch.pfm", "cd " + dir + " &&");
+    REQUIRE(batch.exit_code == 0);
+    const trac0r::Image window = trac0r::read_pfm(shots[0].pfm);
+    const trac0r::Image headless = trac0r::read_pfm(dir + "/batch.pfm");
+    INFO("mean |difference| " << mean_abs_difference(window, headless));
+    CHECK(same_pixels(window, headless));
+}
+
 TEST_CASE("--benchmark in the window prints its JSON line and exits 0", "[window]") {
     const ViewerRun r = run_viewer_process("--benchmark 3 --width 64 --height 48");
     INFO(r.err);

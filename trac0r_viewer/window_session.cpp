@@ -138,6 +138,7 @@ Session::Session(const Options& options, Window& window, const Font& font,
     WorkerSettings settings;
     settings.seed = options.seed;
     settings.pack.accel = trac0r::parse_accel(options.accel);
+    settings.pack.integrator = trac0r::parse_integrator(options.integrator);
     settings.stop.spp = options.spp;
     settings.stop.seconds = options.seconds;
     const std::uint32_t event_type = frame_event_;
