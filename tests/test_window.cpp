@@ -226,6 +226,26 @@ key Escape
     CHECK(same_pixels(window, headless));
 }
 
+TEST_CASE("--target-error pauses the window once the estimate reaches it", "[window]") {
+    // Before, the window accepted --target-error and went on forever.
+    const std::string dir = empty_directory("window_target");
+    write_file(dir + "/script.txt", R"(wait 4000
+key P
+wait 1500
+key P            # 1.5 s later: the same spp when paused
+key Escape
+)");
+    const ViewerRun r = run_viewer_process(
+        cornell + " --width 64 --height 48 --target-error 0.2 --replay script.txt",
+        "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 2);
+    CHECK(shots[0].spp >= 8);
+    CHECK(shots[1].spp == shots[0].spp);
+}
+
 TEST_CASE("--benchmark in the window prints its JSON line and exits 0", "[window]") {
     const ViewerRun r = run_viewer_process("--benchmark 3 --width 64 --height 48");
     INFO(r.err);

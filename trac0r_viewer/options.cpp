@@ -62,6 +62,7 @@ Rendering:
   --target-error E       stop when the estimated relative MSE (no reference
                          needed: from each pixel's sample variance) reaches E,
                          e.g. 0.01; with --spp or --seconds, whichever first
+                         (window: pause there)
   --exposure X           multiply radiance by X before tone mapping (PNG, window)
   --verbose              backend, device, feature mask and what was left out
 

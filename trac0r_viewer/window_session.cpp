@@ -141,6 +141,7 @@ Session::Session(const Options& options, Window& window, const Font& font,
     settings.pack.integrator = trac0r::parse_integrator(options.integrator);
     settings.stop.spp = options.spp;
     settings.stop.seconds = options.seconds;
+    settings.stop.target_error = options.target_error;
     const std::uint32_t event_type = frame_event_;
     worker_ = std::make_unique<RenderWorker>(std::move(renderer), make_backend, settings, [=] {
         // Wakes the event loop at once; SDL_PushEvent may be called from any thread.

@@ -98,13 +98,18 @@ void RenderWorker::tell(const std::string& message) {
     messages_.push_back(message);
 }
 
-// --spp and --seconds (and the 2^24 samples a pixel's count holds): the
-// image is done; nothing to do until a request.
+// --spp, --seconds, --target-error (and the 2^24 samples a pixel's count
+// holds): the image is done; nothing to do until a request.
 bool RenderWorker::paused() const { return !full_stale_ && !pause_reason_.empty(); }
 
 std::string RenderWorker::pause_reason_now() const {
     const StopRule& stop = settings_.stop;
-    switch (stop.reason(full_->frames(), seconds_since(full_started_), false, full_->full())) {
+    // The target by the last estimate (refreshed about twice a second, so the
+    // window pauses within about half a second of reaching it), from 8 spp
+    // on, as a batch render checks it.
+    const bool error_reached = last_estimate_spp_ >= 8 && stop.error_reached(last_estimate_);
+    switch (
+        stop.reason(full_->frames(), seconds_since(full_started_), error_reached, full_->full())) {
     case StopReason::spp:
         return "--spp " + std::to_string(stop.spp);
     case StopReason::seconds: {
@@ -114,7 +119,11 @@ std::string RenderWorker::pause_reason_now() const {
     }
     case StopReason::full:
         return "the most a pixel's sample count holds";
-    case StopReason::target_error:  // never: the window has no target error
+    case StopReason::target_error: {
+        char text[64];
+        std::snprintf(text, sizeof text, "--target-error %g", stop.target_error);
+        return text;
+    }
     case StopReason::none:
         break;
     }

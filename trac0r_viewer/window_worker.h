@@ -61,8 +61,8 @@ struct WorkerFrame {
 struct WorkerSettings {
     std::uint64_t seed = 1;
     trac0r::PackOptions pack;  // for renderers made on a backend switch
-    // When the accumulation pauses (its seconds count from a restart). The
-    // window has no target error: it shows the estimate in the overlay.
+    // When the accumulation pauses (its seconds count from a restart; the
+    // target error by the estimate the overlay shows).
     StopRule stop;
 };
 
