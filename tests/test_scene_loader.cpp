@@ -491,7 +491,8 @@ TEST_CASE("scene files: errors name the file; meshes are relative to it", "[scen
     TempDir dir;
     SECTION("a file that does not exist") {
         const std::string path = dir.path() + "/absent.json";
-        REQUIRE_THROWS_WITH(load_scene_file(path), Equals(path + ": cannot open scene file: No such file or directory"));
+        REQUIRE_THROWS_WITH(load_scene_file(path),
+                            Equals(path + ": cannot open scene file: No such file or directory"));
     }
     SECTION("a directory") {
         REQUIRE_THROWS_WITH(load_scene_file(dir.path()), StartsWith(dir.path() + ": cannot"));
@@ -514,6 +515,30 @@ TEST_CASE("scene files: errors name the file; meshes are relative to it", "[scen
         REQUIRE_THROWS_WITH(load_scene_file(path), StartsWith(path + ": /shapes/0/file: ") &&
                                                        Contains(dir.path() + "/missing.obj"));
     }
+}
+
+TEST_CASE("OBJ meshes: '+' before a coordinate, continued lines and large faces load",
+          "[scene_loader]") {
+    TempDir dir;
+    const std::string scene = dir.write(
+        "mesh.json", with_shape(R"({"type": "mesh", "file": "m.obj", "material": "white"})"));
+    // What exporters write: a '+' sign, a statement continued after '\'
+    // (also with \r\n), and a hexagon (4 triangles).
+    dir.write("m.obj",
+              "v +0 0 +0\nv 1 0 0\nv 1 \\\n 1 0\nv 0 1 0\r\nv -1 \\\r\n 0.5 +2e+0\nv 0.5 2 0\n"
+              "f 1 2 3 \\\n 6 4 5\n");
+    const Scene loaded = load_scene_file(scene);
+    REQUIRE(loaded.shapes[0].triangles.size() == 4);
+    // The vertices as written: the fifth is (-1, 0.5, 2).
+    const AABB box = loaded.shapes[0].aabb;
+    CHECK(box.min == glm::vec3(-1.0f, 0.0f, 0.0f));
+    CHECK(box.max == glm::vec3(1.0f, 2.0f, 2.0f));
+    // A mistake after a continued line is named by its own line: 3 lines
+    // in, the continued statement counting as 2.
+    dir.write("m.obj", "v 0 \\\n 0 0\nv 1 0 0\nv 0 1 x\nf 1 2 3\n");
+    REQUIRE_THROWS_WITH(load_scene_file(scene),
+                        EndsWith("m.obj:4: expected a vertex coordinate as a "
+                                 "decimal number, got 'x'"));
 }
 
 TEST_CASE("OBJ meshes: mistakes are named by file and line", "[scene_loader]") {

@@ -20,8 +20,9 @@ namespace {
 // missing coordinate as 0, "3.5" as the index 3, a face of two vertices as
 // nothing, an index past 2^31 as another index, and "0x1p0" as 0. Only v
 // and f lines are checked (the only ones the mesh uses); each error is
-// "path:line: ...". The checker also blanks comments out of the text,
-// which tinyobjloader refuses after a face ("zero value for face index"),
+// "path:line: ...". It accepts what exporters write that tinyobjloader
+// does not: a '+' before a coordinate, and a line continued after a '\'. The checker also blanks
+// comments out of the text, which tinyobjloader refuses after a face ("zero value for face index"),
 // and then hands it the same text. Lines end in \n, \r\n or \r.
 class ObjChecker {
   public:
@@ -47,21 +48,37 @@ class ObjChecker {
         char* at = &text[0];
         char* const end = at + text.size();
         while (at < end) {
-            // memchr, not a loop: each byte of a large mesh is looked at
-            // here, for '#' and as a word.
-            char* line_end = static_cast<char*>(std::memchr(at, '\n', end - at));
-            line_end = line_end != nullptr ? line_end : end;
-            char* const cr = static_cast<char*>(std::memchr(at, '\r', line_end - at));
-            line_end = cr != nullptr ? cr : line_end;
-            ++line_number_;
-            check_line(at, line_end);
-            at = line_end;
-            if (at < end && *at == '\r') {
-                ++at;
+            // One statement: a line, and the lines after it while each
+            // ends in '\' (a continuation): the '\' and the line break
+            // become blanks, so that tinyobjloader, which knows no
+            // continuations, reads one line. Messages name its first line.
+            char* const statement = at;
+            const long first_line = line_number_ + 1;
+            char* line_end = nullptr;
+            for (;;) {
+                // memchr, not a loop: each byte of a large mesh is looked
+                // at here, for '#' and as a word.
+                line_end = static_cast<char*>(std::memchr(at, '\n', end - at));
+                line_end = line_end != nullptr ? line_end : end;
+                char* const cr = static_cast<char*>(std::memchr(at, '\r', line_end - at));
+                line_end = cr != nullptr ? cr : line_end;
+                ++line_number_;
+                at = line_end;
+                if (at < end && *at == '\r') {
+                    ++at;
+                }
+                if (at < end && *at == '\n') {
+                    ++at;
+                }
+                if (line_end == statement || line_end[-1] != '\\' || line_end == end) {
+                    break;
+                }
+                std::fill(line_end - 1, at, ' ');
             }
-            if (at < end && *at == '\n') {
-                ++at;
-            }
+            const long last_line = line_number_;
+            line_number_ = first_line;
+            check_line(statement, line_end);
+            line_number_ = last_line;
         }
         if (largest_index_ > vertex_count_) {
             fail_at(largest_index_line_, "face refers to vertex " + std::to_string(largest_index_) +
@@ -182,7 +199,13 @@ class ObjChecker {
                         std::to_string(values) + " values");
         }
         for (std::size_t k = 1; k < words_.size(); ++k) {
-            const Word& w = words_[k];
+            Word& w = words_[k];
+            // A leading '+', which some exporters write: a blank for
+            // tinyobjloader, the number checked without it.
+            if (w.end - w.begin > 1 && *w.begin == '+') {
+                *const_cast<char*>(w.begin) = ' ';
+                ++w.begin;
+            }
             if (!is_decimal_number(w.begin, w.end)) {
                 fail_at(line_number_,
                         "expected a vertex coordinate as a decimal number, got '" + shown(w) + "'");
