@@ -211,6 +211,22 @@ TEST_CASE("--help lists the options and exits 0", "[cli]") {
     REQUIRE(r.output.find("--spp") != std::string::npos);
 }
 
+TEST_CASE("--verbose names each mesh: file, triangles, bounds, material", "[cli]") {
+    const Run r = run_viewer(std::string(TRAC0R_SOURCE_DIR) +
+                             "/scenes/mesh_demo.json --headless --width 16 --height 12 --spp 1 "
+                             "--verbose --output cli_verbose.png");
+    INFO(r.output);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.output.find("scene: ") != std::string::npos);
+    CHECK(r.output.find("backend: cpu") != std::string::npos);
+    // scenes/meshes/tetrahedron.obj, scaled and placed by mesh_demo.json.
+    CHECK(r.output.find("mesh " + std::string(TRAC0R_SOURCE_DIR) +
+                        "/scenes/meshes/tetrahedron.obj: 4 triangles, bounds (-0.271402, -0.09, "
+                        "-0.271402) to (0.271402, 0.31, 0.271402), material metal\n") !=
+          std::string::npos);
+    std::remove("cli_verbose.png");
+}
+
 TEST_CASE("--version says the version and exits 0", "[cli]") {
     const Run r = run_viewer("--version");
     REQUIRE(r.exit_code == 0);

@@ -240,8 +240,10 @@ Shape read_mesh(const ObjectReader& o, const ShapeContext& context, const glm::v
     }
     const glm::vec3 scale = o.optional_vec3("scale", NumberRule::non_zero, glm::vec3(1.0f));
     try {
-        return load_obj_mesh(resolve_path(context.base_dir, file.get<std::string>()), position,
-                             orientation, scale, material);
+        const std::string path = resolve_path(context.base_dir, file.get<std::string>());
+        Shape mesh = load_obj_mesh(path, position, orientation, scale, material);
+        mesh.source = path;
+        return mesh;
     } catch (const std::runtime_error& e) {
         // tinyobjloader's messages end in a newline; ours are one line.
         std::string message = e.what();

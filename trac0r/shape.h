@@ -15,7 +15,8 @@ namespace trac0r {
 struct Shape {
     std::vector<Triangle> triangles;
     AABB aabb;
-    int material = 0;  // index into Scene::materials
+    int material = 0;    // index into Scene::materials
+    std::string source;  // a mesh's file, as the scene loader found it; "" for the rest
 };
 
 // model = T * Rx * Ry * Rz * S (scale first, then z, y, x rotations in

@@ -94,6 +94,20 @@ void print_verbose(trac0r::Renderer& r, const Options& o) {
                      p.nodes.size(), p.bvh_depth, p.bvh_by_levels ? ", collapsed by levels" : "",
                      o.accel.c_str());
     }
+    const trac0r::Scene& scene = r.scene();
+    for (const trac0r::Shape& s : scene.shapes) {
+        if (s.source.empty()) {
+            continue;
+        }
+        // In the file's coordinates: the scene's are relative to its origin.
+        const glm::dvec3 lo = glm::dvec3(s.aabb.min) + scene.origin;
+        const glm::dvec3 hi = glm::dvec3(s.aabb.max) + scene.origin;
+        std::fprintf(stderr,
+                     "mesh %s: %zu triangles, bounds (%.6g, %.6g, %.6g) to (%.6g, %.6g, %.6g), "
+                     "material %s\n",
+                     s.source.c_str(), s.triangles.size(), lo.x, lo.y, lo.z, hi.x, hi.y, hi.z,
+                     scene.materials[static_cast<std::size_t>(s.material)].name.c_str());
+    }
     std::fprintf(stderr, "backend: %s (%s)\n", r.backend().name().c_str(),
                  r.backend().device().c_str());
     std::fprintf(stderr, "features: %s (mask 0x%02x); left out: %s\n",
