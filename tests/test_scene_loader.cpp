@@ -539,6 +539,19 @@ TEST_CASE("OBJ meshes: '+' before a coordinate, continued lines and large faces 
     REQUIRE_THROWS_WITH(load_scene_file(scene),
                         EndsWith("m.obj:4: expected a vertex coordinate as a "
                                  "decimal number, got 'x'"));
+    // One inside a continued statement: the line its word is on.
+    dir.write("m.obj", "v 0 0 0\nv 1 \\\n 0 \\\r\n x\nv 0 1 0\nf 1 2 3\n");
+    REQUIRE_THROWS_WITH(load_scene_file(scene),
+                        EndsWith("m.obj:4: expected a vertex coordinate as a "
+                                 "decimal number, got 'x'"));
+    // A '+' is one sign, not two.
+    dir.write("m.obj", "v 0 0 0\nv 1 0 +-1\nv 0 1 0\nf 1 2 3\n");
+    REQUIRE_THROWS_WITH(load_scene_file(scene),
+                        EndsWith("m.obj:2: expected a vertex coordinate as a "
+                                 "decimal number, got '+-1'"));
+    // A comment ends with its line, '\' or not: the vertex after it stays.
+    dir.write("m.obj", "# exported to C:\\out\\\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    CHECK(load_scene_file(scene).shapes[0].triangles.size() == 1);
 }
 
 TEST_CASE("OBJ meshes: mistakes are named by file and line", "[scene_loader]") {

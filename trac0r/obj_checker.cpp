@@ -49,13 +49,16 @@ class ObjChecker {
         char* const end = at + text.size();
         while (at < end) {
             // One statement: a line, and the lines after it while each
-            // ends in '\' (a continuation): the '\' and the line break
-            // become blanks, so that tinyobjloader, which knows no
-            // continuations, reads one line. Messages name its first line.
+            // ends in '\' (a continuation; not in a comment, which ends
+            // with its line): the '\' and the line break become blanks, so
+            // that tinyobjloader, which knows no continuations, reads one
+            // line. A message names the line its word is on (line_of).
             char* const statement = at;
             const long first_line = line_number_ + 1;
+            breaks_.clear();
             char* line_end = nullptr;
             for (;;) {
+                char* const line_start = at;
                 // memchr, not a loop: each byte of a large mesh is looked
                 // at here, for '#' and as a word.
                 line_end = static_cast<char*>(std::memchr(at, '\n', end - at));
@@ -70,10 +73,12 @@ class ObjChecker {
                 if (at < end && *at == '\n') {
                     ++at;
                 }
-                if (line_end == statement || line_end[-1] != '\\' || line_end == end) {
+                if (line_end == line_start || line_end[-1] != '\\' || line_end == end ||
+                    std::memchr(line_start, '#', line_end - line_start) != nullptr) {
                     break;
                 }
                 std::fill(line_end - 1, at, ' ');
+                breaks_.push_back(line_end - 1);
             }
             const long last_line = line_number_;
             line_number_ = first_line;
@@ -96,6 +101,13 @@ class ObjChecker {
     };
 
     static bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+    // The line `p` (in the statement being checked) is on.
+    long line_of(const char* p) const {
+        return line_number_ +
+               static_cast<long>(std::count_if(breaks_.begin(), breaks_.end(),
+                                               [p](const char* b) { return b < p; }));
+    }
 
     [[noreturn]] void fail_at(long line, const std::string& message) const {
         throw std::runtime_error(path_ + ":" + std::to_string(line) + ": " + message);
@@ -201,17 +213,18 @@ class ObjChecker {
         for (std::size_t k = 1; k < words_.size(); ++k) {
             Word& w = words_[k];
             // A leading '+', which some exporters write: a blank for
-            // tinyobjloader, the number checked without it.
-            if (w.end - w.begin > 1 && *w.begin == '+') {
+            // tinyobjloader, the number checked without it ('+-1' stays
+            // refused).
+            if (w.end - w.begin > 1 && *w.begin == '+' && w.begin[1] != '+' && w.begin[1] != '-') {
                 *const_cast<char*>(w.begin) = ' ';
                 ++w.begin;
             }
             if (!is_decimal_number(w.begin, w.end)) {
-                fail_at(line_number_,
+                fail_at(line_of(w.begin),
                         "expected a vertex coordinate as a decimal number, got '" + shown(w) + "'");
             }
             if (!finite_in_float(w)) {
-                fail_at(line_number_,
+                fail_at(line_of(w.begin),
                         "expected a vertex coordinate finite in float (below "
                         "3.4e38, an exponent within +-300), got '" +
                             shown(w) + "'");
@@ -245,20 +258,20 @@ class ObjChecker {
                         (slash2 == w.end || parse_index(slash2 + 1, w.end, &unused));
             }
             if (!valid) {
-                fail_at(line_number_,
+                fail_at(line_of(w.begin),
                         "expected a face vertex as v, v/vt, v//vn or v/vt/vn, each "
                         "a non-zero integer, got '" +
                             shown(w) + "'");
             }
             if (index < 0 && -index > vertex_count_) {
-                fail_at(line_number_, "face refers to vertex " + std::to_string(index) +
-                                          " (counted back from the " +
-                                          std::to_string(vertex_count_) +
-                                          " vertices before it), before the first");
+                fail_at(line_of(w.begin), "face refers to vertex " + std::to_string(index) +
+                                              " (counted back from the " +
+                                              std::to_string(vertex_count_) +
+                                              " vertices before it), before the first");
             }
             if (index > largest_index_) {
                 largest_index_ = index;  // a vertex may come after: checked at the end
-                largest_index_line_ = line_number_;
+                largest_index_line_ = line_of(w.begin);
             }
         }
     }
@@ -292,6 +305,7 @@ class ObjChecker {
     long largest_index_ = 0;
     long largest_index_line_ = 0;
     std::vector<Word> words_;
+    std::vector<const char*> breaks_;  // the statement's continuations, in order
 };
 
 }  // namespace
