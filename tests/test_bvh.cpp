@@ -251,7 +251,7 @@ BundleCounts bundled_camera_hits(const Scene& scene, int width, int height) {
         for (std::uint32_t y = tile.y0; y < tile.y1; ++y) {
             for (std::uint32_t x = tile.x0; x < tile.x1; ++x) {
                 kernel::PixelSample s;
-                kernel::begin_pixel(camera, y * w + x, 7, 3, &s);
+                kernel::begin_pixel(&view, camera, y * w + x, 7, 3, &s);
                 if (!s.ray.any_parallel) {
                     kernel::bundle_add(&bundle, s.ray.inv_direction);
                 }

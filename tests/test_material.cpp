@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "trac0r/kernel/material.h"
+#include "trac0r/kernel/rng.h"
 
 using namespace trac0r::kernel;
 
@@ -154,7 +155,7 @@ TEST_CASE("scatter_diffuse: facing hemisphere, weight = colour, cosine pdf", "[k
     for (float3 n : normals) {
         int bad = 0;
         for (int i = 0; i < 20000; ++i) {
-            const ScatterSample s = scatter_diffuse(&m, n, &rng);
+            const ScatterSample s = scatter_diffuse(&m, n, rng_float2(&rng));
             const float c = dot(s.direction, n);
             bad += !(c > 0.0f);
             bad += !(std::fabs(length(s.direction) - 1.0f) < direction_tolerance);
@@ -180,7 +181,7 @@ TEST_CASE("scatter_glass: Fresnel-weighted choice between mirror and refraction"
         int reflected = 0;
         int other = 0;
         for (int i = 0; i < n; ++i) {
-            const ScatterSample s = scatter_glass(&glass, down, up, &rng);
+            const ScatterSample s = scatter_glass(&glass, down, up, rng_float(&rng));
             other += s.is_delta != 1 || s.pdf != 0.0f;
             if (same_direction(s.direction, up) && s.weight == float3_splat(1.0f)) {
                 ++reflected;
@@ -204,7 +205,7 @@ TEST_CASE("scatter_glass: Fresnel-weighted choice between mirror and refraction"
         int reflected = 0;
         int bad = 0;
         for (int i = 0; i < n; ++i) {
-            const ScatterSample s = scatter_glass(&glass, in, up, &rng);
+            const ScatterSample s = scatter_glass(&glass, in, up, rng_float(&rng));
             bad += !(std::fabs(length(s.direction) - 1.0f) < direction_tolerance);
             if (s.direction.z > 0.0f) {
                 ++reflected;
@@ -230,10 +231,10 @@ TEST_CASE("scatter_glass: Fresnel-weighted choice between mirror and refraction"
             const float3 in = incoming_at(theta);
             int bad = 0;
             for (int i = 0; i < 2000; ++i) {
-                const ScatterSample from_outside = scatter_glass(&air, in, up, &rng);
+                const ScatterSample from_outside = scatter_glass(&air, in, up, rng_float(&rng));
                 bad += !same_direction(from_outside.direction, in);
                 bad += !(from_outside.weight == color);
-                const ScatterSample from_inside = scatter_glass(&air, in, -up, &rng);
+                const ScatterSample from_inside = scatter_glass(&air, in, -up, rng_float(&rng));
                 bad += !same_direction(from_inside.direction, in);
                 bad += !(from_inside.weight == color);
             }
@@ -249,7 +250,7 @@ TEST_CASE("scatter_glass: Fresnel-weighted choice between mirror and refraction"
         const float3 mirror = reflect_direction(in, up);
         int bad = 0;
         for (int i = 0; i < 20000; ++i) {
-            const ScatterSample s = scatter_glass(&glass, in, outward, &rng);
+            const ScatterSample s = scatter_glass(&glass, in, outward, rng_float(&rng));
             bad += !same_direction(s.direction, mirror);
             bad += !(s.weight == float3_splat(1.0f));
         }
@@ -258,7 +259,7 @@ TEST_CASE("scatter_glass: Fresnel-weighted choice between mirror and refraction"
         const float3 shallow = incoming_at(30.0 * pi / 180.0);
         int refracted = 0;
         for (int i = 0; i < 1000; ++i) {
-            refracted += scatter_glass(&glass, shallow, outward, &rng).direction.z < 0.0f;
+            refracted += scatter_glass(&glass, shallow, outward, rng_float(&rng)).direction.z < 0.0f;
         }
         CHECK(refracted > 900);
     }
@@ -275,7 +276,7 @@ TEST_CASE("scatter_glossy: a mirror at roughness 0, a cone otherwise", "[kernel]
         const double angles[] = {0.0, 0.4, 1.0, 1.5};
         for (double theta : angles) {
             const float3 in = incoming_at(theta);
-            const ScatterSample s = scatter_glossy(&mirror, in, up, &rng);
+            const ScatterSample s = scatter_glossy(&mirror, in, up, rng_float2(&rng));
             CHECK(same_direction(s.direction, reflect_direction(in, up)));
             CHECK(s.is_delta == 1);
             CHECK(s.pdf == 0.0f);
@@ -292,7 +293,7 @@ TEST_CASE("scatter_glossy: a mirror at roughness 0, a cone otherwise", "[kernel]
         const float cos_cone = std::cos(roughness * 0.5f * static_cast<float>(pi));
         int bad = 0;
         for (int i = 0; i < 20000; ++i) {
-            const ScatterSample s = scatter_glossy(&metal, in, up, &rng);
+            const ScatterSample s = scatter_glossy(&metal, in, up, rng_float2(&rng));
             bad += !(dot(s.direction, mirror) >= cos_cone - direction_tolerance);
             bad += !(s.direction.z > 0.0f);
             bad += !(s.weight == color);
@@ -311,7 +312,7 @@ TEST_CASE("scatter_glossy: a mirror at roughness 0, a cone otherwise", "[kernel]
         int failed = 0;
         int bad = 0;
         for (int i = 0; i < 20000; ++i) {
-            const ScatterSample s = scatter_glossy(&metal, in, up, &rng);
+            const ScatterSample s = scatter_glossy(&metal, in, up, rng_float2(&rng));
             bad += !finite3(s.direction) || !finite3(s.weight) || !std::isfinite(s.pdf);
             if (s.weight == float3_splat(0.0f)) {
                 ++failed;
@@ -340,21 +341,21 @@ TEST_CASE("scatter_material dispatches on the type and the feature mask", "[kern
     rng_seed(&rng, 54);
 
     scene.features = T0_FEATURE_DIFFUSE | T0_FEATURE_EMISSIVE;
-    CHECK(scatter_material(&scene, &diffuse, in, n, n, &rng).weight == color);
+    CHECK(scatter_material(&scene, &diffuse, in, n, n, rng_float2(&rng)).weight == color);
     // A pure emitter ends the path: a failed sample.
-    CHECK(scatter_material(&scene, &lamp, in, n, n, &rng).weight == float3_splat(0.0f));
+    CHECK(scatter_material(&scene, &lamp, in, n, n, rng_float2(&rng)).weight == float3_splat(0.0f));
     // Glass (ior 1: straight through) and a mirror, each told apart by its
     // direction.
     const MaterialRecord air = make_material(T0_MATERIAL_GLASS, color, 0.0f, 0.0f, 1.0f);
     const MaterialRecord mirror = make_material(T0_MATERIAL_GLOSSY, color, 0.0f, 0.0f, 1.0f);
     scene.features = T0_FEATURE_GLASS | T0_FEATURE_GLOSSY;
-    CHECK(same_direction(scatter_material(&scene, &air, in, n, n, &rng).direction, in));
-    CHECK(same_direction(scatter_material(&scene, &mirror, in, n, n, &rng).direction,
+    CHECK(same_direction(scatter_material(&scene, &air, in, n, n, rng_float2(&rng)).direction, in));
+    CHECK(same_direction(scatter_material(&scene, &mirror, in, n, n, rng_float2(&rng)).direction,
                          reflect_direction(in, n)));
     // A type the mask leaves out is not scattered.
     scene.features = T0_FEATURE_GLASS;
-    CHECK(scatter_material(&scene, &diffuse, in, n, n, &rng).weight == float3_splat(0.0f));
-    CHECK(scatter_material(&scene, &mirror, in, n, n, &rng).weight == float3_splat(0.0f));
+    CHECK(scatter_material(&scene, &diffuse, in, n, n, rng_float2(&rng)).weight == float3_splat(0.0f));
+    CHECK(scatter_material(&scene, &mirror, in, n, n, rng_float2(&rng)).weight == float3_splat(0.0f));
     scene.features = T0_FEATURE_DIFFUSE;
-    CHECK(scatter_material(&scene, &air, in, n, n, &rng).weight == float3_splat(0.0f));
+    CHECK(scatter_material(&scene, &air, in, n, n, rng_float2(&rng)).weight == float3_splat(0.0f));
 }

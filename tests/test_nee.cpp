@@ -42,55 +42,6 @@ std::vector<kernel::AccumPixel> render(const Scene& scene, Integrator integrator
     return r.accumulator();
 }
 
-// The luminance mean of a block of pixels and the variance of that mean:
-// each pixel's sample variance M2 / (n - 1) over its n samples, divided by
-// n, summed over the block's independent pixels and divided by the pixel
-// count squared.
-struct BlockMean {
-    int x, y;
-    double mean;
-    double variance;
-};
-
-std::vector<BlockMean> block_means(const std::vector<kernel::AccumPixel>& accum, int width,
-                                   int height, int block_width, int block_height) {
-    std::vector<BlockMean> blocks;
-    for (int by = 0; by + block_height <= height; by += block_height) {
-        for (int bx = 0; bx + block_width <= width; bx += block_width) {
-            double sum = 0.0, variance = 0.0;
-            for (int y = by; y < by + block_height; ++y) {
-                for (int x = bx; x < bx + block_width; ++x) {
-                    const kernel::AccumPixel& p = accum[static_cast<std::size_t>(y) * width + x];
-                    const double n = p.moments.z;
-                    sum += p.moments.x;
-                    variance += p.moments.y / (n - 1.0) / n;
-                }
-            }
-            const double pixels = static_cast<double>(block_width) * block_height;
-            blocks.push_back({bx, by, sum / pixels, variance / (pixels * pixels)});
-        }
-    }
-    return blocks;
-}
-
-// Bonferroni: to keep the chance that any of `comparisons` two-sided tests
-// of a true null exceeds k standard errors under family_false_alarm, each
-// may do so with probability family_false_alarm / comparisons, i.e.
-// erfc(k / sqrt 2) = family_false_alarm / comparisons (normal block means:
-// each holds thousands of samples). Solved by bisection; erfc falls in k.
-double bonferroni_k(int comparisons, double family_false_alarm) {
-    double lo = 0.0, hi = 40.0;
-    for (int i = 0; i < 100; ++i) {
-        const double k = 0.5 * (lo + hi);
-        if (comparisons * std::erfc(k / std::sqrt(2.0)) > family_false_alarm) {
-            lo = k;
-        } else {
-            hi = k;
-        }
-    }
-    return hi;
-}
-
 // Naive and NEE renders of a scene with independent seeds, compared per
 // 4x4-pixel block and over the whole image (which catches a bias too small
 // for one block to show): |a - b| <= k sqrt(se_a^2 + se_b^2), with k from
@@ -318,7 +269,7 @@ TEST_CASE("eval_material agrees with scatter_material's directions, weights and 
         double worst_pdf_error = 0.0, worst_f_cos_error = 0.0;
         for (int i = 0; i < n; ++i) {
             const kernel::ScatterSample s =
-                kernel::scatter_material(&scene, &m, incoming, normal, normal, &rng);
+                kernel::scatter_material(&scene, &m, incoming, normal, normal, kernel::rng_float2(&rng));
             if (!(s.weight.x > 0.0f)) {
                 continue;
             }

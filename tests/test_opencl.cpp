@@ -129,13 +129,15 @@ TEST_CASE("a kept device shares its programs with backends made one after anothe
 // standard errors of the difference (from the per-pixel spread in the CPU
 // image), and most individual pixels must agree closely.
 // Both backends on the same structure (--accel auto may choose by backend).
-static void compare_backends(const std::string& name, Accel accel) {
+static void compare_backends(const std::string& name, Accel accel,
+                             SamplerKind sampler = SamplerKind::random) {
     // An odd size: the last column and row of tiles (work-groups, with the
     // BVH) cut off.
     const Scene scene = load_test_scene(name, 61, 45);
     const int frames = 16;
     PackOptions options;
     options.accel = accel;
+    options.sampler = sampler;
     Renderer cpu(scene, std::make_unique<CpuBackend>(), 11, options);
     Renderer gpu(scene, std::make_unique<OpenClBackend>(0), 11, options);
     for (int i = 0; i < frames; ++i) {
@@ -185,6 +187,12 @@ TEST_CASE("OpenCL and CPU images of cornell.json agree", "[opencl]") {
 TEST_CASE("OpenCL and CPU images of cornell_diffuse.json agree", "[opencl]") {
     compare_backends("cornell_diffuse.json", Accel::bvh);
     compare_backends("cornell_diffuse.json", Accel::flat);
+}
+
+TEST_CASE("OpenCL and CPU images agree with the sobol sampler", "[opencl][sampler]") {
+    // The same integer arithmetic on both sides: the same numbers.
+    compare_backends("cornell.json", Accel::bvh, SamplerKind::sobol);
+    compare_backends("cornell_diffuse.json", Accel::bvh, SamplerKind::sobol);
 }
 
 TEST_CASE("furnace on the OpenCL backend", "[opencl][furnace]") {
@@ -371,6 +379,7 @@ DeviceTiles device_tile_hits(const Scene& scene, int width, int height) {
     const PackedScene packed = pack_scene(scene, options);
     const kernel::CameraRecord camera =
         scaled_camera(make_camera_record(scene.camera, width, height), packed.scale);
+    const kernel::SceneView view = packed.view();
     const OpenClQueue cl = shared_opencl_queue(0);
     cl_program program =
         embedded_opencl_program(cl, tile_hits_kernel_source, opencl_build_options(packed.features));
@@ -450,7 +459,7 @@ DeviceTiles device_tile_hits(const Scene& scene, int width, int height) {
             continue;
         }
         kernel::PixelSample host;
-        kernel::begin_pixel(camera, static_cast<std::uint32_t>(i), seed, frame, &host);
+        kernel::begin_pixel(&view, camera, static_cast<std::uint32_t>(i), seed, frame, &host);
         if (glm::length(glm::vec3(directions[i]) - host.ray.direction) > 1e-5f) {
             UNSCOPED_INFO("pixel " << i << ": the device's ray is not the pixel's");
             ++misplaced;

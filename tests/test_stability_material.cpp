@@ -184,7 +184,7 @@ TEST_CASE(
         double cos_sum = 0.0;
         double cos2_sum = 0.0;
         for (int i = 0; i < n; ++i) {
-            const kernel::ScatterSample s = kernel::scatter_glossy(&m, incoming, normal, &rng);
+            const kernel::ScatterSample s = kernel::scatter_glossy(&m, incoming, normal, kernel::rng_float2(&rng));
             if (s.weight == glm::vec3(0.0f)) {
                 ++failed;
                 continue;

@@ -1,6 +1,6 @@
-// Extreme random numbers (issue 5, docs/stability.md): a generator rigged
-// to draw exactly 0 and 1 - 2^-24 into every material, light sampling,
-// camera jitter and Russian roulette.
+// Extreme random numbers (issue 5, docs/stability.md): uniforms of exactly
+// 0 and 1 - 2^-24, the ends of what both samplers draw (sampler.h), fed
+// into every material, light sampling, camera jitter and Russian roulette.
 #include <catch2/catch.hpp>
 
 #include "stability_support.h"
@@ -13,54 +13,6 @@ using namespace trac0r;
 using namespace trac0r::stability;
 
 namespace {
-
-// An Rng whose next draws are exactly the given uniforms (at most 15 of
-// them), for feeding 0 and 1 - 2^-24 into routines that draw their own
-// numbers. xorshift1024* is invertible: each output fixes the word it was
-// made from, and that word fixes the state word the step read.
-const std::uint64_t xorshift1024_multiplier = 1181783497276652981ULL;
-
-std::uint64_t inverse_of_odd(std::uint64_t a) {
-    std::uint64_t x = a;  // Newton's iteration doubles the correct low bits
-    for (int i = 0; i < 6; ++i) {
-        x *= 2 - a * x;
-    }
-    return x;
-}
-
-std::uint64_t undo_xor_shift_left(std::uint64_t y, int shift) {
-    std::uint64_t x = y;
-    for (int i = 0; i < 64 / shift; ++i) {
-        x = y ^ (x << shift);
-    }
-    return x;
-}
-
-std::uint64_t undo_xor_shift_right(std::uint64_t y, int shift) {
-    std::uint64_t x = y;
-    for (int i = 0; i < 64 / shift; ++i) {
-        x = y ^ (x >> shift);
-    }
-    return x;
-}
-
-kernel::Rng rigged_rng(const std::vector<float>& uniforms) {
-    REQUIRE(uniforms.size() <= 15);
-    kernel::Rng rng = {};
-    rng.p = 0;
-    rng.filled = 16;
-    const std::uint64_t inverse = inverse_of_odd(xorshift1024_multiplier);
-    std::uint64_t previous = 0;  // s[0], the first step's s0
-    for (std::size_t j = 0; j < uniforms.size(); ++j) {
-        const std::uint64_t top24 = static_cast<std::uint64_t>(uniforms[j] * 16777216.0f);
-        const std::uint64_t word = (top24 << 40) * inverse;
-        // word = t ^ (t >> 11) ^ previous ^ (previous >> 30), t = s1 ^ (s1 << 31).
-        const std::uint64_t t = undo_xor_shift_right(word ^ previous ^ (previous >> 30), 11);
-        rng.s[j + 1] = undo_xor_shift_left(t, 31);
-        previous = word;
-    }
-    return rng;
-}
 
 const float largest_uniform = 1.0f - 1.0f / 16777216.0f;  // 1 - 2^-24
 
@@ -77,14 +29,6 @@ bool finite_sample(const kernel::ScatterSample& s) {
 }
 
 }  // namespace
-
-TEST_CASE("the rigged generator draws exactly the requested uniforms", "[stability][sampling]") {
-    const std::vector<float> wanted = {0.0f, largest_uniform, 0.5f, 0.0f, 0.25f, largest_uniform};
-    kernel::Rng rng = rigged_rng(wanted);
-    for (float w : wanted) {
-        CHECK(kernel::rng_float(&rng) == w);
-    }
-}
 
 TEST_CASE(
     "uniforms of exactly 0 and 1 - 2^-24 give every material finite directions and "
@@ -127,9 +71,8 @@ TEST_CASE(
                 for (float u1 : extremes) {
                     for (float u2 : extremes) {
                         CAPTURE(m.type.x, m.params.y, m.params.z, in.x, in.y, in.z, side, u1, u2);
-                        kernel::Rng rng = rigged_rng({u1, u2});
-                        const kernel::ScatterSample s =
-                            kernel::scatter_material(&scene, &m, in, geometric, facing, &rng);
+                        const kernel::ScatterSample s = kernel::scatter_material(
+                            &scene, &m, in, geometric, facing, glm::vec2(u1, u2));
                         REQUIRE(finite_sample(s));
                         ++checked;
                     }
@@ -187,9 +130,8 @@ TEST_CASE(
             for (float u1 : extremes) {
                 for (float u2 : extremes) {
                     CAPTURE(m.type.x, pick, u1, u2);
-                    kernel::Rng rng = rigged_rng({pick, u1, u2});
-                    const glm::vec3 radiance =
-                        kernel::sample_light(&glossy_view, &m, incoming, up, position, 1.0f, &rng);
+                    const glm::vec3 radiance = kernel::sample_light(
+                        &glossy_view, &m, incoming, up, position, 1.0f, pick, glm::vec2(u1, u2));
                     REQUIRE(finite(radiance));
                     REQUIRE(radiance.x >= 0.0f);
                     REQUIRE(radiance.y >= 0.0f);

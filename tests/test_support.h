@@ -88,6 +88,55 @@ inline void require_furnace_mean(const std::vector<kernel::AccumPixel>& accum, d
     REQUIRE(std::fabs(mean - expected) < 5.0 * se);
 }
 
+// The luminance mean of a block of pixels and the variance of that mean:
+// each pixel's sample variance M2 / (n - 1) over its n samples, divided by
+// n, summed over the block's independent pixels and divided by the pixel
+// count squared.
+struct BlockMean {
+    int x, y;
+    double mean;
+    double variance;
+};
+
+inline std::vector<BlockMean> block_means(const std::vector<kernel::AccumPixel>& accum, int width,
+                                   int height, int block_width, int block_height) {
+    std::vector<BlockMean> blocks;
+    for (int by = 0; by + block_height <= height; by += block_height) {
+        for (int bx = 0; bx + block_width <= width; bx += block_width) {
+            double sum = 0.0, variance = 0.0;
+            for (int y = by; y < by + block_height; ++y) {
+                for (int x = bx; x < bx + block_width; ++x) {
+                    const kernel::AccumPixel& p = accum[static_cast<std::size_t>(y) * width + x];
+                    const double n = p.moments.z;
+                    sum += p.moments.x;
+                    variance += p.moments.y / (n - 1.0) / n;
+                }
+            }
+            const double pixels = static_cast<double>(block_width) * block_height;
+            blocks.push_back({bx, by, sum / pixels, variance / (pixels * pixels)});
+        }
+    }
+    return blocks;
+}
+
+// Bonferroni: to keep the chance that any of `comparisons` two-sided tests
+// of a true null exceeds k standard errors under family_false_alarm, each
+// may do so with probability family_false_alarm / comparisons, i.e.
+// erfc(k / sqrt 2) = family_false_alarm / comparisons (normal block means:
+// each holds thousands of samples). Solved by bisection; erfc falls in k.
+inline double bonferroni_k(int comparisons, double family_false_alarm) {
+    double lo = 0.0, hi = 40.0;
+    for (int i = 0; i < 100; ++i) {
+        const double k = 0.5 * (lo + hi);
+        if (comparisons * std::erfc(k / std::sqrt(2.0)) > family_false_alarm) {
+            lo = k;
+        } else {
+            hi = k;
+        }
+    }
+    return hi;
+}
+
 }  // namespace trac0r
 
 #endif

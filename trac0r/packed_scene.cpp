@@ -40,13 +40,13 @@ std::uint32_t material_feature(MaterialType type) {
     return 0;
 }
 
-const char* const feature_bit_names[T0_FEATURE_COUNT] = {"emissive",  "diffuse", "glass", "glossy",
-                                                         "emittance", "flat",    "bvh",   "nee"};
+const char* const feature_bit_names[T0_FEATURE_COUNT] = {
+    "emissive", "diffuse", "glass", "glossy", "emittance", "flat", "bvh", "nee", "sobol"};
 
 // What this build's kernel can do at all.
 const std::uint32_t implemented_features =
     T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE | T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
-    T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT | T0_FEATURE_BVH | T0_FEATURE_NEE;
+    T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT | T0_FEATURE_BVH | T0_FEATURE_NEE | T0_FEATURE_SOBOL;
 
 }  // namespace
 
@@ -288,6 +288,9 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
     if (options.integrator == Integrator::nee && !packed.lights.empty()) {
         packed.features |= T0_FEATURE_NEE;
     }
+    if (options.sampler == SamplerKind::sobol) {
+        packed.features |= T0_FEATURE_SOBOL;
+    }
     return packed;
 }
 
@@ -303,6 +306,8 @@ const EnumName<Accel> accel_names[] = {
     {Accel::flat, "flat"}, {Accel::bvh, "bvh"}, {Accel::automatic, "auto"}};
 const EnumName<Integrator> integrator_names[] = {{Integrator::naive, "naive"},
                                                  {Integrator::nee, "nee"}};
+const EnumName<SamplerKind> sampler_names[] = {{SamplerKind::random, "random"},
+                                           {SamplerKind::sobol, "sobol"}};
 
 }  // namespace
 
@@ -319,6 +324,10 @@ Integrator parse_integrator(const std::string& name) {
 const char* to_string(Integrator integrator) {
     return enum_name(integrator_names, integrator, "naive");
 }
+
+SamplerKind parse_sampler(const std::string& name) { return enum_value(sampler_names, name, "sampler"); }
+
+const char* to_string(SamplerKind sampler) { return enum_name(sampler_names, sampler, "random"); }
 
 std::string feature_names(std::uint32_t features) {
     std::string out;

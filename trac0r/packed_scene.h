@@ -34,12 +34,19 @@ enum class Integrator {
             // glossy hit) combined with scattering by MIS
 };
 
+// Where a path's random numbers come from (kernel/sampler.h).
+enum class SamplerKind {
+    random,  // the thesis' xorshift1024*, independent samples
+    sobol,   // Owen-scrambled Sobol points: stratified, less error per sample
+};
+
 struct PackOptions {
     Accel accel = Accel::automatic;
     // For automatic: from how many triangles a BVH is built; 0 for
     // auto_bvh_min_triangles, or with a Renderer its backend's.
     std::size_t auto_bvh_min_triangles = 0;
     Integrator integrator = Integrator::naive;
+    SamplerKind sampler = SamplerKind::random;
 };
 
 struct PackedScene {
@@ -68,7 +75,8 @@ struct PackedScene {
 
 // Packs the scene: the acceleration structure (flat shapes with AABBs, or a
 // BVH), triangles (vertices, normal), materials, the light list, and the
-// feature mask (with T0_FEATURE_NEE for Integrator::nee when anything emits).
+// feature mask (with T0_FEATURE_NEE for Integrator::nee when anything emits,
+// T0_FEATURE_SOBOL for SamplerKind::sobol).
 // Degenerate triangles (zero area, non-finite vertices) can never be hit
 // and are left out.
 PackedScene pack_scene(const Scene& scene, const PackOptions& options = PackOptions());
@@ -84,6 +92,10 @@ const char* to_string(Accel accel);
 // "naive", "nee" and back; parse_integrator throws std::invalid_argument.
 Integrator parse_integrator(const std::string& name);
 const char* to_string(Integrator integrator);
+
+// "random", "sobol" and back; parse_sampler throws std::invalid_argument.
+SamplerKind parse_sampler(const std::string& name);
+const char* to_string(SamplerKind sampler);
 
 // "diffuse glass emittance flat" etc.: the names of the set bits.
 std::string feature_names(std::uint32_t features);

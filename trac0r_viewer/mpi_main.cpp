@@ -70,6 +70,7 @@ std::uint64_t options_digest(const Options& o) {
     add(&o.seconds, sizeof o.seconds);
     add(&o.target_error, sizeof o.target_error);
     add(o.integrator.data(), o.integrator.size());
+    add(o.sampler.data(), o.sampler.size());
     return h;
 }
 
@@ -155,7 +156,7 @@ int run(int argc, char** argv) {
                              "trac0r_mpi: rank %d's scene or options differ from rank 0's "
                              "(digest %016llx, rank 0's %016llx): every rank must load the "
                              "same scene files, with the same size, depth, --seed, "
-                             "--integrator, --spp, --seconds and --target-error\n",
+                             "--integrator, --sampler, --spp, --seconds and --target-error\n",
                              r, static_cast<unsigned long long>(all[r].digest),
                              static_cast<unsigned long long>(all[0].digest));
             }

@@ -59,6 +59,8 @@ Rendering:
   --accel flat|bvh|auto  acceleration structure (default auto)
   --integrator nee|naive next-event estimation with MIS (default), or the
                          thesis' algorithm
+  --sampler sobol|random Owen-scrambled Sobol points, stratified (default),
+                         or the thesis' xorshift1024* numbers
   --target-error E       stop when the estimated relative MSE (no reference
                          needed: from each pixel's sample variance) reaches E,
                          e.g. 0.01; with --spp or --seconds, whichever first
@@ -153,6 +155,7 @@ Options parse_options(int argc, const char* const* argv) {
         {"--threads", [&](auto f, auto v) { o.threads = (int)parse_integer(f, v, 1, 1024); }},
         {"--accel", [&](auto f, auto v) { o.accel = parse_choice(f, v, "flat|bvh|auto"); }},
         {"--integrator", [&](auto f, auto v) { o.integrator = parse_choice(f, v, "naive|nee"); }},
+        {"--sampler", [&](auto f, auto v) { o.sampler = parse_choice(f, v, "random|sobol"); }},
         {"--target-error", [&](auto f, auto v) { o.target_error = parse_positive(f, v); }},
         {"--exposure", [&](auto f, auto v) { o.exposure = (float)parse_positive(f, v); }},
         {"--replay", [&](auto, auto v) { o.replay_path = v; }},

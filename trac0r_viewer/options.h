@@ -26,6 +26,7 @@ struct Options {
     int threads = 0;    // 0: OpenMP's default
     std::string accel = "auto";
     std::string integrator = "nee";
+    std::string sampler = "sobol";
     double target_error = 0.0;
     float exposure = 1.0f;
     std::string replay_path;  // --replay: scripted window input (replay.h)

@@ -199,6 +199,7 @@ std::unique_ptr<trac0r::Renderer> Startup::make_renderer(const Options& options)
     trac0r::PackOptions pack;
     pack.accel = trac0r::parse_accel(options.accel);
     pack.integrator = trac0r::parse_integrator(options.integrator);
+    pack.sampler = trac0r::parse_sampler(options.sampler);
     std::unique_ptr<trac0r::Renderer> renderer;
     {
         const std::unique_ptr<SlowStep> notice =

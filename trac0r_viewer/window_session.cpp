@@ -139,6 +139,7 @@ Session::Session(const Options& options, Window& window, const Font& font,
     settings.seed = options.seed;
     settings.pack.accel = trac0r::parse_accel(options.accel);
     settings.pack.integrator = trac0r::parse_integrator(options.integrator);
+    settings.pack.sampler = trac0r::parse_sampler(options.sampler);
     settings.stop.spp = options.spp;
     settings.stop.seconds = options.seconds;
     settings.stop.target_error = options.target_error;

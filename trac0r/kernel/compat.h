@@ -37,6 +37,7 @@
 typedef ulong t0_u64;
 typedef uint t0_u32;
 
+#define make_float2(x, y) ((float2)((x), (y)))
 #define make_float3(x, y, z) ((float3)((x), (y), (z)))
 #define make_float4(x, y, z, w) ((float4)((x), (y), (z), (w)))
 #define make_uint4(x, y, z, w) ((uint4)((x), (y), (z), (w)))
@@ -89,6 +90,7 @@ T0_NAMESPACE_BEGIN
 
 typedef uint64_t t0_u64;
 typedef uint32_t t0_u32;
+typedef glm::vec2 float2;
 typedef glm::vec3 float3;
 typedef glm::vec4 float4;
 typedef glm::uvec4 uint4;
@@ -110,6 +112,7 @@ using std::sqrt;
 inline float fmax(float a, float b) { return a > b || b != b ? a : b; }
 inline float fmin(float a, float b) { return a < b || b != b ? a : b; }
 
+inline float2 make_float2(float x, float y) { return float2(x, y); }
 inline float3 make_float3(float x, float y, float z) { return float3(x, y, z); }
 inline float4 make_float4(float x, float y, float z, float w) { return float4(x, y, z, w); }
 inline uint4 make_uint4(t0_u32 x, t0_u32 y, t0_u32 z, t0_u32 w) { return uint4(x, y, z, w); }

@@ -8,7 +8,6 @@
 #include "material.h"
 #include "ray.h"
 #include "ray_offset.h"
-#include "rng.h"
 #include "sampling.h"
 #include "traverse.h"
 #include "types.h"
@@ -54,18 +53,16 @@ T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const Tr
 // radiance it sends back along -incoming through the material, if nothing
 // is in between, weighted by MIS against the material's own sampling (whose
 // hits on emitters carry the complementary weight). facing_normal is the
-// side the light must be on; magnitude is hit_magnitude of position.
+// side the light must be on; magnitude is hit_magnitude of position;
+// u_pick chooses the light and u the point on it.
 T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
                               float3 incoming, float3 facing_normal, float3 position,
-                              float magnitude, Rng* rng) {
-    const float u_pick = rng_float(rng);
-    const float u1 = rng_float(rng);
-    const float u2 = rng_float(rng);
+                              float magnitude, float u_pick, float2 u) {
     T0_GLOBAL const LightRecord* light = &scene->lights[pick_light(scene, u_pick)];
     T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->triangle.x];
     float b1 = 0.0f;
     float b2 = 0.0f;
-    sample_triangle_barycentrics(u1, u2, &b1, &b2);
+    sample_triangle_barycentrics(u.x, u.y, &b1, &b2);
     const float3 v0 = xyz(tri->v0);
     const float3 point = v0 + (xyz(tri->v1) - v0) * b1 + (xyz(tri->v2) - v0) * b2;
     const float3 to_light = point - position;

@@ -1,11 +1,11 @@
 // The four materials: what they emit and how they scatter.
 //
 // A scatter sample returns the new direction, the weight f cos / pdf, the
-// pdf, and says when it failed (weight zero), never a NaN.
+// pdf, and says when it failed (weight zero), never a NaN. It is made from
+// two uniforms in [0, 1)^2 (sampler.h's T0_DIM_MATERIAL draw).
 #ifndef TRAC0R_KERNEL_MATERIAL_H
 #define TRAC0R_KERNEL_MATERIAL_H
 
-#include "rng.h"
 #include "sampling.h"
 #include "types.h"
 
@@ -82,10 +82,8 @@ T0_INLINE float fresnel_dielectric(float cos_i, float eta) {
 // Lambertian: BRDF colour/pi, cosine-weighted sampling, so the weight is the
 // colour itself.
 T0_INLINE ScatterSample scatter_diffuse(T0_GLOBAL const MaterialRecord* m, float3 facing_normal,
-                                        Rng* rng) {
-    const float u1 = rng_float(rng);
-    const float u2 = rng_float(rng);
-    const DirectionSample d = sample_cosine_hemisphere(facing_normal, u1, u2);
+                                        float2 u) {
+    const DirectionSample d = sample_cosine_hemisphere(facing_normal, u.x, u.y);
     ScatterSample s;
     s.direction = d.direction;
     s.weight = xyz(m->color);
@@ -99,11 +97,9 @@ T0_INLINE ScatterSample scatter_diffuse(T0_GLOBAL const MaterialRecord* m, float
 // sampling density, so the weight is the colour. Roughness 0 is a mirror.
 // Directions below the surface are absorbed (a failed sample).
 T0_INLINE ScatterSample scatter_glossy(T0_GLOBAL const MaterialRecord* m, float3 incoming,
-                                       float3 facing_normal, Rng* rng) {
+                                       float3 facing_normal, float2 u) {
     const float3 mirror = reflect_direction(incoming, facing_normal);
-    const float u1 = rng_float(rng);
-    const float u2 = rng_float(rng);
-    const DirectionSample d = sample_cosine_cone_sin2(mirror, glossy_cone_sin2(m), u1, u2);
+    const DirectionSample d = sample_cosine_cone_sin2(mirror, glossy_cone_sin2(m), u.x, u.y);
     if (!(dot(d.direction, facing_normal) > 0.0f)) {
         return scatter_failed();
     }
@@ -116,11 +112,12 @@ T0_INLINE ScatterSample scatter_glossy(T0_GLOBAL const MaterialRecord* m, float3
 }
 
 // Smooth dielectric. Reflection or refraction is chosen with the Fresnel
-// probability, so each has weight one; refraction is tinted by the colour.
+// probability (u_choice < reflectance), so each has weight one; refraction
+// is tinted by the colour.
 // geometric_normal is the triangle's outward normal: it tells entering from
 // leaving.
 T0_INLINE ScatterSample scatter_glass(T0_GLOBAL const MaterialRecord* m, float3 incoming,
-                                      float3 geometric_normal, Rng* rng) {
+                                      float3 geometric_normal, float u_choice) {
     const int entering = dot(incoming, geometric_normal) < 0.0f;
     const float3 n = entering ? geometric_normal : -geometric_normal;
     const float ior = m->params.z;
@@ -130,7 +127,7 @@ T0_INLINE ScatterSample scatter_glass(T0_GLOBAL const MaterialRecord* m, float3 
     ScatterSample s;
     s.pdf = 0.0f;
     s.is_delta = 1;
-    if (rng_float(rng) < reflectance) {
+    if (u_choice < reflectance) {
         s.direction = reflect_direction(incoming, n);
         s.weight = float3_splat(1.0f);
         return s;
@@ -219,16 +216,16 @@ T0_INLINE MaterialEval eval_material(const SceneView* scene, T0_GLOBAL const Mat
 
 T0_INLINE ScatterSample scatter_material(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
                                          float3 incoming, float3 geometric_normal,
-                                         float3 facing_normal, Rng* rng) {
+                                         float3 facing_normal, float2 u) {
     const t0_u32 type = m->type.x;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_DIFFUSE) && type == T0_MATERIAL_DIFFUSE) {
-        return scatter_diffuse(m, facing_normal, rng);
+        return scatter_diffuse(m, facing_normal, u);
     }
     if (T0_HAS_FEATURE(scene, T0_FEATURE_GLASS) && type == T0_MATERIAL_GLASS) {
-        return scatter_glass(m, incoming, geometric_normal, rng);
+        return scatter_glass(m, incoming, geometric_normal, u.x);
     }
     if (T0_HAS_FEATURE(scene, T0_FEATURE_GLOSSY) && type == T0_MATERIAL_GLOSSY) {
-        return scatter_glossy(m, incoming, facing_normal, rng);
+        return scatter_glossy(m, incoming, facing_normal, u);
     }
     return scatter_failed();  // emissive: a pure emitter ends the path
 }

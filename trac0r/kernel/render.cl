@@ -28,7 +28,7 @@ SceneView scene_view(__global const TriangleRecord* triangles, __global const Sh
 // (the host launches them so), as the CPU backend's render_tile does:
 // tile_pixel makes the work-item's pixel's generator and camera ray, and
 // whether the pixel is in the image (the last tiles may be cut off).
-int tile_pixel(CameraRecord camera, ulong seed, uint frame, PixelSample* s, uint* pixel) {
+int tile_pixel(const SceneView* scene, CameraRecord camera, ulong seed, uint frame, PixelSample* s, uint* pixel) {
     const TileRect tile = tile_rect((uint)get_group_id(0), camera.size.x, camera.size.y);
     const uint item = (uint)get_local_id(0);
     const uint x = tile.x0 + item % T0_TILE;
@@ -37,7 +37,7 @@ int tile_pixel(CameraRecord camera, ulong seed, uint frame, PixelSample* s, uint
         return 0;
     }
     *pixel = y * camera.size.x + x;
-    begin_pixel(camera, *pixel, seed, frame, s);
+    begin_pixel(scene, camera, *pixel, seed, frame, s);
     return 1;
 }
 
@@ -89,7 +89,7 @@ T0_INLINE TileSample tile_sample(const SceneView* scene, CameraRecord camera, ul
                                  uint frame, __local TileShared* shared) {
     TileSample t;
     t.pixel = 0u;
-    t.inside = tile_pixel(camera, seed, frame, &t.sample, &t.pixel);
+    t.inside = tile_pixel(scene, camera, seed, frame, &t.sample, &t.pixel);
     t.first = tile_camera_hit(scene, camera, t.inside, &t.sample.ray, shared);
     return t;
 }
@@ -116,6 +116,6 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
     TileSample t = tile_sample(&scene, camera, seed, frame, &shared);
     if (t.inside) {
         accumulate_sample(&accum[t.pixel],
-                          trace_path_from(&scene, t.sample.ray, t.first, max_depth, &t.sample.rng));
+                          trace_path_from(&scene, t.sample.ray, t.first, max_depth, &t.sample.sampler));
     }
 }

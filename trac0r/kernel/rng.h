@@ -80,6 +80,13 @@ T0_INLINE float rng_float(Rng* rng) {
     return (float)(xorshift1024star_next(rng) >> 40) * (1.0f / 16777216.0f);
 }
 
+// Two of them, x drawn first.
+T0_INLINE float2 rng_float2(Rng* rng) {
+    const float x = rng_float(rng);
+    const float y = rng_float(rng);
+    return make_float2(x, y);
+}
+
 T0_NAMESPACE_END
 
 #endif

@@ -31,7 +31,7 @@ inline bool render_tile_bundled(const SceneView* scene, CameraRecord cam, AccumP
     int n = 0;
     for (long y = y0; y < y1; ++y) {
         for (long x = x0; x < x1; ++x, ++n) {
-            begin_pixel(cam, (t0_u32)(y * width + x), seed, frame, &samples[n]);
+            begin_pixel(scene, cam, (t0_u32)(y * width + x), seed, frame, &samples[n]);
             if (!samples[n].ray.any_parallel) {
                 bundle_add(&bundle, samples[n].ray.inv_direction);
             }
@@ -45,7 +45,7 @@ inline bool render_tile_bundled(const SceneView* scene, CameraRecord cam, AccumP
             PixelSample* s = &samples[n];
             const Hit first = camera_hit(scene, &s->ray, leaves, count);
             accumulate_sample(&accum[y * width + x],
-                              trace_path_from(scene, s->ray, first, max_depth, &s->rng));
+                              trace_path_from(scene, s->ray, first, max_depth, &s->sampler));
         }
     }
     return true;
@@ -68,14 +68,14 @@ inline void render_tile(const SceneView* scene, CameraRecord cam, AccumPixel* ac
     PixelSample samples[2];
     int current = 0;
     t0_u32 pixel = (t0_u32)(y0 * width + x0);
-    begin_pixel(cam, pixel, seed, frame, &samples[current]);
+    begin_pixel(scene, cam, pixel, seed, frame, &samples[current]);
     for (long y = y0; y < y1; ++y) {
         for (long x = x0; x < x1; ++x) {
             const t0_u32 this_pixel = pixel;
             const bool last = x + 1 == x1 && y + 1 == y1;
             if (!last) {
                 pixel = (t0_u32)(x + 1 < x1 ? y * width + x + 1 : (y + 1) * width + x0);
-                begin_pixel(cam, pixel, seed, frame, &samples[1 - current]);
+                begin_pixel(scene, cam, pixel, seed, frame, &samples[1 - current]);
             }
             finish_pixel(scene, accum, this_pixel, max_depth, &samples[current]);
             current = 1 - current;

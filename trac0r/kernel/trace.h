@@ -9,7 +9,7 @@
 #include "material.h"
 #include "ray.h"
 #include "ray_offset.h"
-#include "rng.h"
+#include "sampler.h"
 #include "traverse.h"
 #include "types.h"
 
@@ -49,10 +49,10 @@ T0_INLINE float nee_continuation_probability(int depth, int max_depth, float3 th
     return continuation_probability(depth, max_depth, throughput / T0_NEE_ROULETTE_THRESHOLD);
 }
 
-// Russian roulette: whether the path goes on, with probability q; a
-// survivor's throughput is divided by q.
-T0_INLINE int survives_roulette(float q, float3* throughput, Rng* rng) {
-    if (!(rng_float(rng) < q)) {
+// Russian roulette: whether the path goes on, with probability q (u is
+// uniform in [0, 1)); a survivor's throughput is divided by q.
+T0_INLINE int survives_roulette(float q, float3* throughput, float u) {
+    if (!(u < q)) {
         return 0;
     }
     *throughput /= q;
@@ -65,8 +65,9 @@ T0_INLINE int survives_roulette(float q, float3* throughput, Rng* rng) {
 // MIS. Camera rays and rays after a mirror or glass bounce count emission
 // in full: nothing else could have found it.
 // trace_path_from starts from the camera ray's hit, found by the caller.
+// Vertex `depth` draws its numbers from the dimensions T0_DIM(depth, ...).
 T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int max_depth,
-                                 Rng* rng) {
+                                 Sampler* sampler) {
     float3 radiance = float3_splat(0.0f);
     float3 throughput = float3_splat(1.0f);
     int lights_sampled = 0;    // whether the vertex this ray leaves sampled a light
@@ -105,7 +106,8 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         // integrator) right here; with it, after the light sample.
         const int nee = T0_HAS_FEATURE(scene, T0_FEATURE_NEE);
         if (!nee && !survives_roulette(continuation_probability(depth, max_depth, throughput),
-                                       &throughput, rng)) {
+                                       &throughput,
+                                       sample_1d(sampler, T0_DIM(depth, T0_DIM_ROULETTE)))) {
             break;
         }
         const float3 position = hit_position(tri, hit);
@@ -121,19 +123,26 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         lights_sampled = 0;
         if (nee && depth + 1 < max_depth && scene->light_count > 0u &&
             material_samples_lights(scene, m)) {
+            const float u_pick = sample_1d(sampler, T0_DIM(depth, T0_DIM_LIGHT_PICK));
+            const float2 u_point = sample_2d(sampler, T0_DIM(depth, T0_DIM_LIGHT_POINT));
             radiance += throughput * sample_light(scene, m, ray.direction, facing_normal, position,
-                                                  magnitude, rng);
+                                                  magnitude, u_pick, u_point);
             lights_sampled = 1;
         }
 
         if (nee && !survives_roulette(nee_continuation_probability(depth, max_depth, throughput),
-                                      &throughput, rng)) {
+                                      &throughput,
+                                      sample_1d(sampler, T0_DIM(depth, T0_DIM_ROULETTE)))) {
             break;
         }
 
-        // Sample the material.
+        // Sample the material: glass needs one number, the others two.
+        const int material_dim = T0_DIM(depth, T0_DIM_MATERIAL);
+        const float2 u = m->type.x == T0_MATERIAL_GLASS
+                             ? make_float2(sample_1d(sampler, material_dim), 0.0f)
+                             : sample_2d(sampler, material_dim);
         const ScatterSample s =
-            scatter_material(scene, m, ray.direction, geometric_normal, facing_normal, rng);
+            scatter_material(scene, m, ray.direction, geometric_normal, facing_normal, u);
         if (!(s.weight.x > 0.0f || s.weight.y > 0.0f || s.weight.z > 0.0f)) {
             break;
         }
@@ -148,32 +157,32 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
     return radiance;
 }
 
-T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Rng* rng) {
-    return trace_path_from(scene, ray, intersect_scene(scene, &ray), max_depth, rng);
+T0_INLINE float3 trace_path(const SceneView* scene, Ray ray, int max_depth, Sampler* sampler) {
+    return trace_path_from(scene, ray, intersect_scene(scene, &ray), max_depth, sampler);
 }
 
 // A pixel's sample in two halves, so that a loop over pixels can make the
 // next pixel's random numbers and camera ray while this one's path runs:
-// begin_pixel seeds the pixel's generator and makes its camera ray,
-// finish_pixel traces the path and accumulates it.
+// begin_pixel starts the pixel's sampler (the scene's features choose
+// which) and makes its camera ray, finish_pixel traces the path and
+// accumulates it.
 typedef struct PixelSample {
-    Rng rng;
+    Sampler sampler;
     Ray ray;
 } PixelSample;
 
-T0_INLINE void begin_pixel(CameraRecord cam, t0_u32 pixel, t0_u64 seed, t0_u32 frame,
-                           PixelSample* s) {
-    rng_seed_pixel(&s->rng, seed, pixel, frame);
+T0_INLINE void begin_pixel(const SceneView* scene, CameraRecord cam, t0_u32 pixel, t0_u64 seed,
+                           t0_u32 frame, PixelSample* s) {
+    sampler_start(&s->sampler, T0_HAS_FEATURE(scene, T0_FEATURE_SOBOL), seed, pixel, frame);
     const t0_u32 x = pixel % cam.size.x;
     const t0_u32 y = pixel / cam.size.x;
-    const float jitter_x = rng_float(&s->rng);
-    const float jitter_y = rng_float(&s->rng);
-    s->ray = camera_ray(cam, (float)x, (float)y, jitter_x, jitter_y);
+    const float2 jitter = sample_2d(&s->sampler, T0_DIM_PIXEL);
+    s->ray = camera_ray(cam, (float)x, (float)y, jitter.x, jitter.y);
 }
 
 T0_INLINE void finish_pixel(const SceneView* scene, T0_GLOBAL AccumPixel* accum, t0_u32 pixel,
                             int max_depth, PixelSample* s) {
-    accumulate_sample(&accum[pixel], trace_path(scene, s->ray, max_depth, &s->rng));
+    accumulate_sample(&accum[pixel], trace_path(scene, s->ray, max_depth, &s->sampler));
 }
 
 // A camera ray's nearest hit: among the `count` leaves of its tile
@@ -191,7 +200,7 @@ T0_INLINE Hit camera_hit(const SceneView* scene, const Ray* ray,
 T0_INLINE void render_pixel(const SceneView* scene, CameraRecord cam, T0_GLOBAL AccumPixel* accum,
                             t0_u32 pixel, t0_u64 seed, t0_u32 frame, int max_depth) {
     PixelSample s;
-    begin_pixel(cam, pixel, seed, frame, &s);
+    begin_pixel(scene, cam, pixel, seed, frame, &s);
     finish_pixel(scene, accum, pixel, max_depth, &s);
 }
 

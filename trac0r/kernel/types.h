@@ -24,7 +24,8 @@
 #define T0_FEATURE_FLAT (1u << 5)       // the thesis' flat list of shapes
 #define T0_FEATURE_BVH (1u << 6)        // a BVH over all triangles
 #define T0_FEATURE_NEE (1u << 7)        // next-event estimation with MIS
-#define T0_FEATURE_COUNT 8
+#define T0_FEATURE_SOBOL (1u << 8)      // Owen-scrambled Sobol samples (sampler.h)
+#define T0_FEATURE_COUNT 9
 
 T0_NAMESPACE_BEGIN
 
