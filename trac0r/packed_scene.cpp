@@ -307,7 +307,7 @@ const EnumName<Accel> accel_names[] = {
 const EnumName<Integrator> integrator_names[] = {{Integrator::naive, "naive"},
                                                  {Integrator::nee, "nee"}};
 const EnumName<SamplerKind> sampler_names[] = {{SamplerKind::random, "random"},
-                                           {SamplerKind::sobol, "sobol"}};
+                                               {SamplerKind::sobol, "sobol"}};
 
 }  // namespace
 
@@ -325,7 +325,9 @@ const char* to_string(Integrator integrator) {
     return enum_name(integrator_names, integrator, "naive");
 }
 
-SamplerKind parse_sampler(const std::string& name) { return enum_value(sampler_names, name, "sampler"); }
+SamplerKind parse_sampler(const std::string& name) {
+    return enum_value(sampler_names, name, "sampler");
+}
 
 const char* to_string(SamplerKind sampler) { return enum_name(sampler_names, sampler, "random"); }
 

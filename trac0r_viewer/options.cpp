@@ -202,4 +202,12 @@ Options parse_options(int argc, const char* const* argv) {
     return o;
 }
 
+trac0r::PackOptions pack_options(const Options& options) {
+    trac0r::PackOptions pack;
+    pack.accel = trac0r::parse_accel(options.accel);
+    pack.integrator = trac0r::parse_integrator(options.integrator);
+    pack.sampler = trac0r::parse_sampler(options.sampler);
+    return pack;
+}
+
 }  // namespace trac0r_viewer

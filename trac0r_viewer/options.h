@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "trac0r/packed_scene.h"
+
 namespace trac0r_viewer {
 
 struct Options {
@@ -45,6 +47,9 @@ class UsageError : public std::runtime_error {
 };
 
 Options parse_options(int argc, const char* const* argv);
+
+// --accel, --integrator and --sampler as the library's packing options.
+trac0r::PackOptions pack_options(const Options& options);
 
 // The name messages begin with: "trac0r_viewer", or what set_program_name
 // set (trac0r_mpi sets its own before it starts).

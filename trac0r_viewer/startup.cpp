@@ -196,10 +196,7 @@ const trac0r::Scene& Startup::load(const Options& options) {
 }
 
 std::unique_ptr<trac0r::Renderer> Startup::make_renderer(const Options& options) {
-    trac0r::PackOptions pack;
-    pack.accel = trac0r::parse_accel(options.accel);
-    pack.integrator = trac0r::parse_integrator(options.integrator);
-    pack.sampler = trac0r::parse_sampler(options.sampler);
+    const trac0r::PackOptions pack = pack_options(options);
     std::unique_ptr<trac0r::Renderer> renderer;
     {
         const std::unique_ptr<SlowStep> notice =

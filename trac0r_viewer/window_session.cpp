@@ -137,9 +137,7 @@ Session::Session(const Options& options, Window& window, const Font& font,
     scene_size_ = scene_size(boxes_);
     WorkerSettings settings;
     settings.seed = options.seed;
-    settings.pack.accel = trac0r::parse_accel(options.accel);
-    settings.pack.integrator = trac0r::parse_integrator(options.integrator);
-    settings.pack.sampler = trac0r::parse_sampler(options.sampler);
+    settings.pack = pack_options(options);
     settings.stop.spp = options.spp;
     settings.stop.seconds = options.seconds;
     settings.stop.target_error = options.target_error;
