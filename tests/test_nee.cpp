@@ -171,10 +171,7 @@ TEST_CASE("NEE in the furnace: surfaces that emit, scatter and block light", "[n
     // Le = colour x emittance = 0.5. Every wall is in the light list and
     // occludes the others; the image mean is Le (1 - rho^D) / (1 - rho).
     const Scene scene = load_test_scene("furnace.json", 32, 24);
-    const double rho = scene.materials.at(0).color.x;
-    const double le = rho * scene.materials.at(0).emittance;
-    const int depth = scene.render.max_depth;
-    const double expected = le * (1.0 - std::pow(rho, depth)) / (1.0 - rho);
+    const double expected = furnace_expected_mean(scene);
     const std::vector<kernel::AccumPixel> accum = render(scene, Integrator::nee, 3, 24);
     require_furnace_mean(accum, expected);
 }

@@ -199,10 +199,7 @@ TEST_CASE("furnace on the OpenCL backend", "[opencl][furnace]") {
     // scenes/furnace.json: diffuse walls of albedo rho = 0.5 that emit
     // Le = colour x emittance = 0.5.
     Scene scene = load_test_scene("furnace.json", 32, 24);
-    const double rho = scene.materials.at(0).color.x;
-    const double le = rho * scene.materials.at(0).emittance;
-    const int depth = scene.render.max_depth;
-    const double expected = le * (1.0 - std::pow(rho, depth)) / (1.0 - rho);
+    const double expected = furnace_expected_mean(scene);
     Renderer r(scene, std::make_unique<OpenClBackend>(0), 3);
     for (int i = 0; i < 24; ++i) {
         r.render_frame();

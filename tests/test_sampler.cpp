@@ -111,8 +111,7 @@ TEST_CASE("sobol: every 2-D draw of 2^k aligned frames is a (0,k,2)-net", "[samp
     CHECK(nets == 4 * 5 * 7 * 5);
 }
 
-TEST_CASE("sobol: every 1-D draw of 2^k aligned frames has one number per stratum",
-          "[sampler]") {
+TEST_CASE("sobol: every 1-D draw of 2^k aligned frames has one number per stratum", "[sampler]") {
     for (int k : {1, 5, 12}) {
         for (std::uint32_t first : block_starts(k)) {
             for (std::uint32_t pixel : pixels) {
@@ -122,8 +121,8 @@ TEST_CASE("sobol: every 1-D draw of 2^k aligned frames has one number per stratu
                 }
                 // Each coordinate of a 2-D draw is so too.
                 std::vector<float> x, y;
-                for (const glm::vec2& p : draws_2d(1, 7, pixel, T0_DIM(2, T0_DIM_MATERIAL),
-                                                   first, 1 << k)) {
+                for (const glm::vec2& p :
+                     draws_2d(1, 7, pixel, T0_DIM(2, T0_DIM_MATERIAL), first, 1 << k)) {
                     x.push_back(p.x);
                     y.push_back(p.y);
                 }
@@ -225,8 +224,8 @@ TEST_CASE("sobol: a draw is a pure function of seed, pixel, frame and dimension"
     const int dim = T0_DIM(1, T0_DIM_LIGHT_POINT);
     const std::vector<glm::vec2> a = draws_2d(1, 42, 17, dim, 3, 64);
     REQUIRE(draws_2d(1, 42, 17, dim, 3, 64) == a);
-    REQUIRE(draws_2d(1, 43, 17, dim, 3, 64) != a);   // another seed
-    REQUIRE(draws_2d(1, 42, 18, dim, 3, 64) != a);   // another pixel
+    REQUIRE(draws_2d(1, 43, 17, dim, 3, 64) != a);      // another seed
+    REQUIRE(draws_2d(1, 42, 18, dim, 3, 64) != a);      // another pixel
     REQUIRE(draws_2d(1, 42, 17, dim + 1, 3, 64) != a);  // another dimension
     // The order of draws does not matter: a dimension's numbers are the
     // same whether or not others were drawn first (random mode's are not).
@@ -293,6 +292,25 @@ double bonferroni_t(int comparisons, double family_false_alarm, double nu) {
     return hi;
 }
 
+// The mean of independent replicas' estimates and its standard error.
+struct ReplicaMean {
+    double mean;
+    double standard_error;
+};
+
+ReplicaMean replica_mean(const std::vector<double>& values) {
+    const double n = static_cast<double>(values.size());
+    double mean = 0.0;
+    for (double v : values) {
+        mean += v / n;
+    }
+    double spread = 0.0;
+    for (double v : values) {
+        spread += (v - mean) * (v - mean) / (n - 1.0);
+    }
+    return {mean, std::sqrt(spread / n)};
+}
+
 std::vector<kernel::AccumPixel> render(const Scene& scene, Integrator integrator,
                                        SamplerKind sampler, std::uint64_t seed,
                                        std::uint32_t first_frame, int frames) {
@@ -341,15 +359,10 @@ void require_same_image(const std::string& name, Integrator integrator) {
     const double k = bonferroni_t(static_cast<int>(random.size()), 1e-3, replicas - 1);
     double image_tolerance = 0.0;
     for (std::size_t i = 0; i < random.size(); ++i) {
-        double mean = 0.0;
-        for (double m : replica_means[i]) {
-            mean += m / replicas;
-        }
-        double spread = 0.0;
-        for (double m : replica_means[i]) {
-            spread += (m - mean) * (m - mean) / (replicas - 1);
-        }
-        const double se = std::sqrt(random[i].variance + spread / replicas);
+        const ReplicaMean sobol = replica_mean(replica_means[i]);
+        const double mean = sobol.mean;
+        const double se =
+            std::sqrt(random[i].variance + sobol.standard_error * sobol.standard_error);
         CAPTURE(name, random[i].x, random[i].y, random[i].mean, mean, se, k);
         REQUIRE(std::fabs(random[i].mean - mean) <= k * se);
         image_tolerance = k * se / random[i].mean;  // the last: the whole image
@@ -406,10 +419,8 @@ TEST_CASE("the furnace stays exact with sobol", "[sampler][furnace]") {
     // the random sampler's furnace tests, the mean within 5 standard errors;
     // the error from 16 independent replicas' image means.
     Scene scene = load_test_scene("furnace.json", 32, 24);
-    const double rho = scene.materials.at(0).color.x;
-    const double le = rho * scene.materials.at(0).emittance;
-    const int depth = scene.render.max_depth;
-    const double expected = le * (1.0 - std::pow(rho, depth)) / (1.0 - rho);
+    const double expected = furnace_expected_mean(scene);
+    const double le = scene.materials.at(0).color.x * scene.materials.at(0).emittance;
     for (Integrator integrator : {Integrator::naive, Integrator::nee}) {
         std::vector<double> means;
         for (int r = 0; r < 16; ++r) {
@@ -417,14 +428,9 @@ TEST_CASE("the furnace stays exact with sobol", "[sampler][furnace]") {
                 render(scene, integrator, SamplerKind::sobol, 300 + r, 0, 8);
             means.push_back(block_means(accum, 32, 24, 32, 24).at(0).mean);
         }
-        double mean = 0.0, spread = 0.0;
-        for (double m : means) {
-            mean += m / 16.0;
-        }
-        for (double m : means) {
-            spread += (m - mean) * (m - mean) / 15.0;
-        }
-        const double se = std::sqrt(spread / 16.0);
+        const ReplicaMean e = replica_mean(means);
+        const double mean = e.mean;
+        const double se = e.standard_error;
         CAPTURE(static_cast<int>(integrator), mean, expected, se);
         REQUIRE(se < 0.01 * expected);
         REQUIRE(std::fabs(mean - expected) < 5.0 * se);

@@ -74,6 +74,14 @@ inline void require_warning_free_build(const PackedScene& packed) {
 // all samples is within 5 standard errors of expected, and the render is
 // long enough that 5 standard errors are under 5% of it. The spread is the
 // within-pixel one, from the accumulator's per-pixel M2.
+// scenes/furnace.json's expected image mean: its walls of albedo rho emit
+// Le = rho x emittance, so max depth D gives Le (1 - rho^D) / (1 - rho).
+inline double furnace_expected_mean(const Scene& scene) {
+    const double rho = scene.materials.at(0).color.x;
+    const double le = rho * scene.materials.at(0).emittance;
+    return le * (1.0 - std::pow(rho, scene.render.max_depth)) / (1.0 - rho);
+}
+
 inline void require_furnace_mean(const std::vector<kernel::AccumPixel>& accum, double expected) {
     double sum = 0.0, m2 = 0.0, n = 0.0;
     for (const kernel::AccumPixel& p : accum) {
@@ -99,7 +107,7 @@ struct BlockMean {
 };
 
 inline std::vector<BlockMean> block_means(const std::vector<kernel::AccumPixel>& accum, int width,
-                                   int height, int block_width, int block_height) {
+                                          int height, int block_width, int block_height) {
     std::vector<BlockMean> blocks;
     for (int by = 0; by + block_height <= height; by += block_height) {
         for (int bx = 0; bx + block_width <= width; bx += block_width) {
