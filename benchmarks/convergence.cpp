@@ -2,7 +2,9 @@
 // takes checkpoints at doubling samples per pixel, and at each reports the
 // wall time, RMSE, relative MSE and PSNR against a reference image, beside
 // the renderer's own estimate of the relative MSE (no reference needed),
-// and how long each configuration takes to the first one's final error.
+// how long each configuration takes to the first one's final error, and
+// with --target-rmse or --target-relmse, the samples and time each takes to
+// a given error.
 //
 //   build/benchmarks/bench_convergence [SCENE.json] [options]
 //
@@ -54,14 +56,20 @@ turns frame by frame, so they share the machine's load alike), and prints at eac
 render time, RMSE, relative MSE and PSNR against a reference, and the
 renderer's own relative MSE estimate; then the fitted slopes and, with two
 or more configurations, the time each of the others takes to the first
-one's error at its last checkpoint.
+one's error at its last checkpoint, and the samples and time each takes
+to --target-rmse and --target-relmse.
 
   --config SPEC       a configuration, repeatable (default: backend=cpu):
                       comma-separated key=value of backend=cpu|opencl,
                       accel=flat|bvh|auto, max_depth=N, integrator=naive|nee,
-                      each key at most once
+                      sampler=random|sobol (default: the library's, cpu,
+                      auto, the scene's depth, naive, random), each key at most once
                       e.g. --config backend=opencl --config backend=cpu,max_depth=2
   --max-spp N         last checkpoint (default 1024)
+  --target-rmse E     report the samples and time each configuration takes to
+                      an RMSE of E (interpolated between checkpoints); once
+                      it has reached every target, a configuration stops
+  --target-relmse E   the same for a relative MSE of E
   --seconds S         no new checkpoint once a configuration has rendered S s
                       (on free cores, as in the table), S in [1e-06, 1e+09]
   --width W --height H  resolution (default 200 x 150)
@@ -81,6 +89,7 @@ struct Config {
     std::string backend = "cpu";
     std::string accel = "auto";
     std::string integrator = "naive";
+    std::string sampler = "random";
     int max_depth = 0;  // 0: the scene's
     std::string label;
 };
@@ -90,6 +99,8 @@ struct Options {
     std::vector<Config> configs;
     long max_spp = 1024;
     double seconds = 0.0;
+    double target_rmse = 0.0;    // 0: none
+    double target_relmse = 0.0;  // 0: none
     int width = 200;
     int height = 150;
     std::string reference_path;
@@ -124,16 +135,19 @@ Config parse_config(const std::string& spec) {
             c.max_depth = static_cast<int>(parse_long(where, value, 1, 100000));
         } else if (key == "integrator" && (value == "naive" || value == "nee")) {
             c.integrator = value;
-        } else if (key == "backend" || key == "accel" || key == "integrator") {
+        } else if (key == "sampler" && (value == "random" || value == "sobol")) {
+            c.sampler = value;
+        } else if (key == "backend" || key == "accel" || key == "integrator" || key == "sampler") {
             throw UsageError(where + ": unknown value '" + value + "'");
         } else {
             throw UsageError("--config " + spec + ": unknown key '" + key +
-                             "' (expected backend, accel, max_depth, integrator)");
+                             "' (expected backend, accel, max_depth, integrator, sampler)");
         }
     }
     c.label = c.backend + (c.accel == "auto" ? "" : " " + c.accel) +
               (c.max_depth > 0 ? " depth " + std::to_string(c.max_depth) : "") +
-              (c.integrator == "naive" ? "" : " " + c.integrator);
+              (c.integrator == "naive" ? "" : " " + c.integrator) +
+              (c.sampler == "random" ? "" : " " + c.sampler);
 #ifndef TRAC0R_HAVE_OPENCL
     if (c.backend == "opencl") {
         throw UsageError("--config " + spec + ": this build has no OpenCL backend");
@@ -168,6 +182,10 @@ Options parse_options(int argc, char** argv) {
             o.height = static_cast<int>(parse_long(a, value(), 1, 16384));
         } else if (a == "--seconds") {
             o.seconds = trac0r_bench::parse_number(a, value(), 1e-6, 1e9);
+        } else if (a == "--target-rmse") {
+            o.target_rmse = trac0r_bench::parse_number(a, value(), 1e-9, 1e9);
+        } else if (a == "--target-relmse") {
+            o.target_relmse = trac0r_bench::parse_number(a, value(), 1e-9, 1e9);
         } else if (a == "--reference") {
             o.reference_path = value();
         } else if (a == "--cache") {
@@ -344,18 +362,22 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& y)
     return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-// Where a configuration's relative MSE first falls to `target`: the
-// checkpoint before it and the one at or below it, interpolated on the
-// log-log curve (error, spp and time each taken as a power law between the
-// two). False if it never gets there, or is there at its first checkpoint
-// already (nothing to interpolate from).
-bool reaches(const std::vector<Checkpoint>& points, double target, double* spp, double* seconds) {
+// The two errors a target can be given in.
+double rmse_of(const Checkpoint& p) { return p.error.rmse; }
+double relative_mse_of(const Checkpoint& p) { return p.error.relative_mse; }
+
+// Where a configuration's error (`metric`, relative MSE unless told) first
+// falls to `target`: the checkpoint before it and the one at or below it,
+// interpolated on the log-log curve (error, spp and time each taken as a
+// power law between the two). False if it never gets there, or is there at
+// its first checkpoint already (nothing to interpolate from).
+bool reaches(const std::vector<Checkpoint>& points, double target, double* spp, double* seconds,
+             double (*metric)(const Checkpoint&) = relative_mse_of) {
     for (std::size_t i = 1; i < points.size(); ++i) {
         const Checkpoint& a = points[i - 1];
         const Checkpoint& b = points[i];
-        if (a.error.relative_mse > target && b.error.relative_mse <= target) {
-            const double f = std::log(target / a.error.relative_mse) /
-                             std::log(b.error.relative_mse / a.error.relative_mse);
+        if (metric(a) > target && metric(b) <= target) {
+            const double f = std::log(target / metric(a)) / std::log(metric(b) / metric(a));
             *spp = a.spp * std::pow(static_cast<double>(b.spp) / a.spp, f);
             *seconds = a.seconds * std::pow(b.seconds / a.seconds, f);
             return true;
@@ -421,6 +443,7 @@ int run(const Options& o) {
         PackOptions pack;
         pack.accel = parse_accel(c.accel);
         pack.integrator = parse_integrator(c.integrator);
+        pack.sampler = parse_sampler(c.sampler);
         std::unique_ptr<Renderer> r(new Renderer(s, make_backend(c.backend), 1, pack));
         // One frame first, then thrown away: the OpenCL program build and
         // first-touch allocations are not render time. Frames are seeded by
@@ -429,7 +452,26 @@ int run(const Options& o) {
         r->restart();
         runs.push_back(Run{&c, std::move(r), 0.0, 0.0, false, {}});
     }
+    const struct Target {
+        const char* name;
+        double value;  // 0: not asked for
+        double (*metric)(const Checkpoint&);
+    } targets[] = {{"an RMSE", o.target_rmse, rmse_of},
+                   {"a relative MSE", o.target_relmse, relative_mse_of}};
+    const bool any_target = o.target_rmse > 0.0 || o.target_relmse > 0.0;
+    // Whether a checkpoint is at or below every target asked for.
+    const auto at_targets = [&](const Checkpoint& p) {
+        for (const Target& t : targets) {
+            if (t.value > 0.0 && t.metric(p) > t.value) {
+                return false;
+            }
+        }
+        return true;
+    };
     for (long spp = 1; spp <= o.max_spp; spp *= 2) {
+        if (std::all_of(runs.begin(), runs.end(), [](const Run& r) { return r.stopped; })) {
+            break;
+        }
         for (Run& run : runs) {
             run.stopped = run.stopped || (o.seconds > 0.0 && run.seconds >= o.seconds);
         }
@@ -457,6 +499,8 @@ int run(const Options& o) {
                 Checkpoint{spp, run.seconds, run.wall_seconds, image_error(r.image(), ref.image),
                            spp >= 2 ? estimate_relative_mse(r.accumulator(), o.width, o.height)
                                     : std::nan("")});
+            // There: the next checkpoints would only cost time.
+            run.stopped = any_target && at_targets(run.points.back());
         }
         std::fprintf(stderr, "  checkpoint %ld spp\n", spp);
     }
@@ -556,6 +600,52 @@ int run(const Options& o) {
             } else {
                 std::printf("  %s: not reached by %ld spp (%.4g)\n", label, run.points.back().spp,
                             run.points.back().error.relative_mse);
+            }
+        }
+    }
+    std::printf("\nMean cost per sample over the run (seconds on free cores / frames):\n");
+    for (const Run& run : runs) {
+        const double cost = run.seconds / static_cast<double>(run.renderer->frames());
+        const double first = runs[0].seconds / static_cast<double>(runs[0].renderer->frames());
+        std::printf("  %s: %.4f s (%.3f x %s's)\n", run.config->label.c_str(), cost, cost / first,
+                    runs[0].config->label.c_str());
+    }
+    // The samples and time to each target: spp interpolated on the log-log
+    // error curve, time from the mean cost per sample (as above) and from
+    // the checkpoints' own times.
+    for (const Target& t : targets) {
+        if (t.value <= 0.0) {
+            continue;
+        }
+        std::printf(
+            "\nTo %s of %.4g: the samples needed, interpolated on the log-log curve between "
+            "the checkpoints either side; the time at the mean cost per sample over the run (by "
+            "the checkpoints' own times):\n",
+            t.name, t.value);
+        double first_seconds = 0.0;
+        for (std::size_t k = 0; k < runs.size(); ++k) {
+            const Run& run = runs[k];
+            const char* label = run.config->label.c_str();
+            const double cost = run.seconds / static_cast<double>(run.renderer->frames());
+            double spp = 0.0;
+            double seconds = 0.0;
+            if (run.points.empty()) {
+                std::printf("  %s: no checkpoint\n", label);
+            } else if (t.metric(run.points.front()) <= t.value) {
+                std::printf("  %s: there by its first checkpoint (%ld spp)\n", label,
+                            run.points.front().spp);
+            } else if (reaches(run.points, t.value, &spp, &seconds, t.metric)) {
+                std::printf("  %s: %.0f spp, %.2f s (%.2f s)", label, spp, spp * cost, seconds);
+                if (k == 0) {
+                    first_seconds = spp * cost;
+                } else if (first_seconds > 0.0) {
+                    std::printf(", %.2f x %s's time", spp * cost / first_seconds,
+                                runs[0].config->label.c_str());
+                }
+                std::printf("\n");
+            } else {
+                std::printf("  %s: not reached by %ld spp (%.4g)\n", label, run.points.back().spp,
+                            t.metric(run.points.back()));
             }
         }
     }

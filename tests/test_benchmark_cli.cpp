@@ -1,14 +1,18 @@
 // The benchmark programs' command lines as a user meets them: --help, and
 // bad input refused with one message that names the flag or argument, exit
 // 2 for the command line and 1 for other failures, before any timing starts.
-// Every run here stops at its check (seconds), none times anything.
+// Every run here but one stops at its check (seconds); none checks a time.
 #include <catch2/catch.hpp>
 
 #include "viewer_process.h"
 
 #include "trac0r/image_io.h"
 
+#include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -196,29 +200,34 @@ TEST_CASE("bench_complexity: numbers, backends and --csv as the others check the
 TEST_CASE("bench_convergence: bad --cache, --config and --reference-spp refused before rendering",
           "[benchmark_cli]") {
     check_help("bench_convergence",
-               {"--config SPEC", "each key at most once", "not with --reference"});
+               {"--config SPEC", "each key at most once", "not with --reference",
+                "sampler=random|sobol", "--target-rmse E", "--target-relmse E"});
     const std::string in = write_test_pfm("bench_cli_reference.pfm");
     std::ofstream("bench_cli_scene.json")
         << R"({"materials": {"white": {"type": "diffuse", "color": [0.5, 0.5, 0.5]}},
               "shapes": [{"type": "plane", "material": "white", "size": [1, 1]}]})";
-    check_refused("bench_convergence",
-                  {{"--config backend=cpu,backend=cpu",
-                    "--config backend=cpu,backend=cpu: key "
-                    "'backend' given twice"},
-                   {"--config ''", "--config: expected comma-separated key=value"},
-                   {"--config backend=cpu,", "an empty key=value"},
-                   {"--config colour=red", "unknown key 'colour'"},
-                   {"--reference " + in + " --reference-spp 64",
-                    "--reference-spp: only for a "
-                    "rendered reference; --reference"},
-                   {"--seconds inf", "--seconds: expected a number"},
-                   {"--reference " + in + " --csv " + in,
-                    "--csv " + in + ": is the --reference image; it would be overwritten"},
-                   {"--seconds 1 --seconds 2", "--seconds: given more than once"},
-                   {"bench_cli_scene.json --csv bench_cli_scene.json",
-                    "--csv bench_cli_scene.json: is the scene file; it would be overwritten"},
-                   {"--csv ''", "--csv : cannot be written (the path is empty)"}},
-                  2);
+    check_refused(
+        "bench_convergence",
+        {{"--config backend=cpu,backend=cpu",
+          "--config backend=cpu,backend=cpu: key "
+          "'backend' given twice"},
+         {"--config ''", "--config: expected comma-separated key=value"},
+         {"--config backend=cpu,", "an empty key=value"},
+         {"--config colour=red", "unknown key 'colour'"},
+         {"--config sampler=halton", "--config sampler=halton: sampler: unknown value 'halton'"},
+         {"--target-rmse 0", "--target-rmse: expected a number in [1e-09, 1e+09], got '0'"},
+         {"--target-relmse -1", "--target-relmse: expected a number"},
+         {"--reference " + in + " --reference-spp 64",
+          "--reference-spp: only for a "
+          "rendered reference; --reference"},
+         {"--seconds inf", "--seconds: expected a number"},
+         {"--reference " + in + " --csv " + in,
+          "--csv " + in + ": is the --reference image; it would be overwritten"},
+         {"--seconds 1 --seconds 2", "--seconds: given more than once"},
+         {"bench_cli_scene.json --csv bench_cli_scene.json",
+          "--csv bench_cli_scene.json: is the scene file; it would be overwritten"},
+         {"--csv ''", "--csv : cannot be written (the path is empty)"}},
+        2);
     // The expensive reference would render first: these fail at once.
     std::ofstream("bench_cli_not_a_dir") << "x";
     check_refused("bench_convergence",
@@ -229,4 +238,68 @@ TEST_CASE("bench_convergence: bad --cache, --config and --reference-spp refused 
                     "--csv /nonexistent_trac0r_dir/x.csv: cannot be written (directory "
                     "/nonexistent_trac0r_dir does not exist)"}},
                   2);
+}
+
+namespace {
+
+// bench_convergence's CSV: each configuration's RMSE at its checkpoints, by spp.
+std::map<std::string, std::map<long, double>> convergence_rmse(const std::string& csv_path) {
+    std::map<std::string, std::map<long, double>> rmse;
+    std::ifstream csv(csv_path);
+    std::string line;
+    std::getline(csv, line);  // the header
+    while (std::getline(csv, line)) {
+        // "label",spp,seconds,rmse,...
+        const std::size_t close = line.find('"', 1);
+        std::istringstream rest(line.substr(close + 2));
+        std::string spp, seconds, value;
+        std::getline(rest, spp, ',');
+        std::getline(rest, seconds, ',');
+        std::getline(rest, value, ',');
+        rmse[line.substr(1, close - 1)][std::stol(spp)] = std::stod(value);
+    }
+    return rmse;
+}
+
+}  // namespace
+
+// The one run here that renders: the built-in scene at 16 x 12, to 16 spp,
+// in well under a second; its times are printed, never checked.
+TEST_CASE("bench_convergence: the samples to --target-rmse, and a configuration stops there",
+          "[benchmark_cli]") {
+    REQUIRE(system("rm -rf bench_cli_conv_cache && mkdir bench_cli_conv_cache") == 0);
+    const std::string common =
+        "--width 16 --height 12 --max-spp 16 --reference-spp 64 --cache bench_cli_conv_cache "
+        "--config integrator=nee --config integrator=nee,sampler=sobol ";
+    // Out of reach: every checkpoint is there, and says so.
+    ViewerRun r =
+        run_benchmark("bench_convergence", common + "--target-rmse 1e-9 --csv bench_cli_conv.csv");
+    CAPTURE(r.out, r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("To an RMSE of 1e-09:") != std::string::npos);
+    CHECK(r.out.find("cpu nee sobol: not reached by 16 spp") != std::string::npos);
+    const auto all = convergence_rmse("bench_cli_conv.csv");
+    REQUIRE(all.size() == 2);
+    const std::map<long, double>& sobol = all.at("cpu nee sobol");
+    REQUIRE(sobol.size() == 5);  // 1, 2, 4, 8, 16 spp
+    REQUIRE(sobol.at(2) > sobol.at(4));
+    // Halfway (on the log scale) between its RMSE at 2 and at 4 spp: the
+    // same seeds give the same curve, interpolated to 2 x sqrt(2) spp, and
+    // the sobol configuration stops at 4 spp.
+    char target[32];
+    std::snprintf(target, sizeof target, "%.9g", std::sqrt(sobol.at(2) * sobol.at(4)));
+    r = run_benchmark("bench_convergence",
+                      common + "--target-rmse " + target + " --csv bench_cli_conv.csv");
+    CAPTURE(r.out, r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("cpu nee sobol: 3 spp, ") != std::string::npos);
+    const auto stopped = convergence_rmse("bench_cli_conv.csv");
+    CHECK(stopped.at("cpu nee sobol").size() == 3);  // 1, 2, 4 spp
+    // Reached at once: nothing to interpolate from.
+    r = run_benchmark("bench_convergence", common + "--target-relmse 1e9 --csv bench_cli_conv.csv");
+    CAPTURE(r.out, r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("To a relative MSE of 1e+09:") != std::string::npos);
+    CHECK(r.out.find("cpu nee: there by its first checkpoint (1 spp)") != std::string::npos);
+    CHECK(convergence_rmse("bench_cli_conv.csv").at("cpu nee").size() == 1);
 }
