@@ -42,7 +42,8 @@ T0_NAMESPACE_BEGIN
 typedef struct Sampler {
     Rng rng;       // random: the pixel's generator for this frame
     t0_u32 key;    // sobol: a hash of (seed, pixel)
-    t0_u32 index;  // sobol: the sample's index in the pixel's sequence (the frame)
+    t0_u32 index;  // sobol: the sample's index in the pixel's sequence (the frame),
+                   // bit-reversed (what the index shuffle takes)
     int sobol;     // which of the two
 } Sampler;
 
@@ -97,14 +98,17 @@ T0_INLINE float unit_float(t0_u32 x) { return (float)(x >> 8) * (1.0f / 16777216
 // scramble of the index's bits): the first 2^k indices go to an aligned
 // block of 2^k, so a prefix keeps its stratification.
 T0_INLINE t0_u32 sobol_shuffled_index(const Sampler* s, t0_u32 dim_seed) {
-    return reverse_bits32(reversed_owen(reverse_bits32(s->index), dim_seed));
+    return reverse_bits32(reversed_owen(s->index, dim_seed));
 }
 
+// The seed of dimension `dim`'s shuffle: one hash of the pixel's key and
+// the dimension spread by the golden ratio (no two dimensions of a pixel
+// share a seed, as the hash is a bijection).
 T0_INLINE t0_u32 sobol_dim_seed(const Sampler* s, int dim) {
-    return hash32(s->key ^ hash32((t0_u32)dim));
+    return hash32(s->key + (t0_u32)dim * 0x9E3779B9u);
 }
 
-T0_INLINE float sample_1d(Sampler* s, int dim) {
+T0_FORCE_INLINE float sample_1d(Sampler* s, int dim) {
     if (!s->sobol) {
         return rng_float(&s->rng);
     }
@@ -116,7 +120,7 @@ T0_INLINE float sample_1d(Sampler* s, int dim) {
 }
 
 // Two numbers for one 2-D draw; with random, x is drawn first.
-T0_INLINE float2 sample_2d(Sampler* s, int dim) {
+T0_FORCE_INLINE float2 sample_2d(Sampler* s, int dim) {
     if (!s->sobol) {
         return rng_float2(&s->rng);
     }
@@ -128,15 +132,48 @@ T0_INLINE float2 sample_2d(Sampler* s, int dim) {
                        unit_float(reverse_bits32(reversed_owen(sobol1_reversed(i), seed_y))));
 }
 
+// A vertex's numbers (T0_DIM(depth, ...)). With sobol, sampler_start_vertex
+// draws them all at once: each draw is a chain of dependent multiplies
+// and bit reversals, and four independent chains side by side keep the
+// processor busy where one alone would wait on each multiply. With random
+// the vertex_* calls draw as the path asks, in the thesis' order.
+typedef struct VertexDraws {
+    float light_pick;
+    float2 light_point;
+    float roulette;
+    float2 material;  // glass takes x alone (sample_1d's number for the dimension)
+} VertexDraws;
+
+T0_INLINE void sampler_start_vertex(Sampler* s, int depth, int lights, VertexDraws* v) {
+    if (!s->sobol) {
+        return;
+    }
+    if (lights) {
+        v->light_pick = sample_1d(s, T0_DIM(depth, T0_DIM_LIGHT_PICK));
+        v->light_point = sample_2d(s, T0_DIM(depth, T0_DIM_LIGHT_POINT));
+    }
+    v->roulette = sample_1d(s, T0_DIM(depth, T0_DIM_ROULETTE));
+    v->material = sample_2d(s, T0_DIM(depth, T0_DIM_MATERIAL));
+}
+
+// A number of the vertex: the one sampler_start_vertex drew, or the next
+// random one.
+T0_INLINE float vertex_1d(Sampler* s, float drawn) { return s->sobol ? drawn : rng_float(&s->rng); }
+
+T0_INLINE float2 vertex_2d(Sampler* s, float2 drawn) {
+    return s->sobol ? drawn : rng_float2(&s->rng);
+}
+
 // The pixel's sampler for `frame`: sobol where the scene's features say.
 T0_INLINE void sampler_start(Sampler* s, int sobol, t0_u64 seed, t0_u32 pixel, t0_u32 frame) {
     s->sobol = sobol;
-    s->index = frame;
     if (sobol) {
         const t0_u64 key = mix64(seed ^ mix64((t0_u64)pixel));
         s->key = (t0_u32)(key ^ (key >> 32));
+        s->index = reverse_bits32(frame);
     } else {
         s->key = 0u;
+        s->index = 0u;
         rng_seed_pixel(&s->rng, seed, pixel, frame);
     }
 }

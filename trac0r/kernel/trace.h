@@ -101,13 +101,14 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         if (m->type.x == T0_MATERIAL_EMISSIVE) {
             break;
         }
+        const int nee = T0_HAS_FEATURE(scene, T0_FEATURE_NEE);
+        VertexDraws draws;
+        sampler_start_vertex(sampler, depth, nee, &draws);
 
         // Russian roulette, without next-event estimation (the thesis'
         // integrator) right here; with it, after the light sample.
-        const int nee = T0_HAS_FEATURE(scene, T0_FEATURE_NEE);
         if (!nee && !survives_roulette(continuation_probability(depth, max_depth, throughput),
-                                       &throughput,
-                                       sample_1d(sampler, T0_DIM(depth, T0_DIM_ROULETTE)))) {
+                                       &throughput, vertex_1d(sampler, draws.roulette))) {
             break;
         }
         const float3 position = hit_position(tri, hit);
@@ -123,24 +124,22 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         lights_sampled = 0;
         if (nee && depth + 1 < max_depth && scene->light_count > 0u &&
             material_samples_lights(scene, m)) {
-            const float u_pick = sample_1d(sampler, T0_DIM(depth, T0_DIM_LIGHT_PICK));
-            const float2 u_point = sample_2d(sampler, T0_DIM(depth, T0_DIM_LIGHT_POINT));
+            const float u_pick = vertex_1d(sampler, draws.light_pick);
+            const float2 u_point = vertex_2d(sampler, draws.light_point);
             radiance += throughput * sample_light(scene, m, ray.direction, facing_normal, position,
                                                   magnitude, u_pick, u_point);
             lights_sampled = 1;
         }
 
         if (nee && !survives_roulette(nee_continuation_probability(depth, max_depth, throughput),
-                                      &throughput,
-                                      sample_1d(sampler, T0_DIM(depth, T0_DIM_ROULETTE)))) {
+                                      &throughput, vertex_1d(sampler, draws.roulette))) {
             break;
         }
 
         // Sample the material: glass needs one number, the others two.
-        const int material_dim = T0_DIM(depth, T0_DIM_MATERIAL);
         const float2 u = m->type.x == T0_MATERIAL_GLASS
-                             ? make_float2(sample_1d(sampler, material_dim), 0.0f)
-                             : sample_2d(sampler, material_dim);
+                             ? make_float2(vertex_1d(sampler, draws.material.x), 0.0f)
+                             : vertex_2d(sampler, draws.material);
         const ScatterSample s =
             scatter_material(scene, m, ray.direction, geometric_normal, facing_normal, u);
         if (!(s.weight.x > 0.0f || s.weight.y > 0.0f || s.weight.z > 0.0f)) {
