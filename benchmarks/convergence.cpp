@@ -545,6 +545,11 @@ int run(const Options& o) {
     for (const std::string& s : slopes) {
         std::printf("  %s\n", s.c_str());
     }
+    // A configuration's mean cost per sample over the whole run: seconds on
+    // the free cores per frame.
+    const auto cost = [](const Run& run) {
+        return run.seconds / static_cast<double>(run.renderer->frames());
+    };
     // How long each other configuration takes to the first one's final
     // error: the figure that says which is worth its cost per sample. The
     // samples it needs come from the error curve, which the fixed seeds
@@ -553,9 +558,6 @@ int run(const Options& o) {
     // whole run, so that a slow spell of a shared machine falls on both
     // alike (the time its checkpoints give covers only the run's start).
     if (runs.size() > 1 && !runs[0].points.empty()) {
-        const auto cost = [](const Run& run) {
-            return run.seconds / static_cast<double>(run.renderer->frames());
-        };
         // "2.00 x fewer", "2.00 x more" or `same`: another configuration
         // against the first.
         const auto compared = [](double first_over_this, const char* fewer, const char* more,
@@ -605,10 +607,8 @@ int run(const Options& o) {
     }
     std::printf("\nMean cost per sample over the run (seconds on free cores / frames):\n");
     for (const Run& run : runs) {
-        const double cost = run.seconds / static_cast<double>(run.renderer->frames());
-        const double first = runs[0].seconds / static_cast<double>(runs[0].renderer->frames());
-        std::printf("  %s: %.4f s (%.3f x %s's)\n", run.config->label.c_str(), cost, cost / first,
-                    runs[0].config->label.c_str());
+        std::printf("  %s: %.4f s (%.3f x %s's)\n", run.config->label.c_str(), cost(run),
+                    cost(run) / cost(runs[0]), runs[0].config->label.c_str());
     }
     // The samples and time to each target: spp interpolated on the log-log
     // error curve, time from the mean cost per sample (as above) and from
@@ -626,7 +626,6 @@ int run(const Options& o) {
         for (std::size_t k = 0; k < runs.size(); ++k) {
             const Run& run = runs[k];
             const char* label = run.config->label.c_str();
-            const double cost = run.seconds / static_cast<double>(run.renderer->frames());
             double spp = 0.0;
             double seconds = 0.0;
             if (run.points.empty()) {
@@ -635,11 +634,12 @@ int run(const Options& o) {
                 std::printf("  %s: there by its first checkpoint (%ld spp)\n", label,
                             run.points.front().spp);
             } else if (reaches(run.points, t.value, &spp, &seconds, t.metric)) {
-                std::printf("  %s: %.0f spp, %.2f s (%.2f s)", label, spp, spp * cost, seconds);
+                std::printf("  %s: %.0f spp, %.2f s (%.2f s)", label, spp, spp * cost(run),
+                            seconds);
                 if (k == 0) {
-                    first_seconds = spp * cost;
+                    first_seconds = spp * cost(run);
                 } else if (first_seconds > 0.0) {
-                    std::printf(", %.2f x %s's time", spp * cost / first_seconds,
+                    std::printf(", %.2f x %s's time", spp * cost(run) / first_seconds,
                                 runs[0].config->label.c_str());
                 }
                 std::printf("\n");
