@@ -9,11 +9,12 @@
 # differ by a few per cent (docs/performance.md, "Measuring side by side").
 #
 #   benchmarks/ab_kernels.sh A B [SCENE.json] [--accel flat|bvh]
-#       [--integrator naive|nee] [--pairs N] [--size W H]
+#       [--integrator naive|nee] [--sampler random|sobol] [--pairs N]
+#       [--size W H]
 #
 # A and B: git revisions (HEAD, main~2, a commit) or directories that hold
 # trac0r/kernel (. is the working tree). Defaults: scenes/cornell.json, bvh,
-# naive, 150 pairs after one warm-up pair, 200 x 150. Both versions must
+# naive, random, 150 pairs after one warm-up pair, 200 x 150. Both versions must
 # have trac0r/kernel/tile.h and lay out the packed buffers as this tree packs
 # them (checked). Compiled with the Release flags (and -march=native where
 # the build has TRAC0R_NATIVE=ON) against the library in build/ (or

@@ -56,6 +56,7 @@ struct Options {
     std::string scene = "scenes/cornell.json";
     trac0r::Accel accel = trac0r::Accel::bvh;
     trac0r::Integrator integrator = trac0r::Integrator::naive;
+    trac0r::SamplerKind sampler = trac0r::SamplerKind::random;
     int pairs = 150;
     int width = 200;
     int height = 150;
@@ -78,6 +79,8 @@ void parse(int argc, char** argv, Options& o) {
                 }
             } else if (a == "--integrator") {
                 o.integrator = trac0r::parse_integrator(value(a));
+            } else if (a == "--sampler") {
+                o.sampler = trac0r::parse_sampler(value(a));
             } else if (a == "--pairs") {
                 o.pairs = static_cast<int>(trac0r_bench::parse_long(a, value(a), 1, 100000));
             } else if (a == "--size") {
@@ -129,6 +132,7 @@ int run(const Options& o) {
     trac0r::PackOptions pack;
     pack.accel = o.accel;
     pack.integrator = o.integrator;
+    pack.sampler = o.sampler;
     const trac0r::PackedScene packed = trac0r::pack_scene(scene, pack);
     const trac0r::kernel::SceneView view = packed.view();
     const trac0r::kernel::CameraRecord camera = trac0r::scaled_camera(
@@ -175,13 +179,14 @@ int run(const Options& o) {
         per_layout += text;
     }
     std::printf(
-        "%s, %s, %s, %d x %d, %d pairs on one thread: A %.3f ms, B %.3f ms a frame (medians); "
+        "%s, %s, %s, %s, %d x %d, %d pairs on one thread: A %.3f ms, B %.3f ms a frame (medians); "
         "B / A %.4f (quartiles %.4f to %.4f; at code offsets 0, 16, 32, 48 bytes: %s); "
         "images %s\n",
-        o.scene.c_str(), trac0r::to_string(o.accel), trac0r::to_string(o.integrator), o.width,
-        o.height, o.pairs, 1e3 * trac0r_bench::median(seconds_a),
-        1e3 * trac0r_bench::median(seconds_b), trac0r_bench::median(ratios), quantile(ratios, 0.25),
-        quantile(ratios, 0.75), per_layout.c_str(), same ? "the same bit for bit" : "DIFFERENT");
+        o.scene.c_str(), trac0r::to_string(o.accel), trac0r::to_string(o.integrator),
+        trac0r::to_string(o.sampler), o.width, o.height, o.pairs,
+        1e3 * trac0r_bench::median(seconds_a), 1e3 * trac0r_bench::median(seconds_b),
+        trac0r_bench::median(ratios), quantile(ratios, 0.25), quantile(ratios, 0.75),
+        per_layout.c_str(), same ? "the same bit for bit" : "DIFFERENT");
     return 0;
 }
 
