@@ -41,7 +41,7 @@ TEST_CASE("an OpenCL device is present", "[opencl]") {
 TEST_CASE("the kernel builds as OpenCL C for every scene's feature mask, warning-free",
           "[opencl]") {
     const char* scenes[] = {"cornell.json", "cornell_diffuse.json", "furnace.json",
-                            "mesh_demo.json"};
+                            "mesh_demo.json", "smooth_demo.json"};
     for (const char* name : scenes) {
         CAPTURE(name);
         const Scene scene = load_test_scene(name, 8, 8);
@@ -195,6 +195,11 @@ TEST_CASE("OpenCL and CPU images agree with the sobol sampler", "[opencl][sample
     compare_backends("cornell_diffuse.json", Accel::bvh, SamplerKind::sobol);
 }
 
+TEST_CASE("OpenCL and CPU images of a smooth-shaded mesh agree", "[opencl][smooth]") {
+    compare_backends("smooth_demo.json", Accel::bvh);
+    compare_backends("smooth_demo.json", Accel::flat, SamplerKind::sobol);
+}
+
 TEST_CASE("furnace on the OpenCL backend", "[opencl][furnace]") {
     // scenes/furnace.json: diffuse walls of albedo rho = 0.5 that emit
     // Le = colour x emittance = 0.5.
@@ -343,7 +348,7 @@ __kernel void tile_hits(__global const TriangleRecord* triangles, __global const
                         __global const TrianglePacket* packets, CameraRecord camera, ulong seed,
                         uint frame, __global float4* bundled, __global float4* traversed,
                         __global float4* directions, __global int* counts) {
-    const SceneView scene = scene_view(triangles, 0, 0, nodes, packets, 0, 0u, 0u);
+    const SceneView scene = scene_view(triangles, 0, 0, nodes, packets, 0, 0, 0u, 0u);
     __local TileShared shared;
     const TileSample t = tile_sample(&scene, camera, seed, frame, &shared);
     if (t.inside) {

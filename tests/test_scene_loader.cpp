@@ -4,6 +4,8 @@
 #include <catch2/catch.hpp>
 
 #include "trac0r/input_checks.h"
+#include "trac0r/kernel/types.h"
+#include "trac0r/packed_scene.h"
 #include "trac0r/scene_loader.h"
 
 #include <dirent.h>
@@ -185,6 +187,22 @@ TEST_CASE("the other shipped scenes have their expected contents", "[scene_loade
         const Scene scene = load_scene_file(scenes_dir + "/mesh_demo.json");
         REQUIRE(scene.shapes.size() == 7);
         CHECK(scene.shapes.back().triangles.size() == 4);
+    }
+    SECTION("smooth_demo: one OBJ sphere flat, then smooth") {
+        const Scene scene = load_scene_file(scenes_dir + "/smooth_demo.json");
+        REQUIRE(scene.shapes.size() == 8);
+        const Shape& flat = scene.shapes[6];
+        const Shape& smooth = scene.shapes[7];
+        CHECK(flat.triangles.size() == 80);
+        CHECK(flat.normals.empty());
+        REQUIRE(smooth.normals.size() == 80);
+        // The sphere's normals point away from its centre.
+        const glm::vec3 centre = 0.5f * (smooth.aabb.min + smooth.aabb.max);
+        for (std::size_t i = 0; i < smooth.triangles.size(); ++i) {
+            const glm::vec3 out = glm::normalize(smooth.triangles[i].v0 - centre);
+            CHECK(glm::dot(smooth.normals[i][0], out) > 0.999f);
+        }
+        CHECK((pack_scene(scene).features & T0_FEATURE_SMOOTH) != 0u);
     }
 }
 
@@ -598,6 +616,21 @@ TEST_CASE("OBJ meshes: mistakes are named by file and line", "[scene_loader]") {
     CHECK_THAT(obj_error("v 1" + std::string(400, '0') + "e-400 0 0\n" + triangle + "f 2 3 4\n"),
                StartsWith(obj + ":1: ") && EndsWith("...'"));
     CHECK_THAT(obj_error("v 0 0 1e301\n" + triangle), EndsWith("within +-300), got '1e301'"));
+    // Vertex normals (vn), which faces may name after a second '/'.
+    CHECK_THAT(obj_error(triangle + "vn 0 0\nf 1//1 2//1 3//1\n"),
+               EndsWith(obj + ":4: expected a normal as 'vn x y z', got 2 values"));
+    CHECK_THAT(obj_error(triangle + "vn 0 x 1\nf 1//1 2//1 3//1\n"),
+               EndsWith(obj + ":4: expected a normal component as a decimal number, got 'x'"));
+    CHECK_THAT(obj_error(triangle + "vn 0 0 1e39\nf 1//1 2//1 3//1\n"),
+               EndsWith(obj + ":4: expected a normal component finite in "
+                              "float (below 3.4e38, an exponent within "
+                              "+-300), got '1e39'"));
+    CHECK_THAT(obj_error(triangle + "vn 0 0 1\nf 1//1 2//1 3//2\n"),
+               EndsWith(obj + ":5: face refers to normal 2, but the file has 1 normals"));
+    CHECK_THAT(obj_error(triangle + "f 1//-1 2//-1 3//-1\nvn 0 0 1\n"),
+               EndsWith(obj + ":4: face refers to normal -1 (counted back from the 0 normals "
+                              "before it), before the first"));
+
     // A face too large for tinyobjloader's triangulation (quadratic).
     std::string huge_face = "f";
     for (int k = 0; k < 10001; ++k) {
@@ -678,6 +711,52 @@ TEST_CASE("OBJ meshes: mistakes are named by file and line", "[scene_loader]") {
         const std::vector<Triangle> t = load_scene_file(scene).shapes[0].triangles;
         REQUIRE(t.size() == 1);
         CHECK((same_vec3(t[0].v0, v[0]) && same_vec3(t[0].v1, v[1]) && same_vec3(t[0].v2, v[2])));
+    }
+}
+
+TEST_CASE("OBJ meshes: vertex normals shade a face smooth", "[scene_loader][smooth]") {
+    TempDir dir;
+    const auto mesh_scene = [&](const std::string& keys) {
+        return dir.write("mesh.json", with_shape(R"({"type": "mesh", "file": "m.obj", )"
+                                                 R"("material": "white")" +
+                                                 keys + "}"));
+    };
+    const auto near = [](const glm::vec3& a, const glm::vec3& b) {
+        return glm::length(a - b) < 1e-6f;
+    };
+    // Two faces: the first without normals, the second with three.
+    dir.write("m.obj",
+              "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0 1 1\nvn +1 0 1\n"
+              "f 1 2 3\nf 1//1 2//2 3//3\n");
+    SECTION("unit normals by face, zero where a face has none") {
+        const Shape mesh = load_scene_file(mesh_scene("")).shapes[0];
+        REQUIRE(mesh.normals.size() == 2);
+        CHECK(mesh.normals[0][0] == glm::vec3(0.0f));
+        CHECK(near(mesh.normals[1][0], glm::vec3(0, 0, 1)));
+        CHECK(near(mesh.normals[1][1], glm::normalize(glm::vec3(0, 1, 1))));
+        CHECK(near(mesh.normals[1][2], glm::normalize(glm::vec3(1, 0, 1))));
+    }
+    SECTION("transformed by the inverse transpose; a mirror keeps them with their vertices") {
+        const Shape scaled = load_scene_file(mesh_scene(R"(, "scale": [2, 1, 1])")).shapes[0];
+        CHECK(near(scaled.normals[1][2], glm::normalize(glm::vec3(0.5f, 0.0f, 1.0f))));
+        const Shape mirrored = load_scene_file(mesh_scene(R"(, "scale": [-1, 1, 1])")).shapes[0];
+        // The mirror swaps v1 and v2 (the winding stays outward), and the
+        // normals with them.
+        CHECK(near(mirrored.triangles[1].v1, glm::vec3(0, 1, 0)));
+        CHECK(near(mirrored.normals[1][1], glm::normalize(glm::vec3(-1, 0, 1))));
+        CHECK(near(mirrored.normals[1][2], glm::normalize(glm::vec3(0, 1, 1))));
+    }
+    SECTION("\"smooth\": false, or no normals in the file: flat") {
+        CHECK(load_scene_file(mesh_scene(R"(, "smooth": false)")).shapes[0].normals.empty());
+        dir.write("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1 2 3\n");
+        CHECK(load_scene_file(mesh_scene("")).shapes[0].normals.empty());
+        // A zero normal, which some exporters write: that face is flat.
+        dir.write("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 0\nf 1//1 2//1 3//1\n");
+        CHECK(load_scene_file(mesh_scene("")).shapes[0].normals.empty());
+    }
+    SECTION("\"smooth\" must be true or false") {
+        REQUIRE_THROWS_WITH(load_scene_file(mesh_scene(R"(, "smooth": 1)")),
+                            Contains("/shapes/0/smooth: expected true or false"));
     }
 }
 

@@ -222,7 +222,7 @@ TEST_CASE("--verbose names each mesh: file, triangles, bounds, material", "[cli]
     // scenes/meshes/tetrahedron.obj, scaled and placed by mesh_demo.json.
     CHECK(r.output.find("mesh " + std::string(TRAC0R_SOURCE_DIR) +
                         "/scenes/meshes/tetrahedron.obj: 4 triangles, bounds (-0.271402, -0.09, "
-                        "-0.271402) to (0.271402, 0.31, 0.271402), material metal\n") !=
+                        "-0.271402) to (0.271402, 0.31, 0.271402), material metal, 0 smooth\n") !=
           std::string::npos);
     std::remove("cli_verbose.png");
 }

@@ -134,6 +134,16 @@ class ObjectReader {
     int optional_int(const std::string& key, int lowest, int highest, int fallback) const {
         return has(key) ? read_int(value_.at(key), at(key), lowest, highest) : fallback;
     }
+    bool optional_bool(const std::string& key, bool fallback) const {
+        if (!has(key)) {
+            return fallback;
+        }
+        const json& v = value_.at(key);
+        if (!v.is_boolean()) {
+            fail_expected(at(key), "true or false", v);
+        }
+        return v.get<bool>();
+    }
 
   private:
     const json& value_;

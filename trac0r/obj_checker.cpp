@@ -85,11 +85,8 @@ class ObjChecker {
             check_line(statement, line_end);
             line_number_ = last_line;
         }
-        if (largest_index_ > vertex_count_) {
-            fail_at(largest_index_line_, "face refers to vertex " + std::to_string(largest_index_) +
-                                             ", but the file has " + std::to_string(vertex_count_) +
-                                             " vertices");
-        }
+        check_referred(vertices_);
+        check_referred(normals_);
         return text;
     }
 
@@ -141,7 +138,11 @@ class ObjChecker {
                     // vertices stay (faces may refer to them), everything
                     // else is blanked, so that tinyobjloader cannot refuse
                     // or misread a line, point or curve the mesh never uses.
-                    if (!is_word(words_[0], "vt") && !is_word(words_[0], "vn")) {
+                    if (is_word(words_[0], "vn")) {
+                        normal_line_ = true;  // checked as a whole below
+                        continue;
+                    }
+                    if (!is_word(words_[0], "vt")) {
                         std::fill(begin, end, ' ');
                     }
                     return;
@@ -151,7 +152,10 @@ class ObjChecker {
         if (words_.empty()) {
             return;
         }
-        if (is_keyword(words_[0], 'v')) {
+        if (normal_line_) {
+            normal_line_ = false;
+            check_normal();
+        } else if (is_keyword(words_[0], 'v')) {
             check_vertex();
         } else {
             check_face();
@@ -210,6 +214,24 @@ class ObjChecker {
                     "expected a vertex as 'v x y z' (with an optional w, r g b, or both), got " +
                         std::to_string(values) + " values");
         }
+        check_numbers("a vertex coordinate");
+        ++vertices_.count;
+    }
+
+    // A vertex normal, 'vn x y z', each a decimal number finite in float.
+    void check_normal() {
+        const std::size_t values = words_.size() - 1;
+        if (values != 3) {
+            fail_at(line_number_,
+                    "expected a normal as 'vn x y z', got " + std::to_string(values) + " values");
+        }
+        check_numbers("a normal component");
+        ++normals_.count;
+    }
+
+    // Each word after the first a decimal number finite in float; `what`
+    // names one in the message.
+    void check_numbers(const std::string& what) {
         for (std::size_t k = 1; k < words_.size(); ++k) {
             Word& w = words_[k];
             // A leading '+', which some exporters write: a blank for
@@ -221,16 +243,15 @@ class ObjChecker {
             }
             if (!is_decimal_number(w.begin, w.end)) {
                 fail_at(line_of(w.begin),
-                        "expected a vertex coordinate as a decimal number, got '" + shown(w) + "'");
+                        "expected " + what + " as a decimal number, got '" + shown(w) + "'");
             }
             if (!finite_in_float(w)) {
-                fail_at(line_of(w.begin),
-                        "expected a vertex coordinate finite in float (below "
-                        "3.4e38, an exponent within +-300), got '" +
-                            shown(w) + "'");
+                fail_at(line_of(w.begin), "expected " + what +
+                                              " finite in float (below "
+                                              "3.4e38, an exponent within +-300), got '" +
+                                              shown(w) + "'");
             }
         }
-        ++vertex_count_;
     }
 
     // At least three vertex references v, v/vt, v//vn or v/vt/vn; v is an
@@ -245,17 +266,18 @@ class ObjChecker {
         for (std::size_t k = 1; k < words_.size(); ++k) {
             const Word& w = words_[k];
             // v, v/vt, v//vn or v/vt/vn: each index present a non-zero
-            // integer (vt and vn are not used, but tinyobjloader reads them).
+            // integer (vt is not used, but tinyobjloader reads it).
             const char* const slash1 = std::find(w.begin, w.end, '/');
             const char* const slash2 = slash1 == w.end ? w.end : std::find(slash1 + 1, w.end, '/');
             long index = 0;
+            long normal = 0;  // 0: none
             bool valid = parse_index(w.begin, slash1, &index);
             if (slash1 != w.end) {
                 long unused = 0;
                 const bool has_vt = slash2 > slash1 + 1;
                 valid = valid && (!has_vt || parse_index(slash1 + 1, slash2, &unused)) &&
                         (slash2 != w.end || has_vt) &&
-                        (slash2 == w.end || parse_index(slash2 + 1, w.end, &unused));
+                        (slash2 == w.end || parse_index(slash2 + 1, w.end, &normal));
             }
             if (!valid) {
                 fail_at(line_of(w.begin),
@@ -263,16 +285,42 @@ class ObjChecker {
                         "a non-zero integer, got '" +
                             shown(w) + "'");
             }
-            if (index < 0 && -index > vertex_count_) {
-                fail_at(line_of(w.begin), "face refers to vertex " + std::to_string(index) +
-                                              " (counted back from the " +
-                                              std::to_string(vertex_count_) +
-                                              " vertices before it), before the first");
-            }
-            if (index > largest_index_) {
-                largest_index_ = index;  // a vertex may come after: checked at the end
-                largest_index_line_ = line_of(w.begin);
-            }
+            refer(vertices_, index, w);
+            refer(normals_, normal, w);
+        }
+    }
+
+    // What faces refer to by index (from 1, or counted back from -1):
+    // vertices or normals, how many came so far, and the largest index a
+    // face named, with its line (one may come after: checked at the end).
+    struct Referred {
+        const char* one;   // "vertex"
+        const char* many;  // "vertices"
+        long count = 0;
+        long largest = 0;
+        long largest_line = 0;
+    };
+
+    // A face's reference `index` (0: none) to one of `r`, in word w.
+    void refer(Referred& r, long index, const Word& w) {
+        if (index < 0 && -index > r.count) {
+            fail_at(line_of(w.begin), std::string("face refers to ") + r.one + " " +
+                                          std::to_string(index) + " (counted back from the " +
+                                          std::to_string(r.count) + " " + r.many +
+                                          " before it), before the first");
+        }
+        if (index > r.largest) {
+            r.largest = index;
+            r.largest_line = line_of(w.begin);
+        }
+    }
+
+    // Every index a face named forward is one the file has.
+    void check_referred(const Referred& r) const {
+        if (r.largest > r.count) {
+            fail_at(r.largest_line, std::string("face refers to ") + r.one + " " +
+                                        std::to_string(r.largest) + ", but the file has " +
+                                        std::to_string(r.count) + " " + r.many);
         }
     }
 
@@ -301,9 +349,9 @@ class ObjChecker {
 
     std::string path_;
     long line_number_ = 0;
-    long vertex_count_ = 0;
-    long largest_index_ = 0;
-    long largest_index_line_ = 0;
+    Referred vertices_{"vertex", "vertices"};
+    Referred normals_{"normal", "normals"};
+    bool normal_line_ = false;  // the line being split is a 'vn' statement
     std::vector<Word> words_;
     std::vector<const char*> breaks_;  // the statement's continuations, in order
 };

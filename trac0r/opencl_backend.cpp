@@ -223,6 +223,7 @@ enum RenderFrameArg : cl_uint {
     arg_lights,       // __global const LightRecord*
     arg_light_count,  // uint
     arg_packets,      // __global const TrianglePacket*
+    arg_normals,      // __global const VertexNormals*
 };
 
 // Sets render_frame's argument `index` to `value`: a cl_mem for a buffer,
@@ -241,6 +242,7 @@ struct SceneBuffers {
     OpenClMem nodes;
     OpenClMem packets;
     OpenClMem lights;
+    OpenClMem normals;
 };
 
 SceneBuffers upload_scene(cl_context context, const PackedScene& scene) {
@@ -251,6 +253,7 @@ SceneBuffers upload_scene(cl_context context, const PackedScene& scene) {
     buffers.nodes = upload(context, scene.nodes);
     buffers.packets = upload(context, scene.packets);
     buffers.lights = upload(context, scene.lights);
+    buffers.normals = upload(context, scene.normals);
     return buffers;
 }
 
@@ -429,6 +432,7 @@ void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64
     set_arg(k, arg_lights, state_->scene.lights.get());
     set_arg(k, arg_light_count, state_->light_count);
     set_arg(k, arg_packets, state_->scene.packets.get());
+    set_arg(k, arg_normals, state_->scene.normals.get());
     std::size_t global = 0;
     const std::size_t* local = nullptr;  // the driver's choice
     if (state_->bvh) {

@@ -41,12 +41,13 @@ std::uint32_t material_feature(MaterialType type) {
 }
 
 const char* const feature_bit_names[T0_FEATURE_COUNT] = {
-    "emissive", "diffuse", "glass", "glossy", "emittance", "flat", "bvh", "nee", "sobol"};
+    "emissive", "diffuse", "glass", "glossy", "emittance", "flat", "bvh", "nee", "sobol", "smooth"};
 
 // What this build's kernel can do at all.
-const std::uint32_t implemented_features =
-    T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE | T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
-    T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT | T0_FEATURE_BVH | T0_FEATURE_NEE | T0_FEATURE_SOBOL;
+const std::uint32_t implemented_features = T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE |
+                                           T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
+                                           T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT | T0_FEATURE_BVH |
+                                           T0_FEATURE_NEE | T0_FEATURE_SOBOL | T0_FEATURE_SMOOTH;
 
 }  // namespace
 
@@ -61,6 +62,7 @@ kernel::SceneView PackedScene::view() const {
     v.shape_count = static_cast<std::uint32_t>(shapes.size());
     v.light_count = static_cast<std::uint32_t>(lights.size());
     v.features = features;
+    v.normals = normals.data();
     return v;
 }
 
@@ -70,6 +72,7 @@ struct UsableTriangle {
     const Triangle* triangle;
     unsigned material;
     unsigned shape;
+    const VertexNormalTriple* normals;  // nullptr: flat
 };
 
 // The thesis' structure: each shape's usable triangles in a run, one AABB.
@@ -170,6 +173,26 @@ void pack_lights(PackedScene& packed, const std::vector<std::uint32_t>& packed_i
     }
 }
 
+// The vertex normals of the packed triangles (packed_index maps a usable
+// triangle to its packed one), where any triangle has them.
+void pack_normals(const std::vector<UsableTriangle>& usable,
+                  const std::vector<std::uint32_t>& packed_index, PackedScene& packed) {
+    for (std::size_t u = 0; u < usable.size(); ++u) {
+        const VertexNormalTriple* n = usable[u].normals;
+        if (n == nullptr) {
+            continue;
+        }
+        if (packed.normals.empty()) {
+            packed.normals.assign(usable.size(), kernel::VertexNormals{});
+            packed.features |= T0_FEATURE_SMOOTH;
+        }
+        kernel::VertexNormals& record = packed.normals[packed_index[u]];
+        record.n0 = glm::vec4((*n)[0], 1.0f);
+        record.n1 = glm::vec4((*n)[1], 0.0f);
+        record.n2 = glm::vec4((*n)[2], 0.0f);
+    }
+}
+
 // The power of two the packer multiplies a scene's coordinates by. The
 // triangle test's distance has a numerator that grows as the cube of the
 // scene's size (kernel/triangle.h): a scene 1e13 across overflowed it and
@@ -214,7 +237,13 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
                 ++packed.dropped_degenerate_triangles;
                 continue;
             }
-            usable.push_back({&t, static_cast<unsigned>(shape.material), static_cast<unsigned>(s)});
+            const std::size_t index = static_cast<std::size_t>(&t - shape.triangles.data());
+            const VertexNormalTriple* normals =
+                index < shape.normals.size() && glm::length(shape.normals[index][0]) > 0.0f
+                    ? &shape.normals[index]
+                    : nullptr;
+            usable.push_back(
+                {&t, static_cast<unsigned>(shape.material), static_cast<unsigned>(s), normals});
             magnitudes.push_back(
                 std::max({kernel::max_abs3(t.v0), kernel::max_abs3(t.v1), kernel::max_abs3(t.v2)}));
         }
@@ -242,7 +271,7 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
                 ++packed.dropped_degenerate_triangles;
                 continue;
             }
-            kept.push_back({&scaled.back(), u.material, u.shape});
+            kept.push_back({&scaled.back(), u.material, u.shape, u.normals});
         }
         usable.swap(kept);
     }
@@ -284,6 +313,7 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
             packed.features |= T0_FEATURE_EMITTANCE;
         }
     }
+    pack_normals(usable, packed_index, packed);
     pack_lights(packed, packed_index);
     if (options.integrator == Integrator::nee && !packed.lights.empty()) {
         packed.features |= T0_FEATURE_NEE;

@@ -60,6 +60,9 @@ struct PackedScene {
     // Every emitting triangle with its power CDF (built for both
     // integrators; only NEE reads it).
     std::vector<kernel::LightRecord> lights;
+    // By packed triangle, its vertex normals (T0_FEATURE_SMOOTH); empty when
+    // no triangle has them.
+    std::vector<kernel::VertexNormals> normals;
     std::uint32_t features = 0;
     std::size_t dropped_degenerate_triangles = 0;  // zero-area or non-finite
     // The power of two every coordinate was multiplied by: 1 for a scene of
@@ -76,7 +79,8 @@ struct PackedScene {
 // Packs the scene: the acceleration structure (flat shapes with AABBs, or a
 // BVH), triangles (vertices, normal), materials, the light list, and the
 // feature mask (with T0_FEATURE_NEE for Integrator::nee when anything emits,
-// T0_FEATURE_SOBOL for SamplerKind::sobol).
+// T0_FEATURE_SOBOL for SamplerKind::sobol, T0_FEATURE_SMOOTH when a
+// triangle has vertex normals).
 // Degenerate triangles (zero area, non-finite vertices) can never be hit
 // and are left out.
 PackedScene pack_scene(const Scene& scene, const PackOptions& options = PackOptions());

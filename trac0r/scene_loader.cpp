@@ -38,6 +38,7 @@
 // | icosphere.subdivisions | integer | in [0, 7] (20 * 4^n triangles)          | 2               |
 // | mesh.file              | string  | required; OBJ path, relative to scene   |                 |
 // | mesh.scale             | [3]     | finite, non-zero (negative mirrors)     | [1, 1, 1]       |
+// | mesh.smooth            | boolean | shade with the file's vertex normals    | true            |
 //
 // Every number must be finite as a float (1e39 is rejected); "> 0" and
 // ">= 0" imply finite. Integers may be written 800 or 800.0 but not 800.5.
@@ -239,9 +240,10 @@ Shape read_mesh(const ObjectReader& o, const ShapeContext& context, const glm::v
         fail_expected(o.at("file"), expected, file);
     }
     const glm::vec3 scale = o.optional_vec3("scale", NumberRule::non_zero, glm::vec3(1.0f));
+    const bool smooth = o.optional_bool("smooth", true);
     try {
         const std::string path = resolve_path(context.base_dir, file.get<std::string>());
-        Shape mesh = load_obj_mesh(path, position, orientation, scale, material);
+        Shape mesh = load_obj_mesh(path, position, orientation, scale, material, smooth);
         mesh.source = path;
         return mesh;
     } catch (const std::runtime_error& e) {
@@ -258,7 +260,7 @@ const std::map<std::string, std::vector<std::string>>& shape_type_keys() {
         {"plane", {"size"}},
         {"box", {"size"}},
         {"icosphere", {"radius", "subdivisions"}},
-        {"mesh", {"file", "scale"}}};
+        {"mesh", {"file", "scale", "smooth"}}};
     return keys;
 }
 

@@ -26,10 +26,12 @@ glm::mat4 model_matrix(const glm::vec3& position, const glm::vec3& orientation,
     return glm::scale(m, scale);
 }
 
-Shape make_shape(std::vector<Triangle> local_triangles, const glm::mat4& model, int material) {
+Shape make_shape(std::vector<Triangle> local_triangles, const glm::mat4& model, int material,
+                 const std::vector<VertexNormalTriple>& local_normals) {
     // A mirroring transform turns the winding inside out; swap two vertices
     // so normals keep pointing out of closed shapes (glass needs that).
     const bool mirrored = glm::determinant(glm::mat3(model)) < 0.0f;
+    const glm::mat3 normal_matrix = glm::transpose(glm::inverse(glm::mat3(model)));
     Shape shape;
     shape.material = material;
     shape.triangles.reserve(local_triangles.size());
@@ -39,6 +41,24 @@ Shape make_shape(std::vector<Triangle> local_triangles, const glm::mat4& model, 
         const glm::vec3 c = glm::vec3(model * glm::vec4(t.v2, 1.0f));
         shape.triangles.push_back(mirrored ? Triangle(a, c, b) : Triangle(a, b, c));
         shape.aabb.extend(shape.triangles.back().bounds());
+    }
+    shape.normals.reserve(local_normals.size());
+    for (const VertexNormalTriple& n : local_normals) {
+        VertexNormalTriple world = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+        const VertexNormalTriple moved = {normal_matrix * n[0], normal_matrix * n[1],
+                                          normal_matrix * n[2]};
+        // Flat stays flat (zero); a normal the transform makes unusable
+        // (not finite, or of no length) makes the triangle flat.
+        bool usable = glm::length(n[0]) > 0.0f;
+        for (const glm::vec3& m : moved) {
+            const float length = glm::length(m);
+            usable = usable && is_finite(m) && length > 0.0f && std::isfinite(length);
+        }
+        if (usable) {
+            world = {glm::normalize(moved[0]), glm::normalize(moved[mirrored ? 2 : 1]),
+                     glm::normalize(moved[mirrored ? 1 : 2])};
+        }
+        shape.normals.push_back(world);
     }
     return shape;
 }
@@ -151,7 +171,8 @@ class TextBuffer : public std::streambuf {
 }  // namespace
 
 Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
-                    const glm::vec3& orientation, const glm::vec3& scale, int material) {
+                    const glm::vec3& orientation, const glm::vec3& scale, int material,
+                    bool smooth) {
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
@@ -166,12 +187,18 @@ Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
         throw std::runtime_error(path + ": cannot read OBJ mesh" + (err.empty() ? "" : ": " + err));
     }
     const std::size_t vertex_count = attrib.vertices.size() / 3;
+    const std::size_t normal_count = attrib.normals.size() / 3;
     std::vector<Triangle> local;
+    std::vector<VertexNormalTriple> normals;
+    bool any_smooth = false;
     for (const tinyobj::shape_t& s : shapes) {
         for (std::size_t i = 0; i + 2 < s.mesh.indices.size(); i += 3) {
             glm::vec3 p[3];
+            VertexNormalTriple n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+            bool has_normals = true;
             for (int k = 0; k < 3; ++k) {
-                const int index = s.mesh.indices[i + k].vertex_index;
+                const tinyobj::index_t& ref = s.mesh.indices[i + k];
+                const int index = ref.vertex_index;
                 if (index < 0 || static_cast<std::size_t>(index) >= vertex_count) {
                     throw std::runtime_error(path + ": face of shape '" + s.name +
                                              "' refers to vertex " + std::to_string(index + 1) +
@@ -180,14 +207,39 @@ Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
                 }
                 p[k] = glm::vec3(attrib.vertices[3 * index], attrib.vertices[3 * index + 1],
                                  attrib.vertices[3 * index + 2]);
+                const int normal = ref.normal_index;
+                if (normal >= 0 && static_cast<std::size_t>(normal) >= normal_count) {
+                    throw std::runtime_error(path + ": face of shape '" + s.name +
+                                             "' refers to normal " + std::to_string(normal + 1) +
+                                             ", but the file has " + std::to_string(normal_count) +
+                                             " normals (vn)");
+                }
+                if (normal < 0) {
+                    has_normals = false;
+                    continue;
+                }
+                n[k] = glm::vec3(attrib.normals[3 * normal], attrib.normals[3 * normal + 1],
+                                 attrib.normals[3 * normal + 2]);
+                // A zero normal (some exporters write "vn 0 0 0") shades flat.
+                if (!(glm::length(n[k]) > 0.0f)) {
+                    has_normals = false;
+                }
             }
             local.emplace_back(p[0], p[1], p[2]);
+            if (!has_normals || !smooth) {
+                n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+            }
+            any_smooth = any_smooth || (has_normals && smooth);
+            normals.push_back(n);
         }
     }
     if (local.empty()) {
         throw std::runtime_error(path + ": OBJ mesh has no triangles");
     }
-    return make_shape(local, model_matrix(position, orientation, scale), material);
+    if (!any_smooth) {
+        normals.clear();
+    }
+    return make_shape(local, model_matrix(position, orientation, scale), material, normals);
 }
 
 }  // namespace trac0r

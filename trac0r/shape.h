@@ -7,13 +7,21 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <string>
 #include <vector>
 
 namespace trac0r {
 
+// A triangle's unit normals at v0, v1, v2, for smooth shading; all zero
+// where it has none (it is shaded flat).
+using VertexNormalTriple = std::array<glm::vec3, 3>;
+
 struct Shape {
     std::vector<Triangle> triangles;
+    // Empty: every triangle is flat. Else one per triangle (a mesh whose
+    // file gives vertex normals, with "smooth" on).
+    std::vector<VertexNormalTriple> normals;
     AABB aabb;
     int material = 0;    // index into Scene::materials
     std::string source;  // a mesh's file, as the scene loader found it; "" for the rest
@@ -24,8 +32,11 @@ struct Shape {
 glm::mat4 model_matrix(const glm::vec3& position, const glm::vec3& orientation,
                        const glm::vec3& scale);
 
-// Applies the model matrix to every vertex and recomputes the AABB.
-Shape make_shape(std::vector<Triangle> local_triangles, const glm::mat4& model, int material);
+// Applies the model matrix to every vertex and recomputes the AABB; and to
+// the vertex normals, where given (one per triangle), by its inverse
+// transpose.
+Shape make_shape(std::vector<Triangle> local_triangles, const glm::mat4& model, int material,
+                 const std::vector<VertexNormalTriple>& local_normals = {});
 
 // The unit plane in local xz (normal +y), size (x, z).
 Shape make_plane(const glm::vec3& position, const glm::vec3& orientation, const glm::vec2& size,
@@ -36,10 +47,13 @@ Shape make_box(const glm::vec3& position, const glm::vec3& orientation, const gl
 // The unit icosahedron subdivided n times (20 * 4^n triangles), radius r.
 Shape make_icosphere(const glm::vec3& position, const glm::vec3& orientation, float radius,
                      int subdivisions, int material);
-// An OBJ mesh (all its shapes, faces triangulated). Throws
-// std::runtime_error naming the file when it cannot be read.
+// An OBJ mesh (all its shapes, faces triangulated). With `smooth`, a face
+// whose three vertices have normals (vn) is shaded with them; without, or
+// where a vertex has none, the face is flat. Throws std::runtime_error
+// naming the file when it cannot be read.
 Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
-                    const glm::vec3& orientation, const glm::vec3& scale, int material);
+                    const glm::vec3& orientation, const glm::vec3& scale, int material,
+                    bool smooth = true);
 
 }  // namespace trac0r
 

@@ -66,8 +66,8 @@ Rendering:
                          e.g. 0.01; with --spp or --seconds, whichever first
                          (window: pause there)
   --exposure X           multiply radiance by X before tone mapping (PNG, window)
-  --verbose              each mesh (triangles, bounds, material), backend,
-                         device, feature mask and what was left out
+  --verbose              each mesh (triangles, bounds, material, smooth ones),
+                         backend, device, feature mask and what was left out
 
 Output:
   --output FILE          save the result: .png (tone-mapped sRGB), .pfm or .exr

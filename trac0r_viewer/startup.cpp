@@ -102,11 +102,15 @@ void print_verbose(trac0r::Renderer& r, const Options& o) {
         // In the file's coordinates: the scene's are relative to its origin.
         const glm::dvec3 lo = glm::dvec3(s.aabb.min) + scene.origin;
         const glm::dvec3 hi = glm::dvec3(s.aabb.max) + scene.origin;
+        // How many of its triangles are shaded smooth (vertex normals).
+        const std::size_t smooth = static_cast<std::size_t>(std::count_if(
+            s.normals.begin(), s.normals.end(),
+            [](const trac0r::VertexNormalTriple& n) { return n[0] != glm::vec3(0.0f); }));
         std::fprintf(stderr,
                      "mesh %s: %zu triangles, bounds (%.6g, %.6g, %.6g) to (%.6g, %.6g, %.6g), "
-                     "material %s\n",
+                     "material %s, %zu smooth\n",
                      s.source.c_str(), s.triangles.size(), lo.x, lo.y, lo.z, hi.x, hi.y, hi.z,
-                     scene.materials[static_cast<std::size_t>(s.material)].name.c_str());
+                     scene.materials[static_cast<std::size_t>(s.material)].name.c_str(), smooth);
     }
     std::fprintf(stderr, "backend: %s (%s)\n", r.backend().name().c_str(),
                  r.backend().device().c_str());

@@ -53,11 +53,14 @@ T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const Tr
 // radiance it sends back along -incoming through the material, if nothing
 // is in between, weighted by MIS against the material's own sampling (whose
 // hits on emitters carry the complementary weight). facing_normal is the
-// side the light must be on; magnitude is hit_magnitude of position;
-// u_pick chooses the light and u the point on it.
+// shading normal the material is evaluated with, facing_geometric the
+// triangle's normal on the incoming side (the side the light must be on,
+// and the shadow ray leaves from); both the same for a flat triangle.
+// magnitude is hit_magnitude of position; u_pick chooses the light and u
+// the point on it.
 T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                              float3 incoming, float3 facing_normal, float3 position,
-                              float magnitude, float u_pick, float2 u) {
+                              float3 incoming, float3 facing_normal, float3 facing_geometric,
+                              float3 position, float magnitude, float u_pick, float2 u) {
     T0_GLOBAL const LightRecord* light = &scene->lights[pick_light(scene, u_pick)];
     T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->triangle.x];
     float b1 = 0.0f;
@@ -78,11 +81,14 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     if (!(cos_light > 0.0f) || !(e.pdf > 0.0f)) {
         return float3_splat(0.0f);  // edge-on, or outside the material's lobe
     }
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) && !(dot(direction, facing_geometric) > 0.0f)) {
+        return float3_splat(0.0f);  // in the shading normal's lobe, behind the triangle
+    }
     // The shadow ray runs between the two points, each moved off its surface
     // towards the other, so neither surface can block it.
     const float3 light_side = dot(direction, light_normal) < 0.0f ? light_normal : -light_normal;
     const float3 target = offset_ray_origin(point, light_side, hit_magnitude(tri, point));
-    const float3 origin = offset_ray_origin(position, facing_normal, magnitude);
+    const float3 origin = offset_ray_origin(position, facing_geometric, magnitude);
     const float3 shadow = target - origin;
     const float shadow_length = length(shadow);
     if (!(shadow_length > 0.0f)) {

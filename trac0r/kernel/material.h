@@ -114,12 +114,13 @@ T0_INLINE ScatterSample scatter_glossy(T0_GLOBAL const MaterialRecord* m, float3
 // Smooth dielectric. Reflection or refraction is chosen with the Fresnel
 // probability (u_choice < reflectance), so each has weight one; refraction
 // is tinted by the colour.
-// geometric_normal is the triangle's outward normal: it tells entering from
+// outward_normal is the triangle's outward normal (or its shading normal,
+// which is on the same side of the incoming ray): it tells entering from
 // leaving.
 T0_INLINE ScatterSample scatter_glass(T0_GLOBAL const MaterialRecord* m, float3 incoming,
-                                      float3 geometric_normal, float u_choice) {
-    const int entering = dot(incoming, geometric_normal) < 0.0f;
-    const float3 n = entering ? geometric_normal : -geometric_normal;
+                                      float3 outward_normal, float u_choice) {
+    const int entering = dot(incoming, outward_normal) < 0.0f;
+    const float3 n = entering ? outward_normal : -outward_normal;
     const float ior = m->params.z;
     const float eta = entering ? 1.0f / ior : ior;
     const float cos_i = fmin(fmax(-dot(incoming, n), 0.0f), 1.0f);
@@ -215,14 +216,14 @@ T0_INLINE MaterialEval eval_material(const SceneView* scene, T0_GLOBAL const Mat
 }
 
 T0_INLINE ScatterSample scatter_material(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                                         float3 incoming, float3 geometric_normal,
+                                         float3 incoming, float3 outward_normal,
                                          float3 facing_normal, float2 u) {
     const t0_u32 type = m->type.x;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_DIFFUSE) && type == T0_MATERIAL_DIFFUSE) {
         return scatter_diffuse(m, facing_normal, u);
     }
     if (T0_HAS_FEATURE(scene, T0_FEATURE_GLASS) && type == T0_MATERIAL_GLASS) {
-        return scatter_glass(m, incoming, geometric_normal, u.x);
+        return scatter_glass(m, incoming, outward_normal, u.x);
     }
     if (T0_HAS_FEATURE(scene, T0_FEATURE_GLOSSY) && type == T0_MATERIAL_GLOSSY) {
         return scatter_glossy(m, incoming, facing_normal, u);

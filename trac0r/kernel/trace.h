@@ -59,6 +59,39 @@ T0_INLINE int survives_roulette(float q, float3* throughput, float u) {
     return 1;
 }
 
+// The shading normal of a hit, on the same side of the triangle as its
+// geometric normal: with T0_FEATURE_SMOOTH, the triangle's vertex normals
+// interpolated at the hit's barycentrics, where it has them; else, or where
+// they cancel, the geometric normal itself. A hit whose incoming ray is
+// on one side of the triangle but on the other of the shading normal would
+// be shaded from behind: it is shaded flat. The geometric normal still
+// decides which side a ray is on and where it leaves from, so no ray
+// passes through a surface.
+T0_INLINE float3 shading_normal(const SceneView* scene, Hit hit, float3 incoming,
+                                float3 geometric_normal) {
+    if (!T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH)) {
+        return geometric_normal;
+    }
+    T0_GLOBAL const VertexNormals* vn = &scene->normals[hit.triangle];
+    if (!(vn->n0.w > 0.0f)) {
+        return geometric_normal;
+    }
+    const float3 n =
+        xyz(vn->n0) * (1.0f - hit.u - hit.v) + xyz(vn->n1) * hit.u + xyz(vn->n2) * hit.v;
+    const float length2 = dot(n, n);
+    if (!(length2 > 1e-12f)) {
+        return geometric_normal;
+    }
+    float3 unit = n / sqrt(length2);
+    if (dot(unit, geometric_normal) < 0.0f) {
+        unit = -unit;
+    }
+    if ((dot(incoming, unit) < 0.0f) != (dot(incoming, geometric_normal) < 0.0f)) {
+        return geometric_normal;
+    }
+    return unit;
+}
+
 // One path from the camera; returns its radiance estimate. With next-event
 // estimation (T0_FEATURE_NEE), each diffuse or rough glossy hit also samples
 // a light; emission that the next scattered ray finds is then weighted by
@@ -84,9 +117,15 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         T0_GLOBAL const TriangleRecord* tri = &scene->triangles[hit.triangle];
         T0_GLOBAL const MaterialRecord* m = &scene->materials[tri->ids.x];
         const float3 geometric_normal = xyz(tri->normal);
-        // Two-sided surfaces: the shading normal faces the incoming ray.
-        const float3 facing_normal =
-            dot(ray.direction, geometric_normal) < 0.0f ? geometric_normal : -geometric_normal;
+        // Two-sided surfaces: both normals turned to face the incoming ray.
+        const int front = dot(ray.direction, geometric_normal) < 0.0f;
+        const float3 facing_geometric = front ? geometric_normal : -geometric_normal;
+        float3 shading = geometric_normal;  // on the triangle's outer side
+        float3 facing_normal = facing_geometric;
+        if (T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH)) {
+            shading = shading_normal(scene, hit, ray.direction, geometric_normal);
+            facing_normal = front ? shading : -shading;
+        }
 
         // Emit.
         if (T0_HAS_FEATURE(scene, T0_FEATURE_EMITTANCE)) {
@@ -126,8 +165,9 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
             material_samples_lights(scene, m)) {
             const float u_pick = vertex_1d(sampler, draws.light_pick);
             const float2 u_point = vertex_2d(sampler, draws.light_point);
-            radiance += throughput * sample_light(scene, m, ray.direction, facing_normal, position,
-                                                  magnitude, u_pick, u_point);
+            radiance +=
+                throughput * sample_light(scene, m, ray.direction, facing_normal, facing_geometric,
+                                          position, magnitude, u_pick, u_point);
             lights_sampled = 1;
         }
 
@@ -141,8 +181,16 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
                              ? make_float2(vertex_1d(sampler, draws.material.x), 0.0f)
                              : vertex_2d(sampler, draws.material);
         const ScatterSample s =
-            scatter_material(scene, m, ray.direction, geometric_normal, facing_normal, u);
+            scatter_material(scene, m, ray.direction, shading, facing_normal, u);
         if (!(s.weight.x > 0.0f || s.weight.y > 0.0f || s.weight.z > 0.0f)) {
+            break;
+        }
+        // With a shading normal, a direction the material scattered to one
+        // side of it may lie on the other side of the triangle: absorbed,
+        // not let through (a reflection stays on the incoming side).
+        if (T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) &&
+            (dot(s.direction, facing_geometric) > 0.0f) !=
+                (dot(s.direction, facing_normal) > 0.0f)) {
             break;
         }
         throughput *= s.weight;

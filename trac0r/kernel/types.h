@@ -25,7 +25,8 @@
 #define T0_FEATURE_BVH (1u << 6)        // a BVH over all triangles
 #define T0_FEATURE_NEE (1u << 7)        // next-event estimation with MIS
 #define T0_FEATURE_SOBOL (1u << 8)      // Owen-scrambled Sobol samples (sampler.h)
-#define T0_FEATURE_COUNT 9
+#define T0_FEATURE_SMOOTH (1u << 9)     // vertex normals (VertexNormals) on some triangles
+#define T0_FEATURE_COUNT 10
 
 T0_NAMESPACE_BEGIN
 
@@ -96,6 +97,15 @@ typedef struct T0_ALIGN16 TrianglePacket {
     uint4 triangle;    // the index into the triangle records
 } TrianglePacket;
 
+// A triangle's normals at its vertices v0, v1, v2 (T0_FEATURE_SMOOTH), by
+// triangle index: interpolated, they are its shading normal. n0.w is 1
+// where the triangle has them, 0 where it is flat (all zero).
+typedef struct T0_ALIGN16 VertexNormals {
+    float4 n0;  // xyz: unit normal at v0, w: 1 if the triangle is smooth
+    float4 n1;  // xyz: unit normal at v1
+    float4 n2;  // xyz: unit normal at v2
+} VertexNormals;
+
 typedef struct T0_ALIGN16 MaterialRecord {
     float4 color;   // xyz: colour (albedo, or emitted colour), w: unused
     float4 params;  // x: emittance, y: roughness, z: ior, w: glossy_cone_sin2
@@ -134,6 +144,7 @@ typedef struct SceneView {
     t0_u32 shape_count;
     t0_u32 light_count;
     t0_u32 features;
+    T0_GLOBAL const VertexNormals* normals;  // by triangle; only with T0_FEATURE_SMOOTH
 } SceneView;
 
 // Per-frame settings of the render.
@@ -152,6 +163,7 @@ T0_STATIC_ASSERT_SIZE(MaterialRecord, 48);
 T0_STATIC_ASSERT_SIZE(BvhNode, 256);
 T0_STATIC_ASSERT_SIZE(TrianglePacket, 176);
 T0_STATIC_ASSERT_SIZE(LightRecord, 32);
+T0_STATIC_ASSERT_SIZE(VertexNormals, 48);
 T0_STATIC_ASSERT_SIZE(CameraRecord, 96);
 T0_STATIC_ASSERT_SIZE(AccumPixel, 48);
 T0_STATIC_ASSERT_SIZE(FrameRecord, 32);
