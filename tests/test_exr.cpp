@@ -1,7 +1,11 @@
 // --output x.exr (issue 32): linear float RGB that a third-party reader
 // (the OpenEXR library itself, not the tinyexr that writes it) reads back
 // as exactly the pixels of the PFM of the same render; written safely.
+#include "trac0r/cpu_backend.h"
+#include "trac0r/guides.h"
 #include "trac0r/image_io.h"
+#include "trac0r/renderer.h"
+#include "trac0r/scene_loader.h"
 #include "viewer_process.h"
 
 #include <catch2/catch.hpp>
@@ -11,8 +15,10 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,7 +51,105 @@ trac0r::Image read_exr_with_openexr(const std::string& path) {
     return image;
 }
 
+// One float channel of `path`, read by OpenEXR; empty when it has none.
+std::vector<float> read_exr_channel(const std::string& path, const char* name) {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
+    const int width = window.max.x - window.min.x + 1;
+    const int height = window.max.y - window.min.y + 1;
+    const Imf::Channel* channel = file.header().channels().findChannel(name);
+    if (channel == nullptr) {
+        return {};
+    }
+    CHECK(channel->type == Imf::FLOAT);
+    std::vector<float> values(static_cast<std::size_t>(width) * height);
+    char* base = reinterpret_cast<char*>(values.data()) -
+                 (window.min.x + static_cast<std::ptrdiff_t>(window.min.y) * width) *
+                     static_cast<std::ptrdiff_t>(sizeof(float));
+    Imf::FrameBuffer frame;
+    frame.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float),
+                                  sizeof(float) * static_cast<std::size_t>(width)));
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    return values;
+}
+
+bool same_floats(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
 }  // namespace
+
+TEST_CASE("--exr-layers: albedo, normal, depth and variance layers as OpenEXR reads them",
+          "[exr][guides]") {
+    const std::string scene_path = std::string(TRAC0R_SOURCE_DIR) + "/scenes/cornell.json";
+    const trac0r_test::ViewerRun r = trac0r_test::run_viewer_process(
+        scene_path +
+        " --headless --width 61 --height 45 --spp 3 --output exr_layers.exr --output "
+        "exr_layers.pfm --exr-layers albedo,normal,depth,variance");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    // The same render in this process: the guides and the variance exactly.
+    trac0r::Scene scene = trac0r::load_scene_file(scene_path);
+    scene.render.width = 61;
+    scene.render.height = 45;
+    trac0r::PackOptions pack;
+    pack.integrator = trac0r::Integrator::nee;
+    pack.sampler = trac0r::SamplerKind::sobol;
+    trac0r::Renderer renderer(scene, std::make_unique<trac0r::CpuBackend>(), 1, pack);
+    for (int i = 0; i < 3; ++i) {
+        renderer.render_frame();
+    }
+    const trac0r::GuideImages guides =
+        trac0r::render_guides(renderer.packed(), renderer.camera_record());
+    const auto component = [](const std::vector<glm::vec3>& v, int c) {
+        std::vector<float> out;
+        for (const glm::vec3& p : v) {
+            out.push_back(p[c]);
+        }
+        return out;
+    };
+    const char* const albedo[3] = {"albedo.R", "albedo.G", "albedo.B"};
+    const char* const normal[3] = {"normal.X", "normal.Y", "normal.Z"};
+    for (int c = 0; c < 3; ++c) {
+        CHECK(same_floats(read_exr_channel("exr_layers.exr", albedo[c]),
+                          component(guides.albedo, c)));
+        CHECK(same_floats(read_exr_channel("exr_layers.exr", normal[c]),
+                          component(guides.normal, c)));
+    }
+    CHECK(same_floats(read_exr_channel("exr_layers.exr", "Z"), guides.depth));
+    const std::vector<float> variance = read_exr_channel("exr_layers.exr", "variance.Y");
+    CHECK(same_floats(variance, trac0r::mean_variance(renderer.accumulator())));
+    // The image itself as without layers: the PFM's pixels; and layers
+    // that say something (the box's walls have albedo, the lamp none of
+    // the noise).
+    const trac0r::Image pfm = trac0r::read_pfm("exr_layers.pfm");
+    CHECK(std::memcmp(read_exr_with_openexr("exr_layers.exr").pixels.data(), pfm.pixels.data(),
+                      pfm.pixels.size() * sizeof(glm::vec3)) == 0);
+    const std::vector<float> red = component(guides.albedo, 0);
+    CHECK(*std::max_element(red.begin(), red.end()) > 0.3f);
+    CHECK(*std::max_element(variance.begin(), variance.end()) > 0.0f);
+    std::remove("exr_layers.exr");
+    std::remove("exr_layers.pfm");
+}
+
+TEST_CASE("--exr-layers: a bad list, no .exr output, or the window is one message", "[exr][cli]") {
+    const auto run = [](const std::string& args) { return trac0r_test::run_viewer_process(args); };
+    trac0r_test::ViewerRun r =
+        run("--headless --spp 1 --output exr_bad.exr --exr-layers albedo,colour");
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--exr-layers: expected a comma-separated list of albedo, normal, depth "
+                     "and variance, or all, got 'albedo,colour'") != std::string::npos);
+    r = run("--headless --spp 1 --output exr_bad.pfm --exr-layers all");
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--exr-layers: adds layers to .exr outputs; no --output is a .exr") !=
+          std::string::npos);
+    r = run("--output exr_bad.exr --exr-layers depth");
+    CHECK(r.exit_code == 2);
+    CHECK(r.err.find("--exr-layers: only with --headless") != std::string::npos);
+    CHECK(trac0r_test::read_text_file("exr_bad.exr").empty());
+    CHECK(trac0r_test::read_text_file("exr_bad.pfm").empty());
+}
 
 TEST_CASE("an EXR holds the PFM's pixels, bit for bit, as OpenEXR reads it", "[exr]") {
     const trac0r_test::ViewerRun r = trac0r_test::run_viewer_process(

@@ -145,38 +145,61 @@ Image read_pfm(const std::string& path) {
     return image;
 }
 
-void write_exr(const std::string& path, const Image& image) {
-    // One plane a channel, in the order OpenEXR sorts their names: B, G, R.
+void write_exr(const std::string& path, const Image& image, const std::vector<ExrChannel>& extra) {
     const std::size_t pixels = image.pixels.size();
-    std::vector<float> planes[3];
+    // R, G and B, then the extra channels; written in the order OpenEXR
+    // sorts their names (byte order: B, G, R, Z, albedo.B, ...).
+    std::vector<ExrChannel> rgb(3);
+    const char* const rgb_names[3] = {"R", "G", "B"};
     for (int c = 0; c < 3; ++c) {
-        planes[c].resize(pixels);
+        rgb[c].name = rgb_names[c];
+        rgb[c].values.resize(pixels);
         for (std::size_t i = 0; i < pixels; ++i) {
-            planes[c][i] = image.pixels[i][2 - c];
+            rgb[c].values[i] = image.pixels[i][c];
         }
     }
-    unsigned char* plane_pointers[3] = {reinterpret_cast<unsigned char*>(planes[0].data()),
-                                        reinterpret_cast<unsigned char*>(planes[1].data()),
-                                        reinterpret_cast<unsigned char*>(planes[2].data())};
+    std::vector<const ExrChannel*> order;
+    for (const ExrChannel& c : rgb) {
+        order.push_back(&c);
+    }
+    for (const ExrChannel& c : extra) {
+        if (c.values.size() != pixels || c.name.empty() || c.name.size() > 255) {
+            throw std::invalid_argument(path + ": EXR channel '" + c.name + "' has " +
+                                        std::to_string(c.values.size()) + " values for " +
+                                        std::to_string(pixels) + " pixels");
+        }
+        order.push_back(&c);
+    }
+    std::sort(order.begin(), order.end(),
+              [](const ExrChannel* a, const ExrChannel* b) { return a->name < b->name; });
+    for (std::size_t k = 1; k < order.size(); ++k) {
+        if (order[k]->name == order[k - 1]->name) {
+            throw std::invalid_argument(path + ": EXR channel '" + order[k]->name +
+                                        "' given twice");
+        }
+    }
+    const int count = static_cast<int>(order.size());
+    std::vector<unsigned char*> plane_pointers(order.size());
+    std::vector<EXRChannelInfo> channels(order.size());
+    std::vector<int> types(order.size(), TINYEXR_PIXELTYPE_FLOAT);
+    std::memset(channels.data(), 0, sizeof(EXRChannelInfo) * channels.size());
+    for (std::size_t k = 0; k < order.size(); ++k) {
+        plane_pointers[k] =
+            reinterpret_cast<unsigned char*>(const_cast<float*>(order[k]->values.data()));
+        std::memcpy(channels[k].name, order[k]->name.c_str(), order[k]->name.size() + 1);
+    }
     EXRImage exr;
     InitEXRImage(&exr);
-    exr.images = plane_pointers;
+    exr.images = plane_pointers.data();
     exr.width = image.width;
     exr.height = image.height;
-    exr.num_channels = 3;
+    exr.num_channels = count;
     EXRHeader header;
     InitEXRHeader(&header);
-    EXRChannelInfo channels[3];
-    std::memset(channels, 0, sizeof channels);
-    const char* names[3] = {"B", "G", "R"};
-    int types[3] = {TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT, TINYEXR_PIXELTYPE_FLOAT};
-    for (int c = 0; c < 3; ++c) {
-        std::strcpy(channels[c].name, names[c]);
-    }
-    header.num_channels = 3;
-    header.channels = channels;
-    header.pixel_types = types;
-    header.requested_pixel_types = types;  // stored as float, as computed
+    header.num_channels = count;
+    header.channels = channels.data();
+    header.pixel_types = types.data();
+    header.requested_pixel_types = types.data();  // stored as float, as computed
     header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
     unsigned char* memory = nullptr;
     const char* error = nullptr;
@@ -198,6 +221,8 @@ bool is_supported_image_path(const std::string& path) {
 }
 
 bool is_png_path(const std::string& path) { return ends_with(path, ".png"); }
+
+bool is_exr_path(const std::string& path) { return ends_with(path, ".exr"); }
 
 void write_image(const std::string& path, const Image& image, float exposure) {
     if (is_png_path(path)) {

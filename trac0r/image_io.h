@@ -38,6 +38,8 @@ Rgb8Image tonemap_image(const Image& image, float exposure);
 bool is_supported_image_path(const std::string& path);
 // Whether path names a PNG (ends in .png, in any case), as write_image reads it.
 bool is_png_path(const std::string& path);
+// Whether path names an EXR (ends in .exr, in any case).
+bool is_exr_path(const std::string& path);
 
 // .png (tone-mapped sRGB), .pfm or .exr (linear float), chosen by the
 // extension.
@@ -50,9 +52,19 @@ Rgb8Image read_png(const std::string& path);
 // PFM ("PF", little-endian scale -1), rows bottom first as the format says.
 void write_pfm(const std::string& path, const Image& image);
 Image read_pfm(const std::string& path);
+// A channel of an EXR file beside R, G and B: its name ("albedo.R", "Z")
+// and one value a pixel, row-major, row 0 at the top.
+struct ExrChannel {
+    std::string name;
+    std::vector<float> values;
+};
+
 // OpenEXR, scanlines with ZIP compression: channels R, G, B as 32-bit
-// float, the pixels exactly as the PFM of the same image holds them.
-void write_exr(const std::string& path, const Image& image);
+// float, the pixels exactly as the PFM of the same image holds them, and
+// the `extra` channels (32-bit float). Throws std::invalid_argument for an
+// extra channel of the wrong size or a name given twice.
+void write_exr(const std::string& path, const Image& image,
+               const std::vector<ExrChannel>& extra = {});
 
 }  // namespace trac0r
 

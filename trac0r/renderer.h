@@ -27,6 +27,9 @@ class Renderer {
              const PackOptions& pack_options = PackOptions());
 
     const Scene& scene() const { return scene_; }
+    // The kernel's camera of the current view (in the scene's coordinates:
+    // the backends scale it by packed().scale).
+    const kernel::CameraRecord& camera_record() const { return camera_record_; }
     const PackedScene& packed() const { return packed_; }
     Backend& backend() { return *backend_; }
     int width() const { return scene_.render.width; }

@@ -6,6 +6,7 @@
 
 #include "trac0r/camera.h"
 #include "trac0r/cpu_backend.h"
+#include "trac0r/guides.h"
 #include "trac0r/image_io.h"
 #include "trac0r/noise.h"
 #include "trac0r/renderer.h"

@@ -2,6 +2,8 @@
 
 #include "stop_rule.h"
 
+#include "trac0r/guides.h"
+#include "trac0r/image_io.h"
 #include "trac0r/noise.h"
 
 #include <signal.h>
@@ -186,9 +188,24 @@ std::string json_escape(const std::string& s) {
 
 }  // namespace
 
-void save_outputs(const trac0r::Image& image, const Options& options) {
+void save_outputs(const trac0r::Image& image, const Options& options,
+                  const trac0r::Renderer* renderer,
+                  const std::vector<trac0r::kernel::AccumPixel>* accumulator) {
+    // The --exr-layers, made once for every .exr output.
+    std::vector<trac0r::ExrChannel> layers;
+    if (options.exr_layers.any() && renderer != nullptr && accumulator != nullptr) {
+        trac0r::GuideImages guides;
+        if (options.exr_layers.albedo || options.exr_layers.normal || options.exr_layers.depth) {
+            guides = trac0r::render_guides(renderer->packed(), renderer->camera_record());
+        }
+        layers = trac0r::exr_layers(options.exr_layers, guides, *accumulator);
+    }
     for (const std::string& path : options.outputs) {
-        trac0r::write_image(path, image, options.exposure);
+        if (!layers.empty() && trac0r::is_exr_path(path)) {
+            trac0r::write_exr(path, image, layers);
+        } else {
+            trac0r::write_image(path, image, options.exposure);
+        }
         std::fprintf(stderr, "wrote %s\n", path.c_str());
     }
 }
@@ -338,7 +355,7 @@ int run_batch(trac0r::Renderer& renderer, const Options& options, Cluster& clust
                      "float's range: radiance samples above about 1e19); give --spp "
                      "or --seconds instead (the image so far is written)\n",
                      program_name());
-        save_outputs(image, options);
+        save_outputs(image, options, &renderer, &accumulator);
         return code;
     }
     if (signal_number != 0) {
@@ -346,7 +363,7 @@ int run_batch(trac0r::Renderer& renderer, const Options& options, Cluster& clust
                      "%s: interrupted by %s after %ld spp (%.2f s): writing the "
                      "image so far\n",
                      program_name(), signal_number == SIGINT ? "SIGINT" : "SIGTERM", spp, elapsed);
-        save_outputs(image, options);
+        save_outputs(image, options, &renderer, &accumulator);
         return code;
     }
     double dropped = 0.0;
@@ -377,7 +394,7 @@ int run_batch(trac0r::Renderer& renderer, const Options& options, Cluster& clust
                              : "");
         }
     }
-    save_outputs(image, options);
+    save_outputs(image, options, &renderer, &accumulator);
     return code;
 }
 
@@ -416,7 +433,7 @@ int run_benchmark(trac0r::Renderer& renderer, const Options& options,
          << json_escape(renderer.backend().device()) << "\"}";
     std::cout << json.str() << std::endl;
     if (!options.outputs.empty()) {
-        save_outputs(renderer.image(), options);
+        save_outputs(renderer.image(), options, &renderer, &renderer.accumulator());
     }
     return 0;
 }

@@ -73,6 +73,9 @@ Output:
   --output FILE          save the result: .png (tone-mapped sRGB), .pfm or .exr
                          (linear float); may be repeated (e.g. both a .png and
                          a .exr); in the window, saved when it closes
+  --exr-layers LIST      with --headless, add to each .exr output the layers a
+                         denoiser or compositor reads: albedo, normal, depth,
+                         variance (comma-separated), or all
   --headless             no window; with --output a batch render with a
                          progress bar on stderr (default --spp 64 when
                          neither --seconds nor --target-error is given)
@@ -134,6 +137,41 @@ std::string parse_choice(const std::string& flag, const std::string& text,
     return text;
 }
 
+// --exr-layers: a comma-separated list of albedo, normal, depth, variance,
+// or all.
+trac0r::ExrLayerChoice parse_exr_layers(const std::string& flag, const std::string& text) {
+    trac0r::ExrLayerChoice c;
+    std::size_t start = 0;
+    while (true) {
+        const std::size_t comma = text.find(',', start);
+        const std::string name =
+            text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        if (name == "albedo" || name == "all") {
+            c.albedo = true;
+        }
+        if (name == "normal" || name == "all") {
+            c.normal = true;
+        }
+        if (name == "depth" || name == "all") {
+            c.depth = true;
+        }
+        if (name == "variance" || name == "all") {
+            c.variance = true;
+        }
+        if (name != "albedo" && name != "normal" && name != "depth" && name != "variance" &&
+            name != "all") {
+            throw UsageError(flag +
+                             ": expected a comma-separated list of albedo, normal, depth and "
+                             "variance, or all, got '" +
+                             text + "'");
+        }
+        if (comma == std::string::npos) {
+            return c;
+        }
+        start = comma + 1;
+    }
+}
+
 }  // namespace
 
 Options parse_options(int argc, const char* const* argv) {
@@ -158,6 +196,7 @@ Options parse_options(int argc, const char* const* argv) {
         {"--sampler", [&](auto f, auto v) { o.sampler = parse_choice(f, v, "random|sobol"); }},
         {"--target-error", [&](auto f, auto v) { o.target_error = parse_positive(f, v); }},
         {"--exposure", [&](auto f, auto v) { o.exposure = (float)parse_positive(f, v); }},
+        {"--exr-layers", [&](auto f, auto v) { o.exr_layers = parse_exr_layers(f, v); }},
         {"--replay", [&](auto, auto v) { o.replay_path = v; }},
         {"--max-input-mb",
          [&](auto f, auto v) { o.max_input_mb = parse_integer(f, v, 1, 1L << 30); }},

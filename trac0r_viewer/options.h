@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "trac0r/guides.h"
 #include "trac0r/packed_scene.h"
 
 namespace trac0r_viewer {
@@ -31,8 +32,9 @@ struct Options {
     std::string sampler = "sobol";
     double target_error = 0.0;
     float exposure = 1.0f;
-    std::string replay_path;  // --replay: scripted window input (replay.h)
-    long max_input_mb = 0;    // --max-input-mb; 0: the library's limit (4000)
+    trac0r::ExrLayerChoice exr_layers;  // --exr-layers
+    std::string replay_path;            // --replay: scripted window input (replay.h)
+    long max_input_mb = 0;              // --max-input-mb; 0: the library's limit (4000)
     bool verbose = false;
     bool list_devices = false;
     bool help = false;

@@ -50,6 +50,15 @@ void check_options(const Options& o, bool writes_outputs) {
             "--exposure: scales the tone mapping of PNG outputs (and the window); no --output is "
             "a .png");
     }
+    if (o.exr_layers.any()) {
+        if (!o.headless) {
+            throw UsageError(
+                "--exr-layers: only with --headless (the window saves the image alone)");
+        }
+        if (std::none_of(o.outputs.begin(), o.outputs.end(), trac0r::is_exr_path)) {
+            throw UsageError("--exr-layers: adds layers to .exr outputs; no --output is a .exr");
+        }
+    }
     // Checked before rendering, not after.
     for (const std::string& f : o.outputs) {
         if (!trac0r::is_supported_image_path(f)) {

@@ -1,0 +1,144 @@
+// The guides beside an image (kernel/guides.h): the first surface's depth,
+// and the albedo and shading normal of the first surface that is not a
+// mirror or glass.
+#include "test_support.h"
+
+#include "trac0r/camera.h"
+#include "trac0r/guides.h"
+
+#include <glm/glm.hpp>
+
+#include <cmath>
+
+using namespace trac0r;
+
+namespace {
+
+const float half_pi = 1.5707963f;
+
+Material diffuse(const char* name, glm::vec3 colour) {
+    Material m;
+    m.name = name;
+    m.color = colour;
+    return m;
+}
+
+// A glossy material of colour (0.9, 0.8, 0.7); roughness 0 is a mirror.
+Material glossy_material(float roughness) {
+    Material m;
+    m.name = "glossy";
+    m.type = MaterialType::glossy;
+    m.color = glm::vec3(0.9f, 0.8f, 0.7f);
+    m.roughness = roughness;
+    return m;
+}
+
+// The camera at the origin looking along +z; a plane facing it at z = 2
+// (material 0) fills the view; behind the camera, at z = -3, a plane facing
+// +z (material 1).
+Scene facing_planes(const Material& front, const Material& behind) {
+    Scene scene;
+    scene.materials = {front, behind};
+    // A plane's normal is local +y: turned by -pi/2 about x it is -z.
+    scene.shapes.push_back(make_plane(glm::vec3(0.0f, 0.0f, 2.0f), glm::vec3(-half_pi, 0.0f, 0.0f),
+                                      glm::vec2(100.0f), 0));
+    scene.shapes.push_back(make_plane(glm::vec3(0.0f, 0.0f, -3.0f), glm::vec3(half_pi, 0.0f, 0.0f),
+                                      glm::vec2(100.0f), 1));
+    scene.camera.position = glm::vec3(0.0f);
+    scene.camera.direction = glm::vec3(0.0f, 0.0f, 1.0f);
+    scene.camera.vertical_fov = 60.0f;
+    scene.render.width = 16;
+    scene.render.height = 12;
+    return scene;
+}
+
+GuideImages guides_of(const Scene& scene) {
+    return render_guides(pack_scene(scene),
+                         make_camera_record(scene.camera, scene.render.width, scene.render.height));
+}
+
+bool near(const glm::vec3& a, const glm::vec3& b, float tolerance = 1e-5f) {
+    return glm::length(a - b) <= tolerance;
+}
+
+// Every pixel's guides are these.
+void require_every_pixel(const GuideImages& g, float depth, const glm::vec3& albedo,
+                         const glm::vec3& normal) {
+    REQUIRE(g.depth.size() == static_cast<std::size_t>(g.width) * g.height);
+    for (std::size_t i = 0; i < g.depth.size(); ++i) {
+        CAPTURE(i);
+        CHECK(std::fabs(g.depth[i] - depth) < 1e-5f);
+        CHECK(near(g.albedo[i], albedo));
+        CHECK(near(g.normal[i], normal));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("guides of a diffuse surface: its depth, albedo and normal", "[guides]") {
+    const glm::vec3 blue(0.2f, 0.4f, 0.6f);
+    const GuideImages g =
+        guides_of(facing_planes(diffuse("blue", blue), diffuse("green", glm::vec3(0, 1, 0))));
+    REQUIRE(g.width == 16);
+    REQUIRE(g.height == 12);
+    // Depth along the camera's axis: the plane's distance at every pixel.
+    require_every_pixel(g, 2.0f, blue, glm::vec3(0.0f, 0.0f, -1.0f));
+}
+
+TEST_CASE("guides go on through a mirror and glass to the surface they show", "[guides]") {
+    const glm::vec3 green(0.1f, 0.7f, 0.2f);
+    SECTION("a mirror: the first hit's depth, the wall behind the camera, tinted") {
+        const Material mirror = glossy_material(0.0f);
+        const GuideImages g = guides_of(facing_planes(mirror, diffuse("green", green)));
+        // The normal faces the reflected ray.
+        require_every_pixel(g, 2.0f, mirror.color * green, glm::vec3(0.0f, 0.0f, 1.0f));
+    }
+    SECTION("a rough glossy surface is a surface") {
+        const Material glossy = glossy_material(0.3f);
+        const GuideImages g = guides_of(facing_planes(glossy, diffuse("green", green)));
+        CHECK(near(g.albedo[0], glossy.color));
+    }
+    SECTION("glass: refracted through to what lies beyond") {
+        // A glass box 0.5 deep at z = 1 in front of the blue plane at z = 2:
+        // through it, the plane, tinted twice (in and out).
+        Scene scene =
+            facing_planes(diffuse("blue", glm::vec3(0.2f, 0.4f, 0.6f)), diffuse("green", green));
+        Material glass;
+        glass.name = "glass";
+        glass.type = MaterialType::glass;
+        glass.color = glm::vec3(0.9f, 0.95f, 1.0f);
+        scene.materials.push_back(glass);
+        scene.shapes.push_back(make_box(glm::vec3(0.0f, 0.0f, 1.25f), glm::vec3(0.0f),
+                                        glm::vec3(100.0f, 100.0f, 0.5f), 2));
+        const GuideImages g = guides_of(scene);
+        const std::size_t centre = 6 * 16 + 8;
+        CHECK(std::fabs(g.depth[centre] - 1.0f) < 1e-5f);
+        CHECK(near(g.albedo[centre], glass.color * glass.color * glm::vec3(0.2f, 0.4f, 0.6f)));
+        CHECK(near(g.normal[centre], glm::vec3(0.0f, 0.0f, -1.0f)));
+    }
+}
+
+TEST_CASE("guides where the ray meets nothing: infinite depth, zero albedo and normal",
+          "[guides]") {
+    Scene scene =
+        facing_planes(diffuse("blue", glm::vec3(0.5f)), diffuse("green", glm::vec3(1.0f)));
+    scene.shapes.pop_back();
+    scene.camera.direction = glm::vec3(0.0f, 0.0f, -1.0f);  // away from the one plane left
+    const GuideImages g = guides_of(scene);
+    for (std::size_t i = 0; i < g.depth.size(); ++i) {
+        CHECK(std::isinf(g.depth[i]));
+        CHECK(g.albedo[i] == glm::vec3(0.0f));
+        CHECK(g.normal[i] == glm::vec3(0.0f));
+    }
+}
+
+TEST_CASE("a pixel's variance layer is the variance of its mean", "[guides]") {
+    std::vector<kernel::AccumPixel> accumulator(3);
+    accumulator[0].moments = glm::vec4(0.5f, 2.0f, 5.0f, 0.0f);  // M2 2 over 5 samples
+    accumulator[1].moments = glm::vec4(0.5f, 0.0f, 1.0f, 0.0f);  // one sample: unknown
+    accumulator[2].moments = glm::vec4(0.0f, 0.0f, 0.0f, 0.0f);
+    const std::vector<float> v = mean_variance(accumulator);
+    CHECK(v[0] == Approx(2.0 / 4.0 / 5.0));
+    CHECK(std::isinf(v[1]));
+    CHECK(std::isinf(v[2]));
+}

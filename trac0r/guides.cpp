@@ -1,0 +1,77 @@
+#include "trac0r/guides.h"
+
+#include "trac0r/kernel/guides.h"
+
+#include <limits>
+#include <utility>
+
+namespace trac0r {
+
+GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord& camera) {
+    GuideImages g;
+    g.width = static_cast<int>(camera.size.x);
+    g.height = static_cast<int>(camera.size.y);
+    const std::size_t pixels = static_cast<std::size_t>(g.width) * g.height;
+    g.albedo.resize(pixels);
+    g.normal.resize(pixels);
+    g.depth.resize(pixels);
+    const kernel::SceneView view = packed.view();
+    const kernel::CameraRecord scaled = scaled_camera(camera, packed.scale);
+    const int height = g.height;
+    const int width = g.width;
+#pragma omp parallel for schedule(dynamic, 4)
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const kernel::GuidePixel p = kernel::pixel_guides(
+                &view, scaled, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y));
+            const std::size_t i = static_cast<std::size_t>(y) * width + x;
+            g.albedo[i] = glm::vec3(p.albedo);
+            g.normal[i] = glm::vec3(p.normal);
+            g.depth[i] = p.albedo.w >= T0_NO_HIT ? std::numeric_limits<float>::infinity()
+                                                 : p.albedo.w / packed.scale;
+        }
+    }
+    return g;
+}
+
+std::vector<float> mean_variance(const std::vector<kernel::AccumPixel>& accumulator) {
+    std::vector<float> v(accumulator.size());
+    for (std::size_t i = 0; i < accumulator.size(); ++i) {
+        const double n = accumulator[i].moments.z;
+        v[i] = n < 2.0 ? std::numeric_limits<float>::infinity()
+                       : static_cast<float>(accumulator[i].moments.y / (n - 1.0) / n);
+    }
+    return v;
+}
+
+std::vector<ExrChannel> exr_layers(const ExrLayerChoice& choice, const GuideImages& guides,
+                                   const std::vector<kernel::AccumPixel>& accumulator) {
+    std::vector<ExrChannel> out;
+    const auto add_vec3 = [&](const std::string& layer, const char* axes,
+                              const std::vector<glm::vec3>& values) {
+        for (int c = 0; c < 3; ++c) {
+            ExrChannel channel;
+            channel.name = layer + "." + axes[c];
+            channel.values.reserve(values.size());
+            for (const glm::vec3& v : values) {
+                channel.values.push_back(v[c]);
+            }
+            out.push_back(std::move(channel));
+        }
+    };
+    if (choice.albedo) {
+        add_vec3("albedo", "RGB", guides.albedo);
+    }
+    if (choice.normal) {
+        add_vec3("normal", "XYZ", guides.normal);
+    }
+    if (choice.depth) {
+        out.push_back({"Z", guides.depth});
+    }
+    if (choice.variance) {
+        out.push_back({"variance.Y", mean_variance(accumulator)});
+    }
+    return out;
+}
+
+}  // namespace trac0r

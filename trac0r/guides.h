@@ -1,0 +1,52 @@
+// What a denoiser or compositor wants beside the rendered image: per pixel,
+// the first surface's depth, the albedo and shading normal of the first
+// surface that is not a mirror or glass (kernel/guides.h), and the variance
+// of the pixel's mean. The EXR writer stores them as layers.
+#ifndef TRAC0R_GUIDES_H
+#define TRAC0R_GUIDES_H
+
+#include "trac0r/image_io.h"
+#include "trac0r/kernel/types.h"
+#include "trac0r/packed_scene.h"
+
+#include <glm/glm.hpp>
+
+#include <vector>
+
+namespace trac0r {
+
+struct GuideImages {
+    int width = 0;
+    int height = 0;
+    // Row-major, row 0 at the top, as Image.
+    std::vector<glm::vec3> albedo;  // zero where the ray meets nothing
+    std::vector<glm::vec3> normal;  // unit, in world space, facing the camera; zero: nothing
+    std::vector<float> depth;       // along the camera's forward axis; +inf: nothing
+};
+
+// One ray through each pixel's centre of `camera` (as the Renderer holds it:
+// in the scene's coordinates, before the packed scene's scale), on the CPU
+// whatever the backend: the same kernel code, compiled as C++.
+GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord& camera);
+
+// Per pixel, the variance of its mean luminance: M2 / (n - 1) / n over its
+// n accepted samples; +inf where n < 2 (unknown).
+std::vector<float> mean_variance(const std::vector<kernel::AccumPixel>& accumulator);
+
+// The layers of an EXR file that a denoiser or compositor reads, in
+// OpenEXR's usual names: "albedo.R/G/B", "normal.X/Y/Z", "Z" (depth),
+// "variance.Y" (mean_variance); each where asked for (variance needs the
+// accumulator, the others the guides).
+struct ExrLayerChoice {
+    bool albedo = false;
+    bool normal = false;
+    bool depth = false;
+    bool variance = false;
+    bool any() const { return albedo || normal || depth || variance; }
+};
+std::vector<ExrChannel> exr_layers(const ExrLayerChoice& choice, const GuideImages& guides,
+                                   const std::vector<kernel::AccumPixel>& accumulator);
+
+}  // namespace trac0r
+
+#endif
