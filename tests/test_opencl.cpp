@@ -40,8 +40,8 @@ TEST_CASE("an OpenCL device is present", "[opencl]") {
 
 TEST_CASE("the kernel builds as OpenCL C for every scene's feature mask, warning-free",
           "[opencl]") {
-    const char* scenes[] = {"cornell.json", "cornell_diffuse.json", "furnace.json",
-                            "mesh_demo.json", "smooth_demo.json"};
+    const char* scenes[] = {"cornell.json",   "cornell_diffuse.json", "furnace.json",
+                            "mesh_demo.json", "mtl_demo.json",        "smooth_demo.json"};
     for (const char* name : scenes) {
         CAPTURE(name);
         const Scene scene = load_test_scene(name, 8, 8);

@@ -66,6 +66,17 @@ std::string scene_error(const std::string& text) {
     return "";
 }
 
+// The message of the SceneError that loading the scene file `path` throws.
+std::string scene_file_error(const std::string& path) {
+    try {
+        load_scene_file(path);
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    FAIL("no SceneError for " << path);
+    return "";
+}
+
 const Material& material_named(const Scene& scene, const std::string& name) {
     for (const Material& m : scene.materials) {
         if (m.name == name) {
@@ -187,6 +198,21 @@ TEST_CASE("the other shipped scenes have their expected contents", "[scene_loade
         const Scene scene = load_scene_file(scenes_dir + "/mesh_demo.json");
         REQUIRE(scene.shapes.size() == 7);
         CHECK(scene.shapes.back().triangles.size() == 4);
+    }
+    SECTION("mtl_demo: the cube's faces in three shapes, by their MTL materials") {
+        const Scene scene = load_scene_file(scenes_dir + "/mtl_demo.json");
+        REQUIRE(scene.shapes.size() == 9);
+        const char* const names[3] = {"brick", "gold", "glow"};
+        const MaterialType types[3] = {MaterialType::diffuse, MaterialType::glossy,
+                                       MaterialType::emissive};
+        const std::size_t triangles[3] = {4, 6, 2};
+        for (std::size_t k = 0; k < 3; ++k) {
+            const Shape& part = scene.shapes[6 + k];
+            const Material& m = scene.materials[static_cast<std::size_t>(part.material)];
+            CHECK(m.name == names[k]);
+            CHECK(m.type == types[k]);
+            CHECK(part.triangles.size() == triangles[k]);
+        }
     }
     SECTION("smooth_demo: one OBJ sphere flat, then smooth") {
         const Scene scene = load_scene_file(scenes_dir + "/smooth_demo.json");
@@ -757,6 +783,99 @@ TEST_CASE("OBJ meshes: vertex normals shade a face smooth", "[scene_loader][smoo
     SECTION("\"smooth\" must be true or false") {
         REQUIRE_THROWS_WITH(load_scene_file(mesh_scene(R"(, "smooth": 1)")),
                             Contains("/shapes/0/smooth: expected true or false"));
+    }
+}
+
+TEST_CASE("OBJ meshes: materials from the MTL files, split by usemtl", "[scene_loader][mtl]") {
+    TempDir dir;
+    const auto mesh_scene = [&](const std::string& keys, const std::string& materials = "") {
+        return dir.write(
+            "mesh.json",
+            scene_json(white_material + materials,
+                       R"({"type": "mesh", "file": "m.obj", "material": "white")" + keys + "}"));
+    };
+    const std::string quad = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+    dir.write("m.mtl",
+              "# four materials\nnewmtl red\nKd 0.8 0.1 0.1\nillum 2\n"
+              "newmtl lamp\nKe 5 4 2\n"
+              "newmtl glass\nillum 7\nNi 1.45\nTf 0.9 0.9 1\n"
+              "newmtl chrome\nillum 3\nKs 0.9 0.9 0.9\nNs 1000\n");
+    dir.write("m.obj", "mtllib m.mtl\n" + quad +
+                           "f 1 2 3\nusemtl red\nf 1 3 4\nusemtl lamp\nf 1 2 4\n"
+                           "usemtl glass\nf 2 3 4\nusemtl chrome\nf 1 2 3\nusemtl red\nf 3 4 1\n");
+    SECTION("one shape a material, in the order first used; each MTL material mapped") {
+        const Scene scene = load_scene_file(mesh_scene(""));
+        REQUIRE(scene.shapes.size() == 5);
+        const auto material_of = [&](std::size_t shape) -> const Material& {
+            return scene.materials[static_cast<std::size_t>(scene.shapes[shape].material)];
+        };
+        CHECK(material_of(0).name == "white");  // the face before any usemtl
+        CHECK(scene.shapes[0].triangles.size() == 1);
+        const Material& red = material_of(1);
+        CHECK(red.name == "red");
+        CHECK(red.type == MaterialType::diffuse);
+        CHECK(red.color == glm::vec3(0.8f, 0.1f, 0.1f));
+        CHECK(scene.shapes[1].triangles.size() == 2);  // both of its faces
+        const Material& lamp = material_of(2);
+        CHECK(lamp.type == MaterialType::emissive);
+        CHECK(lamp.emittance == 5.0f);
+        CHECK(lamp.color == glm::vec3(1.0f, 0.8f, 0.4f));
+        const Material& glass = material_of(3);
+        CHECK(glass.type == MaterialType::glass);
+        CHECK(glass.ior == 1.45f);
+        CHECK(glass.color == glm::vec3(0.9f, 0.9f, 1.0f));
+        const Material& chrome = material_of(4);
+        CHECK(chrome.type == MaterialType::glossy);
+        CHECK(chrome.color == glm::vec3(0.9f));
+        CHECK(chrome.roughness == Approx(std::sqrt(2.0 / 1002.0) / 1.5707963).epsilon(1e-5));
+        CHECK(scene.materials.size() == 5);
+        for (const Shape& shape : scene.shapes) {
+            CHECK(shape.source == dir.path() + "/m.obj");
+        }
+    }
+    SECTION("a scene material of the same name takes the MTL one's place") {
+        const Scene scene = load_scene_file(mesh_scene(
+            "", R"(, "red": {"type": "glossy", "color": [0.5, 0.5, 0.5], "roughness": 0.1})"));
+        REQUIRE(scene.shapes.size() == 5);
+        const Material& red = scene.materials[static_cast<std::size_t>(scene.shapes[1].material)];
+        CHECK(red.type == MaterialType::glossy);
+        CHECK(red.roughness == 0.1f);
+    }
+    SECTION("\"mtl\": false: one shape, the scene's material") {
+        const Scene scene = load_scene_file(mesh_scene(R"(, "mtl": false)"));
+        REQUIRE(scene.shapes.size() == 1);
+        CHECK(scene.shapes[0].triangles.size() == 6);
+        CHECK(scene.materials.size() == 1);
+    }
+    SECTION("mistakes name the file, the line and the material") {
+        const std::string obj = dir.path() + "/m.obj";
+        const std::string mtl = dir.path() + "/m.mtl";
+        dir.write("m.obj", "mtllib missing.mtl\n" + quad + "f 1 2 3\n");
+        CHECK_THAT(scene_file_error(mesh_scene("")),
+                   Contains(obj + ":1: mtllib 'missing.mtl': " + dir.path() + "/missing.mtl"));
+        dir.write("m.obj", "mtllib m.mtl\n" + quad + "usemtl blue\nf 1 2 3\n");
+        CHECK_THAT(scene_file_error(mesh_scene("")),
+                   EndsWith(obj + ":6: usemtl 'blue': no material of that name in its mtllib "
+                                  "files (m.mtl)"));
+        // Without mtllib, usemtl names nothing to read: the scene's material.
+        dir.write("m.obj", quad + "usemtl red\nf 1 2 3\n");
+        const Scene plain = load_scene_file(mesh_scene(""));
+        REQUIRE(plain.shapes.size() == 1);
+        CHECK(plain.shapes[0].material == 0);
+        dir.write("m.obj", "mtllib m.mtl\n" + quad + "usemtl red\nf 1 2 3\n");
+        dir.write("m.mtl", "newmtl red\nKd 0.8 x 0.1\n");
+        CHECK_THAT(scene_file_error(mesh_scene("")),
+                   EndsWith(mtl + ":2: expected a Kd value as a decimal number, got 'x'"));
+        dir.write("m.mtl", "newmtl red\nKd 0.8 0.1\n");
+        CHECK_THAT(scene_file_error(mesh_scene("")),
+                   EndsWith(mtl + ":2: expected 'Kd r g b' (three numbers, or one for all "
+                                  "three), got 2 values"));
+        dir.write("m.mtl", "newmtl red\nKd 1.5 0 0\n");
+        CHECK_THAT(scene_file_error(mesh_scene("")),
+                   EndsWith(mtl + ": material 'red': Kd (1.5, 0, 0): expected each in [0, 1]"));
+        dir.write("m.obj", "mtllib m.mtl\n" + quad + "usemtl\nf 1 2 3\n");
+        CHECK_THAT(scene_file_error(mesh_scene("")),
+                   EndsWith(obj + ":6: expected 'usemtl NAME', one name without blanks"));
     }
 }
 

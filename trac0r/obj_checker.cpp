@@ -26,20 +26,25 @@ namespace {
 // and then hands it the same text. Lines end in \n, \r\n or \r.
 class ObjChecker {
   public:
-    explicit ObjChecker(const std::string& path) : path_(path) {}
+    // mtl: the file is an MTL material library (checked_mtl_text).
+    ObjChecker(const std::string& path, bool mtl) : path_(path), mtl_(mtl) {}
+
+    // The usemtl and mtllib statements of the text checked, in order.
+    const std::vector<ObjNameRef>& materials() const { return materials_; }
+    const std::vector<ObjNameRef>& libraries() const { return libraries_; }
 
     // The file's text, its comments and unused statements blanked out,
     // once every line is checked.
     std::string checked_text() {
         // Only a regular file within the input size limit (input_file.h).
-        std::string text = read_input_file(path_, "OBJ mesh");
+        std::string text = read_input_file(path_, mtl_ ? "MTL material library" : "OBJ mesh");
         // tinyobjloader would read such a file as no statements at all.
         const std::size_t nul = text.find('\0');
         if (nul != std::string::npos) {
             const long line = 1 + std::count(text.begin(), text.begin() + nul, '\n');
-            throw std::runtime_error(
-                path_ + ":" + std::to_string(line) +
-                ": a NUL byte: this is no OBJ text (a binary file, or UTF-16: save it as UTF-8)");
+            throw std::runtime_error(path_ + ":" + std::to_string(line) +
+                                     ": a NUL byte: this is no " + (mtl_ ? "MTL" : "OBJ") +
+                                     " text (a binary file, or UTF-16: save it as UTF-8)");
         }
         // A UTF-8 byte-order mark, which some Windows tools write first.
         if (text.compare(0, 3, "\xEF\xBB\xBF") == 0) {
@@ -132,14 +137,15 @@ class ObjChecker {
             }
             if (at > start) {
                 words_.push_back({start, at});
-                if (words_.size() == 1 && !is_keyword(words_[0], 'v') &&
+                if (words_.size() == 1 && !mtl_ && !is_keyword(words_[0], 'v') &&
                     !is_keyword(words_[0], 'f')) {
                     // A statement the mesh does not use: texture and normal
                     // vertices stay (faces may refer to them), everything
                     // else is blanked, so that tinyobjloader cannot refuse
                     // or misread a line, point or curve the mesh never uses.
-                    if (is_word(words_[0], "vn")) {
-                        normal_line_ = true;  // checked as a whole below
+                    if (is_word(words_[0], "vn") || is_word(words_[0], "usemtl") ||
+                        is_word(words_[0], "mtllib")) {
+                        whole_line_ = true;  // checked as a whole below
                         continue;
                     }
                     if (!is_word(words_[0], "vt")) {
@@ -152,9 +158,15 @@ class ObjChecker {
         if (words_.empty()) {
             return;
         }
-        if (normal_line_) {
-            normal_line_ = false;
-            check_normal();
+        if (mtl_) {
+            check_mtl_statement();
+        } else if (whole_line_) {
+            whole_line_ = false;
+            if (is_word(words_[0], "vn")) {
+                check_normal();
+            } else {
+                check_names();
+            }
         } else if (is_keyword(words_[0], 'v')) {
             check_vertex();
         } else {
@@ -227,6 +239,46 @@ class ObjChecker {
         }
         check_numbers("a normal component");
         ++normals_.count;
+    }
+
+    // usemtl NAME, or mtllib FILE...: each name recorded with its line.
+    void check_names() {
+        const bool library = is_word(words_[0], "mtllib");
+        if (words_.size() < 2 || (!library && words_.size() > 2)) {
+            fail_at(line_number_, library ? "expected 'mtllib FILE.mtl ...', got no file name"
+                                          : "expected 'usemtl NAME', one name without blanks");
+        }
+        for (std::size_t k = 1; k < words_.size(); ++k) {
+            (library ? libraries_ : materials_)
+                .push_back({words_[k].text(), line_of(words_[k].begin)});
+        }
+    }
+
+    // In an MTL file: the colours (Ka, Kd, Ks, Ke, Tf: one number, or r g
+    // b) and the numbers (Ns, Ni, d, Tr, illum) a material of the renderer
+    // is made from; other statements (newmtl, maps) are tinyobjloader's.
+    void check_mtl_statement() {
+        static const char* const colours[] = {"Ka", "Kd", "Ks", "Ke", "Tf"};
+        static const char* const numbers[] = {"Ns", "Ni", "d", "Tr", "illum"};
+        const Word& key = words_[0];
+        const auto is_one_of = [&](const char* const* list, std::size_t n) {
+            return std::any_of(list, list + n, [&](const char* w) { return is_word(key, w); });
+        };
+        const std::size_t values = words_.size() - 1;
+        if (is_one_of(colours, 5)) {
+            if (values != 1 && values != 3) {
+                fail_at(line_number_, "expected '" + key.text() +
+                                          " r g b' (three numbers, or one for all three), got " +
+                                          std::to_string(values) + " values");
+            }
+            check_numbers("a " + key.text() + " value");
+        } else if (is_one_of(numbers, 5)) {
+            if (values != 1) {
+                fail_at(line_number_, "expected '" + key.text() + " N', one number, got " +
+                                          std::to_string(values) + " values");
+            }
+            check_numbers("a " + key.text() + " value");
+        }
     }
 
     // Each word after the first a decimal number finite in float; `what`
@@ -351,13 +403,29 @@ class ObjChecker {
     long line_number_ = 0;
     Referred vertices_{"vertex", "vertices"};
     Referred normals_{"normal", "normals"};
-    bool normal_line_ = false;  // the line being split is a 'vn' statement
+    bool mtl_ = false;
+    bool whole_line_ = false;  // the line being split is a vn, usemtl or mtllib statement
+    std::vector<ObjNameRef> materials_;
+    std::vector<ObjNameRef> libraries_;
     std::vector<Word> words_;
     std::vector<const char*> breaks_;  // the statement's continuations, in order
 };
 
 }  // namespace
 
-std::string checked_obj_text(const std::string& path) { return ObjChecker(path).checked_text(); }
+std::string checked_obj_text(const std::string& path) { return check_obj(path).text; }
+
+CheckedObj check_obj(const std::string& path) {
+    ObjChecker checker(path, false);
+    CheckedObj out;
+    out.text = checker.checked_text();
+    out.materials = checker.materials();
+    out.libraries = checker.libraries();
+    return out;
+}
+
+std::string checked_mtl_text(const std::string& path) {
+    return ObjChecker(path, true).checked_text();
+}
 
 }  // namespace trac0r

@@ -5,6 +5,7 @@
 #define TRAC0R_OBJ_CHECKER_H
 
 #include <string>
+#include <vector>
 
 namespace trac0r {
 
@@ -14,6 +15,28 @@ namespace trac0r {
 // "path:line: ..." at the first mistake, or "path: cannot read OBJ mesh:
 // ..." when the file cannot be read.
 std::string checked_obj_text(const std::string& path);
+
+// A name an OBJ statement gives (a usemtl material, an mtllib file), and
+// the line it is on.
+struct ObjNameRef {
+    std::string name;
+    long line;
+};
+
+// checked_obj_text's text, and the names its usemtl and mtllib statements
+// give, in order (they stay in the text for tinyobjloader).
+struct CheckedObj {
+    std::string text;
+    std::vector<ObjNameRef> materials;  // usemtl
+    std::vector<ObjNameRef> libraries;  // mtllib
+};
+CheckedObj check_obj(const std::string& path);
+
+// The text of the MTL file `path` once its colours (Ka, Kd, Ks, Ke, Tf)
+// and numbers (Ns, Ni, d, Tr, illum) are checked: decimal numbers, finite
+// in float, as many as the statement takes. Throws std::runtime_error
+// "path:line: ..." at the first mistake.
+std::string checked_mtl_text(const std::string& path);
 
 }  // namespace trac0r
 

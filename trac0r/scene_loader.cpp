@@ -39,6 +39,7 @@
 // | mesh.file              | string  | required; OBJ path, relative to scene   |                 |
 // | mesh.scale             | [3]     | finite, non-zero (negative mirrors)     | [1, 1, 1]       |
 // | mesh.smooth            | boolean | shade with the file's vertex normals    | true            |
+// | mesh.mtl               | boolean | usemtl faces take the MTL's materials   | true            |
 //
 // Every number must be finite as a float (1e39 is rejected); "> 0" and
 // ">= 0" imply finite. Integers may be written 800 or 800.0 but not 800.5.
@@ -202,7 +203,53 @@ struct ShapeContext {
     std::map<std::string, int> material_index;
     std::vector<std::string> material_names;
     std::string base_dir;
+    // The scene's materials, and after them those that meshes' MTL files
+    // add (by name: a scene material of the same name takes their place).
+    std::vector<Material>* materials = nullptr;
 };
+
+// One of the renderer's materials for an MTL material (the table in
+// docs/scene-format.md, "Materials from MTL files"). Throws
+// std::runtime_error "file: material 'name': ..." for one it cannot map.
+Material material_from_mtl(const MtlMaterial& m) {
+    const std::string where = m.file + ": material '" + printable(m.name, 60) + "': ";
+    const auto peak = [](const glm::vec3& c) { return std::max({c.x, c.y, c.z}); };
+    const auto unit = [&](const char* key, const glm::vec3& c) {
+        if (!(std::min({c.x, c.y, c.z}) >= 0.0f) || !(peak(c) <= 1.0f)) {
+            char text[96];
+            std::snprintf(text, sizeof text, "%s (%g, %g, %g): expected each in [0, 1]", key, c.x,
+                          c.y, c.z);
+            throw std::runtime_error(where + text);
+        }
+        return c;
+    };
+    Material out;
+    out.name = m.name;
+    if (peak(m.emission) > 0.0f) {
+        if (!(std::min({m.emission.x, m.emission.y, m.emission.z}) >= 0.0f) ||
+            !(peak(m.emission) <= 1e30f)) {
+            throw std::runtime_error(where + "Ke: expected each in [0, 1e30]");
+        }
+        out.type = MaterialType::emissive;
+        out.emittance = peak(m.emission);
+        out.color = m.emission / out.emittance;
+    } else if (m.illum == 4 || m.illum == 6 || m.illum == 7 || m.illum == 9 || m.dissolve < 1.0f) {
+        out.type = MaterialType::glass;
+        out.color = peak(m.transmission) > 0.0f ? unit("Tf", m.transmission) : glm::vec3(1.0f);
+        out.ior = m.ior > 1.0f ? m.ior : 1.5f;
+    } else if (m.illum == 3 || m.illum == 5 || m.illum == 8) {
+        out.type = MaterialType::glossy;
+        out.color = peak(m.specular) > 0.0f ? unit("Ks", m.specular) : unit("Kd", m.diffuse);
+        // The Phong lobe of exponent Ns is about sqrt(2 / (Ns + 2)) radians
+        // wide; roughness 1 is a cone of pi/2.
+        const float width = std::sqrt(2.0f / (std::max(m.shininess, 0.0f) + 2.0f));
+        out.roughness = std::min(1.0f, width / 1.5707963f);
+    } else {
+        out.type = MaterialType::diffuse;
+        out.color = unit("Kd", m.diffuse);
+    }
+    return out;
+}
 
 int read_material_reference(const ObjectReader& o, const ShapeContext& context) {
     const json& value = o.required("material", "the name of a material");
@@ -232,8 +279,9 @@ std::string resolve_path(const std::string& base_dir, const std::string& file) {
     return base_dir.back() == '/' ? base_dir + file : base_dir + "/" + file;
 }
 
-Shape read_mesh(const ObjectReader& o, const ShapeContext& context, const glm::vec3& position,
-                const glm::vec3& orientation, int material) {
+std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
+                             const glm::vec3& position, const glm::vec3& orientation,
+                             int material) {
     const std::string expected = "the path of an OBJ file";
     const json& file = o.required("file", expected);
     if (!file.is_string() || file.get<std::string>().empty()) {
@@ -241,11 +289,34 @@ Shape read_mesh(const ObjectReader& o, const ShapeContext& context, const glm::v
     }
     const glm::vec3 scale = o.optional_vec3("scale", NumberRule::non_zero, glm::vec3(1.0f));
     const bool smooth = o.optional_bool("smooth", true);
+    const bool use_mtl = o.optional_bool("mtl", true);
     try {
         const std::string path = resolve_path(context.base_dir, file.get<std::string>());
-        Shape mesh = load_obj_mesh(path, position, orientation, scale, material, smooth);
-        mesh.source = path;
-        return mesh;
+        std::vector<Shape> shapes;
+        if (!use_mtl) {
+            shapes.push_back(load_obj_mesh(path, position, orientation, scale, material, smooth));
+        } else {
+            ObjMesh mesh = load_obj_parts(path, position, orientation, scale, material, smooth);
+            std::vector<Material>& materials = *context.materials;
+            for (ObjPart& part : mesh.parts) {
+                if (part.mtl >= 0) {
+                    const MtlMaterial& m = mesh.materials[static_cast<std::size_t>(part.mtl)];
+                    const std::size_t index = static_cast<std::size_t>(
+                        std::find_if(materials.begin(), materials.end(),
+                                     [&](const Material& x) { return x.name == m.name; }) -
+                        materials.begin());
+                    if (index == materials.size()) {
+                        materials.push_back(material_from_mtl(m));
+                    }
+                    part.shape.material = static_cast<int>(index);
+                }
+                shapes.push_back(std::move(part.shape));
+            }
+        }
+        for (Shape& shape : shapes) {
+            shape.source = path;
+        }
+        return shapes;
     } catch (const std::runtime_error& e) {
         // tinyobjloader's messages end in a newline; ours are one line.
         std::string message = e.what();
@@ -260,11 +331,12 @@ const std::map<std::string, std::vector<std::string>>& shape_type_keys() {
         {"plane", {"size"}},
         {"box", {"size"}},
         {"icosphere", {"radius", "subdivisions"}},
-        {"mesh", {"file", "scale", "smooth"}}};
+        {"mesh", {"file", "scale", "smooth", "mtl"}}};
     return keys;
 }
 
-Shape read_shape(const json& value, const Location& at, const ShapeContext& context) {
+// A shape of the file: one Shape, or a mesh's parts by material.
+std::vector<Shape> read_shape(const json& value, const Location& at, const ShapeContext& context) {
     const ObjectReader o(value, at, "a shape object");
     const std::vector<std::string> types = {"plane", "box", "icosphere", "mesh"};
     const std::string type =
@@ -283,16 +355,16 @@ Shape read_shape(const json& value, const Location& at, const ShapeContext& cont
     if (type == "plane") {
         const glm::vec2 size = read_vec2(o.required("size", expectation(NumberRule::positive, 2)),
                                          o.at("size"), NumberRule::positive);
-        return make_plane(position, orientation, size, material);
+        return {make_plane(position, orientation, size, material)};
     }
     if (type == "box") {
-        return make_box(position, orientation, o.required_vec3("size", NumberRule::positive),
-                        material);
+        return {make_box(position, orientation, o.required_vec3("size", NumberRule::positive),
+                         material)};
     }
     if (type == "icosphere") {
         const float radius = o.required_float("radius", NumberRule::positive);
         const int subdivisions = o.optional_int("subdivisions", 0, 7, 2);
-        return make_icosphere(position, orientation, radius, subdivisions, material);
+        return {make_icosphere(position, orientation, radius, subdivisions, material)};
     }
     return read_mesh(o, context, position, orientation, material);
 }
@@ -303,13 +375,20 @@ std::vector<Shape> read_shapes(const json& value, const Location& at, const Shap
     }
     std::vector<Shape> shapes;
     for (std::size_t i = 0; i < value.size(); ++i) {
-        shapes.push_back(read_shape(value[i], at.index(i), context));
+        std::vector<Shape> parts = read_shape(value[i], at.index(i), context);
         // Each number was in range, but the triangles are made in float: a
         // shape of size 1e-20, or at 3e38, would silently vanish.
-        const std::vector<Triangle>& triangles = shapes.back().triangles;
-        if (std::none_of(triangles.begin(), triangles.end(), usable_triangle)) {
+        std::size_t count = 0;
+        bool any_usable = false;
+        for (Shape& part : parts) {
+            count += part.triangles.size();
+            any_usable = any_usable ||
+                         std::any_of(part.triangles.begin(), part.triangles.end(), usable_triangle);
+            shapes.push_back(std::move(part));
+        }
+        if (!any_usable) {
             fail(at.index(i), "no triangle of the shape can be rendered (of " +
-                                  std::to_string(triangles.size()) +
+                                  std::to_string(count) +
                                   ", each has in float arithmetic an area of zero or below "
                                   "float's smallest normal, or a vertex that is not finite: "
                                   "degenerate faces, or a size, scale or position too small or "
@@ -336,6 +415,7 @@ Scene read_scene(const json& document, const Location& at, const std::string& ba
     ShapeContext context;
     context.origin = scene.origin;
     context.base_dir = base_dir;
+    context.materials = &scene.materials;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         context.material_index[scene.materials[i].name] = static_cast<int>(i);
         context.material_names.push_back(scene.materials[i].name);

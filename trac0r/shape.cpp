@@ -170,27 +170,107 @@ class TextBuffer : public std::streambuf {
 
 }  // namespace
 
-Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
-                    const glm::vec3& orientation, const glm::vec3& scale, int material,
-                    bool smooth) {
+namespace {
+
+// tinyobjloader's reader of the mtllib files: each one's text checked
+// (checked_mtl_text) first, relative to the OBJ's directory; which file
+// each material came from is kept.
+class CheckedMtlReader : public tinyobj::MaterialReader {
+  public:
+    CheckedMtlReader(const std::string& obj_path, const std::vector<ObjNameRef>& libraries)
+        : obj_path_(obj_path), libraries_(libraries) {
+        const std::size_t slash = obj_path.find_last_of('/');
+        dir_ = slash == std::string::npos ? "" : obj_path.substr(0, slash + 1);
+    }
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* map, std::string* warn, std::string* err) override {
+        const std::string file = !name.empty() && name[0] == '/' ? name : dir_ + name;
+        std::string text;
+        try {
+            text = checked_mtl_text(file);
+        } catch (const std::runtime_error& e) {
+            // Named by the OBJ's mtllib line as well.
+            long line = 0;
+            for (const ObjNameRef& r : libraries_) {
+                if (r.name == name) {
+                    line = r.line;
+                    break;
+                }
+            }
+            throw std::runtime_error(obj_path_ + ":" + std::to_string(line) + ": mtllib '" + name +
+                                     "': " + e.what());
+        }
+        TextBuffer buffer(text);
+        std::istream stream(&buffer);
+        tinyobj::LoadMtl(map, materials, &stream, warn, err);
+        files.resize(materials->size(), file);
+        return true;
+    }
+    std::vector<std::string> files;  // per material: its file
+
+  private:
+    std::string obj_path_;
+    std::string dir_;
+    const std::vector<ObjNameRef>& libraries_;
+};
+
+MtlMaterial mtl_material(const tinyobj::material_t& m, const std::string& file) {
+    MtlMaterial out;
+    out.name = m.name;
+    out.file = file;
+    out.diffuse = glm::vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
+    out.specular = glm::vec3(m.specular[0], m.specular[1], m.specular[2]);
+    out.emission = glm::vec3(m.emission[0], m.emission[1], m.emission[2]);
+    out.transmission = glm::vec3(m.transmittance[0], m.transmittance[1], m.transmittance[2]);
+    out.shininess = m.shininess;
+    out.ior = m.ior;
+    out.dissolve = m.dissolve;
+    out.illum = m.illum;
+    return out;
+}
+
+ObjMesh load_obj(const std::string& path, const glm::vec3& position, const glm::vec3& orientation,
+                 const glm::vec3& scale, int material, bool smooth, bool read_mtl) {
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
     std::string warn;
     std::string err;
-    std::string checked = checked_obj_text(path);
-    TextBuffer buffer(checked);
+    CheckedObj checked = check_obj(path);
+    TextBuffer buffer(checked.text);
     std::istream text(&buffer);
-    // Materials of the OBJ are ignored (the scene file assigns one), so no
-    // .mtl is read; triangulate polygons.
-    if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &text, nullptr, true)) {
+    CheckedMtlReader reader(path, checked.libraries);
+    // Triangulate polygons; the materials from the mtllib files, where
+    // asked for.
+    if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &text,
+                          read_mtl ? &reader : nullptr, true)) {
         throw std::runtime_error(path + ": cannot read OBJ mesh" + (err.empty() ? "" : ": " + err));
+    }
+    // An OBJ without mtllib names materials it does not have: its usemtl
+    // are ignored, and every face takes `material`.
+    read_mtl = read_mtl && !checked.libraries.empty();
+    if (read_mtl) {
+        for (const ObjNameRef& used : checked.materials) {
+            if (std::none_of(materials.begin(), materials.end(),
+                             [&](const tinyobj::material_t& m) { return m.name == used.name; })) {
+                std::string files;
+                for (const ObjNameRef& lib : checked.libraries) {
+                    files += (files.empty() ? "" : ", ") + lib.name;
+                }
+                throw std::runtime_error(path + ":" + std::to_string(used.line) + ": usemtl '" +
+                                         used.name + "': no material of that name in its mtllib " +
+                                         "files (" + files + ")");
+            }
+        }
     }
     const std::size_t vertex_count = attrib.vertices.size() / 3;
     const std::size_t normal_count = attrib.normals.size() / 3;
-    std::vector<Triangle> local;
-    std::vector<VertexNormalTriple> normals;
-    bool any_smooth = false;
+    // Per part (by material id, -1 first seen where it is): its triangles
+    // and normals.
+    std::vector<int> part_material;
+    std::vector<std::vector<Triangle>> local;
+    std::vector<std::vector<VertexNormalTriple>> normals;
+    std::vector<bool> any_smooth;
     for (const tinyobj::shape_t& s : shapes) {
         for (std::size_t i = 0; i + 2 < s.mesh.indices.size(); i += 3) {
             glm::vec3 p[3];
@@ -225,21 +305,61 @@ Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
                     has_normals = false;
                 }
             }
-            local.emplace_back(p[0], p[1], p[2]);
+            const std::size_t face = i / 3;
+            const int id =
+                read_mtl && face < s.mesh.material_ids.size() ? s.mesh.material_ids[face] : -1;
+            std::size_t part = static_cast<std::size_t>(
+                std::find(part_material.begin(), part_material.end(), id) - part_material.begin());
+            if (part == part_material.size()) {
+                part_material.push_back(id);
+                local.emplace_back();
+                normals.emplace_back();
+                any_smooth.push_back(false);
+            }
+            local[part].emplace_back(p[0], p[1], p[2]);
             if (!has_normals || !smooth) {
                 n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
             }
-            any_smooth = any_smooth || (has_normals && smooth);
-            normals.push_back(n);
+            any_smooth[part] = any_smooth[part] || (has_normals && smooth);
+            normals[part].push_back(n);
         }
     }
     if (local.empty()) {
         throw std::runtime_error(path + ": OBJ mesh has no triangles");
     }
-    if (!any_smooth) {
-        normals.clear();
+    ObjMesh mesh;
+    const glm::mat4 model = model_matrix(position, orientation, scale);
+    for (std::size_t part = 0; part < local.size(); ++part) {
+        if (!any_smooth[part]) {
+            normals[part].clear();
+        }
+        ObjPart p;
+        p.shape = make_shape(local[part], model, material, normals[part]);
+        const int id = part_material[part];
+        if (id >= 0) {
+            p.mtl = static_cast<int>(mesh.materials.size());
+            mesh.materials.push_back(mtl_material(materials[static_cast<std::size_t>(id)],
+                                                  static_cast<std::size_t>(id) < reader.files.size()
+                                                      ? reader.files[static_cast<std::size_t>(id)]
+                                                      : ""));
+        }
+        mesh.parts.push_back(std::move(p));
     }
-    return make_shape(local, model_matrix(position, orientation, scale), material, normals);
+    return mesh;
+}
+
+}  // namespace
+
+ObjMesh load_obj_parts(const std::string& path, const glm::vec3& position,
+                       const glm::vec3& orientation, const glm::vec3& scale, int material,
+                       bool smooth) {
+    return load_obj(path, position, orientation, scale, material, smooth, true);
+}
+
+Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
+                    const glm::vec3& orientation, const glm::vec3& scale, int material,
+                    bool smooth) {
+    return load_obj(path, position, orientation, scale, material, smooth, false).parts[0].shape;
 }
 
 }  // namespace trac0r

@@ -47,6 +47,42 @@ Shape make_box(const glm::vec3& position, const glm::vec3& orientation, const gl
 // The unit icosahedron subdivided n times (20 * 4^n triangles), radius r.
 Shape make_icosphere(const glm::vec3& position, const glm::vec3& orientation, float radius,
                      int subdivisions, int material);
+// A material of an OBJ's MTL library as the file gives it; the scene
+// loader maps it to one of the renderer's four (scene_loader.cpp).
+struct MtlMaterial {
+    std::string name;
+    std::string file;              // the .mtl it came from
+    glm::vec3 diffuse{0.0f};       // Kd
+    glm::vec3 specular{0.0f};      // Ks
+    glm::vec3 emission{0.0f};      // Ke
+    glm::vec3 transmission{0.0f};  // Tf
+    float shininess = 0.0f;        // Ns
+    float ior = 1.0f;              // Ni
+    float dissolve = 1.0f;         // d (or 1 - Tr); 1 is opaque
+    int illum = 0;                 // the illumination model
+};
+
+// The faces of an OBJ mesh that share a material, as a Shape.
+struct ObjPart {
+    Shape shape;
+    int mtl = -1;  // index into ObjMesh::materials; -1: faces with no usemtl
+};
+
+struct ObjMesh {
+    std::vector<ObjPart> parts;          // in the order their materials are first used
+    std::vector<MtlMaterial> materials;  // the MTL materials the faces use
+};
+
+// An OBJ mesh split by its faces' materials (usemtl), each material read
+// from the mtllib files (relative to the OBJ's directory), checked as
+// checked_mtl_text says; each part's shape has material `material`, which
+// the caller replaces for the parts with an MTL material. Smooth as
+// load_obj_mesh. Throws std::runtime_error "path:line: ..." for a library
+// that cannot be read and a usemtl that names no material of them.
+ObjMesh load_obj_parts(const std::string& path, const glm::vec3& position,
+                       const glm::vec3& orientation, const glm::vec3& scale, int material,
+                       bool smooth);
+
 // An OBJ mesh (all its shapes, faces triangulated). With `smooth`, a face
 // whose three vertices have normals (vn) is shaded with them; without, or
 // where a vertex has none, the face is flat. Throws std::runtime_error
