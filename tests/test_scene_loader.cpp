@@ -13,7 +13,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -356,8 +358,10 @@ TEST_CASE("scene errors: a value of the wrong JSON type", "[scene_loader]") {
                StartsWith("test.json: /shapes: expected a non-empty array of shapes, got []"));
     CHECK_THAT(scene_error(with_extra(R"("camera": [0, 0, 1])")),
                StartsWith("test.json: /camera: expected a camera object"));
-    CHECK_THAT(scene_error(with_shape(R"({"type": "mesh", "file": 7, "material": "white"})")),
-               StartsWith("test.json: /shapes/0/file: expected the path of an OBJ file, got 7"));
+    CHECK_THAT(
+        scene_error(with_shape(R"({"type": "mesh", "file": 7, "material": "white"})")),
+        StartsWith("test.json: /shapes/0/file: expected the path of a mesh file (.obj, .ply, "
+                   ".gltf or .glb), got 7"));
 }
 
 TEST_CASE("scene errors: a deeply nested or huge value is described in short", "[scene_loader]") {
@@ -841,8 +845,8 @@ TEST_CASE("OBJ meshes: materials from the MTL files, split by usemtl", "[scene_l
         CHECK(red.type == MaterialType::glossy);
         CHECK(red.roughness == 0.1f);
     }
-    SECTION("\"mtl\": false: one shape, the scene's material") {
-        const Scene scene = load_scene_file(mesh_scene(R"(, "mtl": false)"));
+    SECTION("\"file_materials\": false: one shape, the scene's material") {
+        const Scene scene = load_scene_file(mesh_scene(R"(, "file_materials": false)"));
         REQUIRE(scene.shapes.size() == 1);
         CHECK(scene.shapes[0].triangles.size() == 6);
         CHECK(scene.materials.size() == 1);
@@ -876,6 +880,145 @@ TEST_CASE("OBJ meshes: materials from the MTL files, split by usemtl", "[scene_l
         dir.write("m.obj", "mtllib m.mtl\n" + quad + "usemtl\nf 1 2 3\n");
         CHECK_THAT(scene_file_error(mesh_scene("")),
                    EndsWith(obj + ":6: expected 'usemtl NAME', one name without blanks"));
+    }
+}
+
+namespace {
+
+// A glTF 2.0 of two triangles with normals (+z), the second moved to
+// z = 3 by its node: "copper" (metal, roughness 0.3) and "glow" (emissive).
+std::string two_triangle_gltf(const std::string& buffer_uri) {
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0}, {"mesh": 1, "translation": [0, 0, 2]}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 2}, "material": 0}]},
+             {"primitives": [{"attributes": {"POSITION": 1, "NORMAL": 3}, "material": 1}]}],
+  "materials": [{"name": "copper", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.5, 0.2, 1],
+                 "metallicFactor": 1.0, "roughnessFactor": 0.3}},
+                {"name": "glow", "emissiveFactor": [1, 0.5, 0.25]}],
+  "buffers": [{"byteLength": 144, "uri": ")" +
+           buffer_uri + R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 72},
+                  {"buffer": 0, "byteOffset": 72, "byteLength": 72}],
+  "accessors": [
+    {"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+     "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC3",
+     "min": [0, 0, 1], "max": [1, 1, 1]},
+    {"bufferView": 1, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+    {"bufferView": 1, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC3"}]})";
+}
+
+// The 144 bytes of two_triangle_gltf's buffer: the six positions, then the
+// six normals.
+std::string two_triangle_buffer() {
+    const float values[36] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 0, 1, 1,
+                              0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    return std::string(reinterpret_cast<const char*>(values), sizeof values);
+}
+
+// A GLB: the 12-byte header, the JSON chunk (padded with blanks) and the
+// binary chunk.
+std::string glb_of(std::string json, const std::string& bin) {
+    while (json.size() % 4 != 0) {
+        json += ' ';
+    }
+    const auto word = [](std::uint32_t v) {
+        return std::string(reinterpret_cast<const char*>(&v), 4);
+    };
+    const std::uint32_t total = static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + bin.size());
+    return "glTF" + word(2) + word(total) + word(static_cast<std::uint32_t>(json.size())) + "JSON" +
+           json + word(static_cast<std::uint32_t>(bin.size())) + std::string("BIN\0", 4) + bin;
+}
+
+}  // namespace
+
+TEST_CASE("PLY and glTF 2.0 meshes, with their normals and materials", "[scene_loader][mesh]") {
+    TempDir dir;
+    const auto mesh_scene = [&](const std::string& file, const std::string& keys = "") {
+        return dir.write("mesh.json", with_shape(R"({"type": "mesh", "file": ")" + file +
+                                                 R"(", "material": "white")" + keys + "}"));
+    };
+    SECTION("PLY: faces triangulated, vertex normals smooth, the scene's material") {
+        dir.write("q.ply",
+                  "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                  "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                  "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                  "0 0 0 0 0 1\n1 0 0 0 0 1\n1 1 0 0.6 0 0.8\n0 1 0 0 0 1\n4 0 1 2 3\n");
+        const Scene scene = load_scene_file(mesh_scene("q.ply"));
+        REQUIRE(scene.shapes.size() == 1);
+        const Shape& quad = scene.shapes[0];
+        CHECK(quad.triangles.size() == 2);
+        CHECK(quad.source == dir.path() + "/q.ply");
+        REQUIRE(quad.normals.size() == 2);
+        CHECK(quad.material == 0);
+        bool tilted = false;
+        for (const VertexNormalTriple& n : quad.normals) {
+            for (const glm::vec3& v : n) {
+                tilted = tilted || glm::length(v - glm::vec3(0.6f, 0.0f, 0.8f)) < 1e-6f;
+            }
+        }
+        CHECK(tilted);
+    }
+    const auto check_two_triangles = [&](const Scene& scene) {
+        REQUIRE(scene.shapes.size() == 2);
+        const Material& copper =
+            scene.materials[static_cast<std::size_t>(scene.shapes[0].material)];
+        CHECK(copper.name == "copper");
+        CHECK(copper.type == MaterialType::glossy);
+        CHECK(copper.color == glm::vec3(0.9f, 0.5f, 0.2f));
+        CHECK(copper.roughness == 0.3f);
+        const Material& glow = scene.materials[static_cast<std::size_t>(scene.shapes[1].material)];
+        CHECK(glow.type == MaterialType::emissive);
+        CHECK(glow.emittance == 1.0f);
+        CHECK(glow.color == glm::vec3(1.0f, 0.5f, 0.25f));
+        // The node's translation applied: z = 1 + 2.
+        CHECK(scene.shapes[1].aabb.min.z == 3.0f);
+        CHECK(scene.shapes[0].normals.size() == 1);
+    };
+    SECTION(".gltf with its buffer beside it, and embedded") {
+        dir.write("t.bin", two_triangle_buffer());
+        dir.write("t.gltf", two_triangle_gltf("t.bin"));
+        check_two_triangles(load_scene_file(mesh_scene("t.gltf")));
+        dir.write(
+            "e.gltf",
+            two_triangle_gltf("data:application/octet-stream;base64,"
+                              "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/"
+                              "AACAPwAAAAAAAIA/AAAAAAAAgD8AAIA/AAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/"
+                              "AAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/"));
+        check_two_triangles(load_scene_file(mesh_scene("e.gltf")));
+        // Without the file's materials: one shape of the scene's.
+        const Scene plain = load_scene_file(mesh_scene("e.gltf", R"(, "file_materials": false)"));
+        REQUIRE(plain.shapes.size() == 1);
+        CHECK(plain.shapes[0].triangles.size() == 2);
+        CHECK(plain.materials.size() == 1);
+    }
+    SECTION(".glb") {
+        std::string json = two_triangle_gltf("");
+        json.replace(json.find(R"(, "uri": "")"), std::strlen(R"(, "uri": "")"), "");
+        dir.write("t.glb", glb_of(json, two_triangle_buffer()));
+        check_two_triangles(load_scene_file(mesh_scene("t.glb")));
+    }
+    SECTION("mistakes name the file") {
+        const std::string path = dir.path();
+        dir.write("empty.ply", "");
+        CHECK_THAT(scene_file_error(mesh_scene("empty.ply")),
+                   EndsWith(path + "/empty.ply: cannot read mesh: the file is empty"));
+        dir.write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\nend_header\n0 0\n");
+        CHECK_THAT(scene_file_error(mesh_scene("bad.ply")),
+                   Contains(path + "/bad.ply: cannot read mesh: "));
+        dir.write("bad.gltf", "{\"asset\": ");
+        CHECK_THAT(scene_file_error(mesh_scene("bad.gltf")),
+                   Contains(path + "/bad.gltf: cannot read mesh: "));
+        CHECK_THAT(scene_file_error(mesh_scene("missing.glb")),
+                   Contains(path + "/missing.glb: cannot open mesh: "));
+        std::string json = two_triangle_gltf("t.bin");
+        json.replace(json.find("\"metallicFactor\": 1.0"), 21, "\"metallicFactor\": 1.0");
+        json.replace(json.find("0.9, 0.5, 0.2, 1"), 16, "1.5, 0.5, 0.2, 1");
+        dir.write("t.bin", two_triangle_buffer());
+        dir.write("c.gltf", json);
+        CHECK_THAT(scene_file_error(mesh_scene("c.gltf")),
+                   EndsWith(path + "/c.gltf: material 'copper': base colour (1.5, 0.5, 0.2): "
+                                   "expected each in [0, 1]"));
     }
 }
 

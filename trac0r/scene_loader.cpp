@@ -36,10 +36,10 @@
 // | box.size               | [3]     | required, > 0                           |                 |
 // | icosphere.radius       | number  | required, > 0                           |                 |
 // | icosphere.subdivisions | integer | in [0, 7] (20 * 4^n triangles)          | 2               |
-// | mesh.file              | string  | required; OBJ path, relative to scene   |                 |
+// | mesh.file              | string  | required; .obj/.ply/.gltf/.glb path      |                 |
 // | mesh.scale             | [3]     | finite, non-zero (negative mirrors)     | [1, 1, 1]       |
 // | mesh.smooth            | boolean | shade with the file's vertex normals    | true            |
-// | mesh.mtl               | boolean | usemtl faces take the MTL's materials   | true            |
+// | mesh.file_materials    | boolean | faces take the file's materials (MTL...) | true           |
 //
 // Every number must be finite as a float (1e39 is rejected); "> 0" and
 // ">= 0" imply finite. Integers may be written 800 or 800.0 but not 800.5.
@@ -208,49 +208,6 @@ struct ShapeContext {
     std::vector<Material>* materials = nullptr;
 };
 
-// One of the renderer's materials for an MTL material (the table in
-// docs/scene-format.md, "Materials from MTL files"). Throws
-// std::runtime_error "file: material 'name': ..." for one it cannot map.
-Material material_from_mtl(const MtlMaterial& m) {
-    const std::string where = m.file + ": material '" + printable(m.name, 60) + "': ";
-    const auto peak = [](const glm::vec3& c) { return std::max({c.x, c.y, c.z}); };
-    const auto unit = [&](const char* key, const glm::vec3& c) {
-        if (!(std::min({c.x, c.y, c.z}) >= 0.0f) || !(peak(c) <= 1.0f)) {
-            char text[96];
-            std::snprintf(text, sizeof text, "%s (%g, %g, %g): expected each in [0, 1]", key, c.x,
-                          c.y, c.z);
-            throw std::runtime_error(where + text);
-        }
-        return c;
-    };
-    Material out;
-    out.name = m.name;
-    if (peak(m.emission) > 0.0f) {
-        if (!(std::min({m.emission.x, m.emission.y, m.emission.z}) >= 0.0f) ||
-            !(peak(m.emission) <= 1e30f)) {
-            throw std::runtime_error(where + "Ke: expected each in [0, 1e30]");
-        }
-        out.type = MaterialType::emissive;
-        out.emittance = peak(m.emission);
-        out.color = m.emission / out.emittance;
-    } else if (m.illum == 4 || m.illum == 6 || m.illum == 7 || m.illum == 9 || m.dissolve < 1.0f) {
-        out.type = MaterialType::glass;
-        out.color = peak(m.transmission) > 0.0f ? unit("Tf", m.transmission) : glm::vec3(1.0f);
-        out.ior = m.ior > 1.0f ? m.ior : 1.5f;
-    } else if (m.illum == 3 || m.illum == 5 || m.illum == 8) {
-        out.type = MaterialType::glossy;
-        out.color = peak(m.specular) > 0.0f ? unit("Ks", m.specular) : unit("Kd", m.diffuse);
-        // The Phong lobe of exponent Ns is about sqrt(2 / (Ns + 2)) radians
-        // wide; roughness 1 is a cone of pi/2.
-        const float width = std::sqrt(2.0f / (std::max(m.shininess, 0.0f) + 2.0f));
-        out.roughness = std::min(1.0f, width / 1.5707963f);
-    } else {
-        out.type = MaterialType::diffuse;
-        out.color = unit("Kd", m.diffuse);
-    }
-    return out;
-}
-
 int read_material_reference(const ObjectReader& o, const ShapeContext& context) {
     const json& value = o.required("material", "the name of a material");
     const Location at = o.at("material");
@@ -282,36 +239,35 @@ std::string resolve_path(const std::string& base_dir, const std::string& file) {
 std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
                              const glm::vec3& position, const glm::vec3& orientation,
                              int material) {
-    const std::string expected = "the path of an OBJ file";
+    const std::string expected = "the path of a mesh file (.obj, .ply, .gltf or .glb)";
     const json& file = o.required("file", expected);
     if (!file.is_string() || file.get<std::string>().empty()) {
         fail_expected(o.at("file"), expected, file);
     }
     const glm::vec3 scale = o.optional_vec3("scale", NumberRule::non_zero, glm::vec3(1.0f));
     const bool smooth = o.optional_bool("smooth", true);
-    const bool use_mtl = o.optional_bool("mtl", true);
+    const bool file_materials = o.optional_bool("file_materials", true);
     try {
         const std::string path = resolve_path(context.base_dir, file.get<std::string>());
+        MeshParts mesh =
+            load_mesh_parts(path, position, orientation, scale, material, smooth, file_materials);
+        std::vector<Material>& materials = *context.materials;
         std::vector<Shape> shapes;
-        if (!use_mtl) {
-            shapes.push_back(load_obj_mesh(path, position, orientation, scale, material, smooth));
-        } else {
-            ObjMesh mesh = load_obj_parts(path, position, orientation, scale, material, smooth);
-            std::vector<Material>& materials = *context.materials;
-            for (ObjPart& part : mesh.parts) {
-                if (part.mtl >= 0) {
-                    const MtlMaterial& m = mesh.materials[static_cast<std::size_t>(part.mtl)];
-                    const std::size_t index = static_cast<std::size_t>(
-                        std::find_if(materials.begin(), materials.end(),
-                                     [&](const Material& x) { return x.name == m.name; }) -
-                        materials.begin());
-                    if (index == materials.size()) {
-                        materials.push_back(material_from_mtl(m));
-                    }
-                    part.shape.material = static_cast<int>(index);
+        for (MeshPart& part : mesh.parts) {
+            if (part.material >= 0) {
+                // The scene's material of the same name, else the file's,
+                // added once.
+                const Material& m = mesh.materials[static_cast<std::size_t>(part.material)];
+                const std::size_t index = static_cast<std::size_t>(
+                    std::find_if(materials.begin(), materials.end(),
+                                 [&](const Material& x) { return x.name == m.name; }) -
+                    materials.begin());
+                if (index == materials.size()) {
+                    materials.push_back(m);
                 }
-                shapes.push_back(std::move(part.shape));
+                part.shape.material = static_cast<int>(index);
             }
+            shapes.push_back(std::move(part.shape));
         }
         for (Shape& shape : shapes) {
             shape.source = path;
@@ -331,7 +287,7 @@ const std::map<std::string, std::vector<std::string>>& shape_type_keys() {
         {"plane", {"size"}},
         {"box", {"size"}},
         {"icosphere", {"radius", "subdivisions"}},
-        {"mesh", {"file", "scale", "smooth", "mtl"}}};
+        {"mesh", {"file", "scale", "smooth", "file_materials"}}};
     return keys;
 }
 

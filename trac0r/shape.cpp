@@ -1,14 +1,23 @@
 #include "trac0r/shape.h"
 
+#include "trac0r/input_checks.h"
+#include "trac0r/input_file.h"
 #include "trac0r/obj_checker.h"
 
 #include <tiny_obj_loader.h>
+
+#include <assimp/Importer.hpp>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <map>
 #include <istream>
 #include <streambuf>
@@ -214,23 +223,166 @@ class CheckedMtlReader : public tinyobj::MaterialReader {
     const std::vector<ObjNameRef>& libraries_;
 };
 
-MtlMaterial mtl_material(const tinyobj::material_t& m, const std::string& file) {
-    MtlMaterial out;
-    out.name = m.name;
-    out.file = file;
-    out.diffuse = glm::vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
-    out.specular = glm::vec3(m.specular[0], m.specular[1], m.specular[2]);
-    out.emission = glm::vec3(m.emission[0], m.emission[1], m.emission[2]);
-    out.transmission = glm::vec3(m.transmittance[0], m.transmittance[1], m.transmittance[2]);
-    out.shininess = m.shininess;
-    out.ior = m.ior;
-    out.dissolve = m.dissolve;
-    out.illum = m.illum;
+float peak(const glm::vec3& c) { return std::max({c.x, c.y, c.z}); }
+
+// colour, which `key` of the file's material `where` gives, if each channel
+// is in [0, 1].
+glm::vec3 unit_colour(const std::string& where, const char* key, const glm::vec3& c) {
+    if (!(std::min({c.x, c.y, c.z}) >= 0.0f) || !(peak(c) <= 1.0f)) {
+        char text[96];
+        std::snprintf(text, sizeof text, "%s (%g, %g, %g): expected each in [0, 1]", key, c.x, c.y,
+                      c.z);
+        throw std::runtime_error(where + text);
+    }
+    return c;
+}
+
+// An emissive material of emission e (each channel in [0, 1e30]).
+Material emitter(const std::string& where, const char* key, const glm::vec3& e) {
+    if (!(std::min({e.x, e.y, e.z}) >= 0.0f) || !(peak(e) <= 1e30f)) {
+        throw std::runtime_error(where + key + ": expected each in [0, 1e30]");
+    }
+    Material out;
+    out.type = MaterialType::emissive;
+    out.emittance = peak(e);
+    out.color = e / out.emittance;
     return out;
 }
 
-ObjMesh load_obj(const std::string& path, const glm::vec3& position, const glm::vec3& orientation,
-                 const glm::vec3& scale, int material, bool smooth, bool read_mtl) {
+// One of the renderer's materials for an MTL material (the table in
+// docs/scene-format.md, "Materials from the file").
+Material material_from_mtl(const tinyobj::material_t& m, const std::string& file) {
+    const std::string where = file + ": material '" + printable(m.name, 60) + "': ";
+    const glm::vec3 kd(m.diffuse[0], m.diffuse[1], m.diffuse[2]);
+    const glm::vec3 ks(m.specular[0], m.specular[1], m.specular[2]);
+    const glm::vec3 ke(m.emission[0], m.emission[1], m.emission[2]);
+    const glm::vec3 tf(m.transmittance[0], m.transmittance[1], m.transmittance[2]);
+    Material out;
+    if (peak(ke) > 0.0f) {
+        out = emitter(where, "Ke", ke);
+    } else if (m.illum == 4 || m.illum == 6 || m.illum == 7 || m.illum == 9 || m.dissolve < 1.0f) {
+        out.type = MaterialType::glass;
+        out.color = peak(tf) > 0.0f ? unit_colour(where, "Tf", tf) : glm::vec3(1.0f);
+        out.ior = m.ior > 1.0f ? m.ior : 1.5f;
+    } else if (m.illum == 3 || m.illum == 5 || m.illum == 8) {
+        out.type = MaterialType::glossy;
+        out.color = peak(ks) > 0.0f ? unit_colour(where, "Ks", ks) : unit_colour(where, "Kd", kd);
+        // The Phong lobe of exponent Ns is about sqrt(2 / (Ns + 2)) radians
+        // wide; roughness 1 is a cone of pi/2.
+        const float width = std::sqrt(2.0f / (std::max(m.shininess, 0.0f) + 2.0f));
+        out.roughness = std::min(1.0f, width / 1.5707963f);
+    } else {
+        out.type = MaterialType::diffuse;
+        out.color = unit_colour(where, "Kd", kd);
+    }
+    out.name = m.name;
+    return out;
+}
+
+// The float property key (an AI_MATKEY_...) of m, or fallback where m has
+// none.
+float property(const aiMaterial& m, const char* key, unsigned type, unsigned index,
+               float fallback) {
+    float value = fallback;
+    m.Get(key, type, index, value);
+    return value;
+}
+
+// One of the renderer's materials for a glTF (or other assimp) material:
+// emissive where it emits, glass where it transmits or is not opaque,
+// glossy where it is metal (metallic >= 0.5, roughness as the file's),
+// else diffuse of its base colour.
+Material material_from_assimp(const aiMaterial& m, const std::string& file) {
+    aiString name;
+    m.Get(AI_MATKEY_NAME, name);
+    const std::string where = file + ": material '" + printable(name.C_Str(), 60) + "': ";
+    aiColor4D base(0.8f, 0.8f, 0.8f, 1.0f);
+    if (m.Get(AI_MATKEY_BASE_COLOR, base) != AI_SUCCESS) {
+        m.Get(AI_MATKEY_COLOR_DIFFUSE, base);
+    }
+    aiColor3D emissive(0.0f, 0.0f, 0.0f);
+    m.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
+    const float strength = property(m, AI_MATKEY_EMISSIVE_INTENSITY, 1.0f);
+    const float metallic = property(m, AI_MATKEY_METALLIC_FACTOR, 0.0f);
+    const float roughness = property(m, AI_MATKEY_ROUGHNESS_FACTOR, 1.0f);
+    const float transmission = property(m, AI_MATKEY_TRANSMISSION_FACTOR, 0.0f);
+    const float opacity = property(m, AI_MATKEY_OPACITY, 1.0f);
+    const float ior = property(m, AI_MATKEY_REFRACTI, 1.5f);
+    const glm::vec3 colour(base.r, base.g, base.b);
+    const glm::vec3 emission = glm::vec3(emissive.r, emissive.g, emissive.b) * strength;
+    Material out;
+    if (peak(emission) > 0.0f) {
+        out = emitter(where, "emissive", emission);
+    } else if (transmission > 0.0f || opacity < 1.0f) {
+        out.type = MaterialType::glass;
+        out.color = unit_colour(where, "base colour", colour);
+        out.ior = ior > 1.0f ? ior : 1.5f;
+    } else if (metallic >= 0.5f) {
+        out.type = MaterialType::glossy;
+        out.color = unit_colour(where, "base colour", colour);
+        if (!(roughness >= 0.0f && roughness <= 1.0f)) {
+            throw std::runtime_error(where + "roughness " + std::to_string(roughness) +
+                                     ": expected it in [0, 1]");
+        }
+        out.roughness = roughness;
+    } else {
+        out.type = MaterialType::diffuse;
+        out.color = unit_colour(where, "base colour", colour);
+    }
+    out.name = name.C_Str();
+    return out;
+}
+
+// Faces grouped into parts by a material key (first use first), with
+// their normals; what load_obj and load_assimp fill.
+struct PartBuilder {
+    std::vector<int> key;
+    std::vector<std::vector<Triangle>> triangles;
+    std::vector<std::vector<VertexNormalTriple>> normals;
+    std::vector<bool> any_smooth;
+
+    void add(int material_key, const glm::vec3 p[3], VertexNormalTriple n, bool has_normals,
+             bool smooth) {
+        std::size_t part =
+            static_cast<std::size_t>(std::find(key.begin(), key.end(), material_key) - key.begin());
+        if (part == key.size()) {
+            key.push_back(material_key);
+            triangles.emplace_back();
+            normals.emplace_back();
+            any_smooth.push_back(false);
+        }
+        triangles[part].emplace_back(p[0], p[1], p[2]);
+        if (!has_normals || !smooth) {
+            n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+        }
+        any_smooth[part] = any_smooth[part] || (has_normals && smooth);
+        normals[part].push_back(n);
+    }
+
+    // The parts as shapes; `material_of(key)` maps a key to the file's
+    // material (its index in mesh.materials, appended), or -1.
+    template <typename MaterialOf>
+    MeshParts finish(const std::string& path, const char* what, const glm::mat4& model,
+                     int material, MaterialOf material_of) {
+        if (triangles.empty()) {
+            throw std::runtime_error(path + ": " + what + " has no triangles");
+        }
+        MeshParts mesh;
+        for (std::size_t part = 0; part < triangles.size(); ++part) {
+            if (!any_smooth[part]) {
+                normals[part].clear();
+            }
+            MeshPart p;
+            p.shape = make_shape(triangles[part], model, material, normals[part]);
+            p.material = material_of(key[part], mesh.materials);
+            mesh.parts.push_back(std::move(p));
+        }
+        return mesh;
+    }
+};
+
+MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm::vec3& orientation,
+                   const glm::vec3& scale, int material, bool smooth, bool read_mtl) {
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
@@ -265,12 +417,7 @@ ObjMesh load_obj(const std::string& path, const glm::vec3& position, const glm::
     }
     const std::size_t vertex_count = attrib.vertices.size() / 3;
     const std::size_t normal_count = attrib.normals.size() / 3;
-    // Per part (by material id, -1 first seen where it is): its triangles
-    // and normals.
-    std::vector<int> part_material;
-    std::vector<std::vector<Triangle>> local;
-    std::vector<std::vector<VertexNormalTriple>> normals;
-    std::vector<bool> any_smooth;
+    PartBuilder parts;
     for (const tinyobj::shape_t& s : shapes) {
         for (std::size_t i = 0; i + 2 < s.mesh.indices.size(); i += 3) {
             glm::vec3 p[3];
@@ -308,52 +455,118 @@ ObjMesh load_obj(const std::string& path, const glm::vec3& position, const glm::
             const std::size_t face = i / 3;
             const int id =
                 read_mtl && face < s.mesh.material_ids.size() ? s.mesh.material_ids[face] : -1;
-            std::size_t part = static_cast<std::size_t>(
-                std::find(part_material.begin(), part_material.end(), id) - part_material.begin());
-            if (part == part_material.size()) {
-                part_material.push_back(id);
-                local.emplace_back();
-                normals.emplace_back();
-                any_smooth.push_back(false);
-            }
-            local[part].emplace_back(p[0], p[1], p[2]);
-            if (!has_normals || !smooth) {
-                n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
-            }
-            any_smooth[part] = any_smooth[part] || (has_normals && smooth);
-            normals[part].push_back(n);
+            parts.add(id, p, n, has_normals, smooth);
         }
     }
-    if (local.empty()) {
-        throw std::runtime_error(path + ": OBJ mesh has no triangles");
-    }
-    ObjMesh mesh;
-    const glm::mat4 model = model_matrix(position, orientation, scale);
-    for (std::size_t part = 0; part < local.size(); ++part) {
-        if (!any_smooth[part]) {
-            normals[part].clear();
-        }
-        ObjPart p;
-        p.shape = make_shape(local[part], model, material, normals[part]);
-        const int id = part_material[part];
-        if (id >= 0) {
-            p.mtl = static_cast<int>(mesh.materials.size());
-            mesh.materials.push_back(mtl_material(materials[static_cast<std::size_t>(id)],
-                                                  static_cast<std::size_t>(id) < reader.files.size()
-                                                      ? reader.files[static_cast<std::size_t>(id)]
-                                                      : ""));
-        }
-        mesh.parts.push_back(std::move(p));
-    }
-    return mesh;
+    return parts.finish(path, "OBJ mesh", model_matrix(position, orientation, scale), material,
+                        [&](int id, std::vector<Material>& out) {
+                            if (id < 0) {
+                                return -1;
+                            }
+                            const std::size_t k = static_cast<std::size_t>(id);
+                            out.push_back(material_from_mtl(
+                                materials[k], k < reader.files.size() ? reader.files[k] : path));
+                            return static_cast<int>(out.size()) - 1;
+                        });
 }
 
 }  // namespace
 
-ObjMesh load_obj_parts(const std::string& path, const glm::vec3& position,
-                       const glm::vec3& orientation, const glm::vec3& scale, int material,
-                       bool smooth) {
-    return load_obj(path, position, orientation, scale, material, smooth, true);
+namespace {
+
+bool ends_with_lower(const std::string& path, const char* suffix) {
+    const std::size_t n = std::strlen(suffix);
+    if (path.size() < n) {
+        return false;
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+        if (std::tolower(static_cast<unsigned char>(path[path.size() - n + i])) != suffix[i]) {
+            return false;
+        }
+    }
+    return true;
+}
+
+// A PLY or glTF 2.0 file through assimp: its meshes with their node
+// transforms applied, triangulated, points and lines left out.
+MeshParts load_assimp(const std::string& path, const glm::vec3& position,
+                      const glm::vec3& orientation, const glm::vec3& scale, int material,
+                      bool smooth, bool file_materials) {
+    // Only a regular file within the size limit (input_file.h). A .gltf
+    // may refer to other files (its buffers), which assimp opens beside
+    // it; the others are read from memory.
+    const std::string text = read_input_file(path, "mesh");
+    if (text.empty()) {
+        throw std::runtime_error(path + ": cannot read mesh: the file is empty");
+    }
+    Assimp::Importer importer;
+    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                                aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    const unsigned flags =
+        aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType;
+    const bool gltf = ends_with_lower(path, ".gltf");
+    const bool ply = ends_with_lower(path, ".ply");
+    const aiScene* scene =
+        gltf ? importer.ReadFile(path, flags)
+             : importer.ReadFileFromMemory(text.data(), text.size(), flags,
+                                           ends_with_lower(path, ".glb") ? "glb" : "ply");
+    if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
+        std::string reason = importer.GetErrorString();
+        reason.erase(reason.find_last_not_of(" \n\r") + 1);
+        throw std::runtime_error(path + ": cannot read mesh: " +
+                                 (reason.empty() ? std::string("no scene in it") : reason));
+    }
+    PartBuilder parts;
+    for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
+        const aiMesh& mesh = *scene->mMeshes[mi];
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+            const aiFace& face = mesh.mFaces[f];
+            if (face.mNumIndices != 3) {
+                continue;  // points and lines (SortByPType leaves none)
+            }
+            glm::vec3 p[3];
+            VertexNormalTriple n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+            bool has_normals = mesh.HasNormals();
+            for (int k = 0; k < 3; ++k) {
+                const unsigned index = face.mIndices[k];
+                const aiVector3D& v = mesh.mVertices[index];
+                p[k] = glm::vec3(v.x, v.y, v.z);
+                if (!is_finite(p[k])) {
+                    throw std::runtime_error(path + ": mesh '" + printable(mesh.mName.C_Str(), 60) +
+                                             "': vertex " + std::to_string(index) +
+                                             " is not finite");
+                }
+                if (has_normals) {
+                    const aiVector3D& vn = mesh.mNormals[index];
+                    n[k] = glm::vec3(vn.x, vn.y, vn.z);
+                    has_normals = is_finite(n[k]) && glm::length(n[k]) > 0.0f;
+                }
+            }
+            // A PLY has no materials (assimp gives it a default one).
+            parts.add(file_materials && !ply ? static_cast<int>(mesh.mMaterialIndex) : -1, p, n,
+                      has_normals, smooth);
+        }
+    }
+    return parts.finish(path, "mesh", model_matrix(position, orientation, scale), material,
+                        [&](int id, std::vector<Material>& out) {
+                            if (id < 0 || static_cast<unsigned>(id) >= scene->mNumMaterials) {
+                                return -1;
+                            }
+                            out.push_back(material_from_assimp(*scene->mMaterials[id], path));
+                            return static_cast<int>(out.size()) - 1;
+                        });
+}
+
+}  // namespace
+
+MeshParts load_mesh_parts(const std::string& path, const glm::vec3& position,
+                          const glm::vec3& orientation, const glm::vec3& scale, int material,
+                          bool smooth, bool file_materials) {
+    if (ends_with_lower(path, ".ply") || ends_with_lower(path, ".gltf") ||
+        ends_with_lower(path, ".glb")) {
+        return load_assimp(path, position, orientation, scale, material, smooth, file_materials);
+    }
+    return load_obj(path, position, orientation, scale, material, smooth, file_materials);
 }
 
 Shape load_obj_mesh(const std::string& path, const glm::vec3& position,

@@ -4,6 +4,7 @@
 #define TRAC0R_SHAPE_H
 
 #include "trac0r/geometry.h"
+#include "trac0r/material.h"
 
 #include <glm/glm.hpp>
 
@@ -47,41 +48,30 @@ Shape make_box(const glm::vec3& position, const glm::vec3& orientation, const gl
 // The unit icosahedron subdivided n times (20 * 4^n triangles), radius r.
 Shape make_icosphere(const glm::vec3& position, const glm::vec3& orientation, float radius,
                      int subdivisions, int material);
-// A material of an OBJ's MTL library as the file gives it; the scene
-// loader maps it to one of the renderer's four (scene_loader.cpp).
-struct MtlMaterial {
-    std::string name;
-    std::string file;              // the .mtl it came from
-    glm::vec3 diffuse{0.0f};       // Kd
-    glm::vec3 specular{0.0f};      // Ks
-    glm::vec3 emission{0.0f};      // Ke
-    glm::vec3 transmission{0.0f};  // Tf
-    float shininess = 0.0f;        // Ns
-    float ior = 1.0f;              // Ni
-    float dissolve = 1.0f;         // d (or 1 - Tr); 1 is opaque
-    int illum = 0;                 // the illumination model
-};
-
-// The faces of an OBJ mesh that share a material, as a Shape.
-struct ObjPart {
+// The faces of a mesh file that share a material, as a Shape.
+struct MeshPart {
     Shape shape;
-    int mtl = -1;  // index into ObjMesh::materials; -1: faces with no usemtl
+    int material = -1;  // index into MeshParts::materials; -1: the shape's own
 };
 
-struct ObjMesh {
-    std::vector<ObjPart> parts;          // in the order their materials are first used
-    std::vector<MtlMaterial> materials;  // the MTL materials the faces use
+struct MeshParts {
+    std::vector<MeshPart> parts;      // in the order their materials are first used
+    std::vector<Material> materials;  // the file's materials that faces use, mapped
 };
 
-// An OBJ mesh split by its faces' materials (usemtl), each material read
-// from the mtllib files (relative to the OBJ's directory), checked as
-// checked_mtl_text says; each part's shape has material `material`, which
-// the caller replaces for the parts with an MTL material. Smooth as
-// load_obj_mesh. Throws std::runtime_error "path:line: ..." for a library
-// that cannot be read and a usemtl that names no material of them.
-ObjMesh load_obj_parts(const std::string& path, const glm::vec3& position,
-                       const glm::vec3& orientation, const glm::vec3& scale, int material,
-                       bool smooth);
+// A mesh file split by its faces' materials: a PLY or glTF 2.0 by its
+// extension (.ply, .gltf, .glb, any case), else an OBJ. An OBJ (tinyobjloader, after
+// trac0r's checker) with the materials of its mtllib files (relative to
+// the OBJ, checked as checked_mtl_text says), a PLY, or a glTF 2.0 (.gltf,
+// .glb; assimp) with its metallic-roughness materials. Each material is
+// mapped to one of the renderer's four (docs/scene-format.md, "Materials
+// from the file"); faces without one, and every face when
+// `file_materials` is false, take `material`. Smooth as load_obj_mesh.
+// Throws std::runtime_error naming the file (and line, or material) for
+// a file that cannot be read and a material that cannot be mapped.
+MeshParts load_mesh_parts(const std::string& path, const glm::vec3& position,
+                          const glm::vec3& orientation, const glm::vec3& scale, int material,
+                          bool smooth, bool file_materials);
 
 // An OBJ mesh (all its shapes, faces triangulated). With `smooth`, a face
 // whose three vertices have normals (vn) is shaded with them; without, or
