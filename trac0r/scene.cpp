@@ -76,6 +76,12 @@ std::uint64_t scene_digest(const Scene& scene) {
             h.vec3(t.v1);
             h.vec3(t.v2);
         }
+        h.value(s.normals.size());
+        for (const VertexNormalTriple& n : s.normals) {
+            h.vec3(n[0]);
+            h.vec3(n[1]);
+            h.vec3(n[2]);
+        }
     }
     return h.hash();
 }
