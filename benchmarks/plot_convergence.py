@@ -44,7 +44,10 @@ def main():
     for i, (config, points) in enumerate(rows.items()):
         colour = f"C{i}"
         t = [float(p["seconds"]) for p in points]
-        error = [float(p[metric]) for p in points]
+        try:
+            error = [float(p[metric]) for p in points]
+        except (KeyError, ValueError) as e:
+            sys.exit(f"plot_convergence.py: {args.csv}: no {metric} column ({e})")
         est = [(float(p["seconds"]), float(p["estimated_rel_mse"])) for p in points
                if not args.rmse and not math.isnan(float(p["estimated_rel_mse"]))]
         ax.loglog(t, error, "o-", color=colour,

@@ -163,7 +163,13 @@ void write_exr(const std::string& path, const Image& image, const std::vector<Ex
         order.push_back(&c);
     }
     for (const ExrChannel& c : extra) {
-        if (c.values.size() != pixels || c.name.empty() || c.name.size() > 255) {
+        if (c.name.empty() || c.name.size() > 255) {
+            throw std::invalid_argument(path +
+                                        ": an EXR channel name must have 1 to 255 "
+                                        "characters, got " +
+                                        std::to_string(c.name.size()));
+        }
+        if (c.values.size() != pixels) {
             throw std::invalid_argument(path + ": EXR channel '" + c.name + "' has " +
                                         std::to_string(c.values.size()) + " values for " +
                                         std::to_string(pixels) + " pixels");
