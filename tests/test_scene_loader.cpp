@@ -837,6 +837,15 @@ TEST_CASE("OBJ meshes: materials from the MTL files, split by usemtl", "[scene_l
             CHECK(shape.source == dir.path() + "/m.obj");
         }
     }
+    SECTION("every file of an mtllib line is read") {
+        dir.write("a.mtl", "newmtl one\nKd 0.1 0.2 0.3\n");
+        dir.write("b.mtl", "newmtl two\nKd 0.3 0.2 0.1\n");
+        dir.write("m.obj", "mtllib a.mtl b.mtl\n" + quad + "usemtl two\nf 1 2 3\n");
+        const Scene scene = load_scene_file(mesh_scene(""));
+        REQUIRE(scene.shapes.size() == 1);
+        CHECK(scene.materials[static_cast<std::size_t>(scene.shapes[0].material)].color ==
+              glm::vec3(0.3f, 0.2f, 0.1f));
+    }
     SECTION("a scene material of the same name takes the MTL one's place") {
         const Scene scene = load_scene_file(mesh_scene(
             "", R"(, "red": {"type": "glossy", "color": [0.5, 0.5, 0.5], "roughness": 0.1})"));
@@ -872,8 +881,12 @@ TEST_CASE("OBJ meshes: materials from the MTL files, split by usemtl", "[scene_l
                    EndsWith(mtl + ":2: expected a Kd value as a decimal number, got 'x'"));
         dir.write("m.mtl", "newmtl red\nKd 0.8 0.1\n");
         CHECK_THAT(scene_file_error(mesh_scene("")),
-                   EndsWith(mtl + ":2: expected 'Kd r g b' (three numbers, or one for all "
-                                  "three), got 2 values"));
+                   EndsWith(mtl + ":2: expected 'Kd r g b', three numbers, got 2 values"));
+        // tinyobjloader would read one number as (0.8, 0, 0).
+        dir.write("m.mtl", "newmtl red\nKd 0.8\n");
+        CHECK_THAT(scene_file_error(mesh_scene("")),
+                   EndsWith(mtl + ":2: expected 'Kd r g b', three numbers, got 1 values"));
+
         dir.write("m.mtl", "newmtl red\nKd 1.5 0 0\n");
         CHECK_THAT(scene_file_error(mesh_scene("")),
                    EndsWith(mtl + ": material 'red': Kd (1.5, 0, 0): expected each in [0, 1]"));
@@ -992,6 +1005,15 @@ TEST_CASE("PLY and glTF 2.0 meshes, with their normals and materials", "[scene_l
         CHECK(plain.shapes[0].triangles.size() == 2);
         CHECK(plain.materials.size() == 1);
     }
+    SECTION("a glTF primitive without a material takes the shape's") {
+        dir.write("t.bin", two_triangle_buffer());
+        std::string json = two_triangle_gltf("t.bin");
+        json.replace(json.find(R"(, "material": 1)"), std::strlen(R"(, "material": 1)"), "");
+        dir.write("n.gltf", json);
+        const Scene scene = load_scene_file(mesh_scene("n.gltf"));
+        REQUIRE(scene.shapes.size() == 2);
+        CHECK(scene.shapes[1].material == 0);  // white
+    }
     SECTION(".glb") {
         std::string json = two_triangle_gltf("");
         json.replace(json.find(R"(, "uri": "")"), std::strlen(R"(, "uri": "")"), "");
@@ -1006,6 +1028,13 @@ TEST_CASE("PLY and glTF 2.0 meshes, with their normals and materials", "[scene_l
         dir.write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 3\nend_header\n0 0\n");
         CHECK_THAT(scene_file_error(mesh_scene("bad.ply")),
                    Contains(path + "/bad.ply: cannot read mesh: "));
+        dir.write("oor.ply",
+                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                  "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                  "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 9\n");
+        CHECK_THAT(scene_file_error(mesh_scene("oor.ply")),
+                   EndsWith(path + "/oor.ply: mesh '': a face refers to vertex 9, but the mesh "
+                                   "has 3"));
         dir.write("bad.gltf", "{\"asset\": ");
         CHECK_THAT(scene_file_error(mesh_scene("bad.gltf")),
                    Contains(path + "/bad.gltf: cannot read mesh: "));

@@ -254,9 +254,9 @@ class ObjChecker {
         }
     }
 
-    // In an MTL file: the colours (Ka, Kd, Ks, Ke, Tf: one number, or r g
-    // b) and the numbers (Ns, Ni, d, Tr, illum) a material of the renderer
-    // is made from; other statements (newmtl, maps) are tinyobjloader's.
+    // In an MTL file: the colours (Ka, Kd, Ks, Ke, Tf: r g b) and the numbers (Ns, Ni, d, Tr,
+    // illum) a material of the renderer is made from; other statements (newmtl, maps) are
+    // tinyobjloader's.
     void check_mtl_statement() {
         static const char* const colours[] = {"Ka", "Kd", "Ks", "Ke", "Tf"};
         static const char* const numbers[] = {"Ns", "Ni", "d", "Tr", "illum"};
@@ -266,9 +266,9 @@ class ObjChecker {
         };
         const std::size_t values = words_.size() - 1;
         if (is_one_of(colours, 5)) {
-            if (values != 1 && values != 3) {
-                fail_at(line_number_, "expected '" + key.text() +
-                                          " r g b' (three numbers, or one for all three), got " +
+            // Three: tinyobjloader reads "Kd 0.5" as (0.5, 0, 0).
+            if (values != 3) {
+                fail_at(line_number_, "expected '" + key.text() + " r g b', three numbers, got " +
                                           std::to_string(values) + " values");
             }
             check_numbers("a " + key.text() + " value");

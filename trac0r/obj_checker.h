@@ -34,7 +34,7 @@ CheckedObj check_obj(const std::string& path);
 
 // The text of the MTL file `path` once its colours (Ka, Kd, Ks, Ke, Tf)
 // and numbers (Ns, Ni, d, Tr, illum) are checked: decimal numbers, finite
-// in float, as many as the statement takes. Throws std::runtime_error
+// in float, three for a colour and one for a number. Throws std::runtime_error
 // "path:line: ..." at the first mistake.
 std::string checked_mtl_text(const std::string& path);
 

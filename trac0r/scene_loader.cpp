@@ -203,9 +203,11 @@ struct ShapeContext {
     std::map<std::string, int> material_index;
     std::vector<std::string> material_names;
     std::string base_dir;
-    // The scene's materials, and after them those that meshes' MTL files
-    // add (by name: a scene material of the same name takes their place).
+    // The scene's materials, and after them those that meshes' files add
+    // (a scene material of the same name takes their place).
     std::vector<Material>* materials = nullptr;
+    // A file's material (its path and name) -> its index in materials.
+    std::map<std::string, int>* file_material_index = nullptr;
 };
 
 int read_material_reference(const ObjectReader& o, const ShapeContext& context) {
@@ -255,17 +257,27 @@ std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
         std::vector<Shape> shapes;
         for (MeshPart& part : mesh.parts) {
             if (part.material >= 0) {
-                // The scene's material of the same name, else the file's,
-                // added once.
-                const Material& m = mesh.materials[static_cast<std::size_t>(part.material)];
-                const std::size_t index = static_cast<std::size_t>(
-                    std::find_if(materials.begin(), materials.end(),
-                                 [&](const Material& x) { return x.name == m.name; }) -
-                    materials.begin());
-                if (index == materials.size()) {
-                    materials.push_back(m);
+                // The scene file's material of the same name, else the
+                // mesh file's, added once for each file and name (so files
+                // whose materials share a name, or have none, stay apart).
+                Material m = mesh.materials[static_cast<std::size_t>(part.material)];
+                const auto own = context.material_index.find(m.name);
+                if (!m.name.empty() && own != context.material_index.end()) {
+                    part.shape.material = own->second;
+                } else {
+                    if (m.name.empty()) {
+                        m.name = path + " #" + std::to_string(part.material);
+                    }
+                    const std::string key = path + "\n" + m.name;
+                    const auto found = context.file_material_index->find(key);
+                    if (found != context.file_material_index->end()) {
+                        part.shape.material = found->second;
+                    } else {
+                        part.shape.material = static_cast<int>(materials.size());
+                        (*context.file_material_index)[key] = part.shape.material;
+                        materials.push_back(m);
+                    }
                 }
-                part.shape.material = static_cast<int>(index);
             }
             shapes.push_back(std::move(part.shape));
         }
@@ -372,6 +384,8 @@ Scene read_scene(const json& document, const Location& at, const std::string& ba
     context.origin = scene.origin;
     context.base_dir = base_dir;
     context.materials = &scene.materials;
+    std::map<std::string, int> file_material_index;
+    context.file_material_index = &file_material_index;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         context.material_index[scene.materials[i].name] = static_cast<int>(i);
         context.material_names.push_back(scene.materials[i].name);

@@ -6,6 +6,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -193,19 +194,33 @@ class CheckedMtlReader : public tinyobj::MaterialReader {
     }
     bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* map, std::string* warn, std::string* err) override {
+        // tinyobjloader asks for the first file of an mtllib line and stops
+        // there: every file of the line is read here.
+        long line = 0;
+        for (const ObjNameRef& r : libraries_) {
+            if (r.name == name) {
+                line = r.line;
+                break;
+            }
+        }
+        for (const ObjNameRef& r : libraries_) {
+            if (r.line == line) {
+                load(r.name, line, materials, map, warn, err);
+            }
+        }
+        return true;
+    }
+    std::vector<std::string> files;  // per material: its file
+
+  private:
+    void load(const std::string& name, long line, std::vector<tinyobj::material_t>* materials,
+              std::map<std::string, int>* map, std::string* warn, std::string* err) {
         const std::string file = !name.empty() && name[0] == '/' ? name : dir_ + name;
         std::string text;
         try {
             text = checked_mtl_text(file);
         } catch (const std::runtime_error& e) {
             // Named by the OBJ's mtllib line as well.
-            long line = 0;
-            for (const ObjNameRef& r : libraries_) {
-                if (r.name == name) {
-                    line = r.line;
-                    break;
-                }
-            }
             throw std::runtime_error(obj_path_ + ":" + std::to_string(line) + ": mtllib '" + name +
                                      "': " + e.what());
         }
@@ -213,11 +228,8 @@ class CheckedMtlReader : public tinyobj::MaterialReader {
         std::istream stream(&buffer);
         tinyobj::LoadMtl(map, materials, &stream, warn, err);
         files.resize(materials->size(), file);
-        return true;
     }
-    std::vector<std::string> files;  // per material: its file
 
-  private:
     std::string obj_path_;
     std::string dir_;
     const std::vector<ObjNameRef>& libraries_;
@@ -288,6 +300,21 @@ float property(const aiMaterial& m, const char* key, unsigned type, unsigned ind
     return value;
 }
 
+// What assimp adds for glTF primitives that name no material: no name,
+// and glTF's default values (white, metallic 1, roughness 1, no
+// emission). A file's own unnamed material with exactly these values is
+// glTF's default material too.
+bool is_default_material(const aiMaterial& m) {
+    aiString name;
+    aiColor4D base(0.0f, 0.0f, 0.0f, 0.0f);
+    aiColor3D emissive(0.0f, 0.0f, 0.0f);
+    m.Get(AI_MATKEY_BASE_COLOR, base);
+    m.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
+    return m.Get(AI_MATKEY_NAME, name) != AI_SUCCESS && base == aiColor4D(1.0f, 1.0f, 1.0f, 1.0f) &&
+           property(m, AI_MATKEY_METALLIC_FACTOR, 0.0f) == 1.0f &&
+           property(m, AI_MATKEY_ROUGHNESS_FACTOR, 0.0f) == 1.0f && emissive.IsBlack();
+}
+
 // One of the renderer's materials for a glTF (or other assimp) material:
 // emissive where it emits, glass where it transmits or is not opaque,
 // glossy where it is metal (metallic >= 0.5, roughness as the file's),
@@ -306,7 +333,12 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
     const float metallic = property(m, AI_MATKEY_METALLIC_FACTOR, 0.0f);
     const float roughness = property(m, AI_MATKEY_ROUGHNESS_FACTOR, 1.0f);
     const float transmission = property(m, AI_MATKEY_TRANSMISSION_FACTOR, 0.0f);
-    const float opacity = property(m, AI_MATKEY_OPACITY, 1.0f);
+    // glTF's alpha counts only where its alpha mode is BLEND (OPAQUE
+    // ignores it; MASK cuts out, which the renderer cannot).
+    aiString alpha_mode;
+    const bool blend = m.Get(AI_MATKEY_GLTF_ALPHAMODE, alpha_mode) == AI_SUCCESS &&
+                       std::strcmp(alpha_mode.C_Str(), "BLEND") == 0;
+    const float opacity = blend ? property(m, AI_MATKEY_OPACITY, 1.0f) : 1.0f;
     const float ior = property(m, AI_MATKEY_REFRACTI, 1.5f);
     const glm::vec3 colour(base.r, base.g, base.b);
     const glm::vec3 emission = glm::vec3(emissive.r, emissive.g, emissive.b) * strength;
@@ -529,6 +561,12 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
             bool has_normals = mesh.HasNormals();
             for (int k = 0; k < 3; ++k) {
                 const unsigned index = face.mIndices[k];
+                if (index >= mesh.mNumVertices) {
+                    throw std::runtime_error(path + ": mesh '" + printable(mesh.mName.C_Str(), 60) +
+                                             "': a face refers to vertex " + std::to_string(index) +
+                                             ", but the mesh has " +
+                                             std::to_string(mesh.mNumVertices));
+                }
                 const aiVector3D& v = mesh.mVertices[index];
                 p[k] = glm::vec3(v.x, v.y, v.z);
                 if (!is_finite(p[k])) {
@@ -552,7 +590,11 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
                             if (id < 0 || static_cast<unsigned>(id) >= scene->mNumMaterials) {
                                 return -1;
                             }
-                            out.push_back(material_from_assimp(*scene->mMaterials[id], path));
+                            const aiMaterial& m = *scene->mMaterials[id];
+                            if (is_default_material(m)) {
+                                return -1;
+                            }
+                            out.push_back(material_from_assimp(m, path));
                             return static_cast<int>(out.size()) - 1;
                         });
 }
