@@ -204,6 +204,20 @@ TEST_CASE("what the checks let through: any case of .png, exponents as %g writes
     CHECK(read_bytes("cli_up.PNG").compare(1, 3, "PNG") == 0);
 }
 
+TEST_CASE("--flag=value and -o FILE are the same as --flag value and --output FILE", "[cli]") {
+    const Run a = run_viewer("--headless --width=16 --height=12 --spp=2 -o cli_eq_a.pfm");
+    INFO(a.output);
+    REQUIRE(a.exit_code == 0);
+    const Run b = run_viewer("--headless --width 16 --height 12 --spp 2 --output=cli_eq_b.pfm");
+    INFO(b.output);
+    REQUIRE(b.exit_code == 0);
+    CHECK(trac0r_test::read_text_file("cli_eq_a.pfm") ==
+          trac0r_test::read_text_file("cli_eq_b.pfm"));
+    CHECK(!trac0r_test::read_text_file("cli_eq_a.pfm").empty());
+    std::remove("cli_eq_a.pfm");
+    std::remove("cli_eq_b.pfm");
+}
+
 TEST_CASE("--help lists the options and exits 0", "[cli]") {
     const Run r = run_viewer("--help");
     REQUIRE(r.exit_code == 0);
@@ -266,6 +280,11 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
         {"--headless --spp ' 3' --output x.png", "--spp: expected an integer"},
         {"--headless --output x.pfm --exposure 4", "--exposure: scales the tone mapping of PNG"},
         {"--list-devices --output x.png", "--list-devices: lists the OpenCL devices and exits"},
+        {"--headless=yes --output x.png", "--headless: takes no value, got 'yes'"},
+        {"--headless --spp= --output x.png", "--spp: expected a value after '='"},
+        {"--headless --spp=abc --output x.png", "--spp: expected an integer"},
+        {"--headless --spp=2 --spp 3 --output x.png", "--spp: given more than once"},
+        {"--headless -o x.jpg", "expected a .png, .pfm or .exr"},
     };
     for (const Case& c : cases) {
         CAPTURE(c.args);

@@ -43,6 +43,7 @@ const char* usage_text() {
 A real-time Monte Carlo path tracer. Without SCENE.json it renders the
 built-in scene: the thesis' Cornell box (scenes/cornell.json). Without
 --headless it opens a window that refines the image until you quit.
+An option's value may follow it or an '=' (--spp 64, --spp=64).
 
 Rendering:
   --backend cpu|opencl   backend (default cpu)
@@ -70,7 +71,7 @@ Rendering:
                          backend, device, feature mask and what was left out
 
 Output:
-  --output FILE          save the result: .png (tone-mapped sRGB), .pfm or .exr
+  -o, --output FILE      save the result: .png (tone-mapped sRGB), .pfm or .exr
                          (linear float); may be repeated (e.g. both a .png and
                          a .exr); in the window, saved when it closes
   --exr-layers LIST      with --headless, add to each .exr output the layers a
@@ -205,7 +206,25 @@ Options parse_options(int argc, const char* const* argv) {
         {"--headless", &o.headless}, {"--verbose", &o.verbose}, {"--list-devices", &o.list_devices},
         {"--help", &o.help},         {"--version", &o.version}, {"-h", &o.help}};
     for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
+        std::string arg = argv[i];
+        // --flag=value is --flag value; -o is --output.
+        std::string attached;
+        bool has_attached = false;
+        const std::size_t equals = arg.find('=');
+        if (arg.compare(0, 2, "--") == 0 && equals != std::string::npos) {
+            attached = arg.substr(equals + 1);
+            arg = arg.substr(0, equals);
+            has_attached = true;
+            if (switches.count(arg) != 0) {
+                throw UsageError(arg + ": takes no value, got '" + attached + "'");
+            }
+            if (with_value.count(arg) != 0 && attached.empty()) {
+                throw UsageError(arg + ": expected a value after '='");
+            }
+        }
+        if (arg == "-o") {
+            arg = "--output";
+        }
         // Every option but --output (which may name several files) at most
         // once: a second value would silently replace the first.
         if ((switches.count(arg) != 0 || with_value.count(arg) != 0) &&
@@ -218,6 +237,10 @@ Options parse_options(int argc, const char* const* argv) {
             continue;
         }
         const auto setter = with_value.find(arg);
+        if (setter != with_value.end() && has_attached) {
+            setter->second(arg, attached);
+            continue;
+        }
         if (setter != with_value.end()) {
             if (i + 1 >= argc) {
                 throw UsageError(arg + ": expected a value after it");
