@@ -19,16 +19,6 @@ namespace trac0r {
 
 namespace {
 
-bool ends_with(const std::string& s, const std::string& suffix) {
-    if (s.size() < suffix.size()) {
-        return false;
-    }
-    std::string tail = s.substr(s.size() - suffix.size());
-    std::transform(tail.begin(), tail.end(), tail.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return tail == suffix;
-}
-
 bool host_is_little_endian() {
     const std::uint32_t one = 1;
     unsigned char first;
@@ -223,19 +213,19 @@ void write_exr(const std::string& path, const Image& image, const std::vector<Ex
 }
 
 bool is_supported_image_path(const std::string& path) {
-    return is_png_path(path) || ends_with(path, ".pfm") || ends_with(path, ".exr");
+    return is_png_path(path) || has_extension(path, ".pfm") || has_extension(path, ".exr");
 }
 
-bool is_png_path(const std::string& path) { return ends_with(path, ".png"); }
+bool is_png_path(const std::string& path) { return has_extension(path, ".png"); }
 
-bool is_exr_path(const std::string& path) { return ends_with(path, ".exr"); }
+bool is_exr_path(const std::string& path) { return has_extension(path, ".exr"); }
 
 void write_image(const std::string& path, const Image& image, float exposure) {
     if (is_png_path(path)) {
         write_png(path, image, exposure);
-    } else if (ends_with(path, ".pfm")) {
+    } else if (has_extension(path, ".pfm")) {
         write_pfm(path, image);
-    } else if (ends_with(path, ".exr")) {
+    } else if (has_extension(path, ".exr")) {
         write_exr(path, image);
     } else {
         throw std::runtime_error(path + ": unknown image format (expected .png, .pfm or .exr)");

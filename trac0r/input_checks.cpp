@@ -5,6 +5,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -131,6 +133,15 @@ bool same_file(const std::string& a, const std::string& b) {
     struct stat sb;
     return a == b || (stat(a.c_str(), &sa) == 0 && stat(b.c_str(), &sb) == 0 &&
                       sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino);
+}
+
+bool has_extension(const std::string& path, const std::string& suffix) {
+    if (path.size() < suffix.size()) {
+        return false;
+    }
+    return std::equal(
+        suffix.begin(), suffix.end(), path.end() - static_cast<long>(suffix.size()),
+        [](char lower, char c) { return std::tolower(static_cast<unsigned char>(c)) == lower; });
 }
 
 }  // namespace trac0r

@@ -30,6 +30,10 @@ bool parse_decimal(const std::string& text, double* value);
 // never inside a UTF-8 character or an escape.
 std::string printable(const std::string& text, std::size_t max_length);
 
+// Whether `path` ends in `suffix` (lower case, such as ".png") in any case:
+// how a file's kind is told by its extension.
+bool has_extension(const std::string& path, const std::string& suffix);
+
 // Why path cannot be written ("is a directory", "directory d does not
 // exist", "exists and is not writable", ...), or "" when it can: a
 // temporary file is made and removed where the output will be written

@@ -18,6 +18,12 @@ enum class MaterialType : unsigned {
     glossy = T0_MATERIAL_GLOSSY,      // the thesis' roughness cone around the mirror direction
 };
 
+// The most a material may emit in a channel (colour times emittance): a
+// pixel sums up to 2^24 samples in float, each the emission times a path's
+// weights, and the sum must stay finite (FLT_MAX is 3.4e38). Scene files
+// and meshes' materials are held to it.
+const float max_emitted_radiance = 1e30f;
+
 struct Material {
     std::string name;
     MaterialType type = MaterialType::diffuse;

@@ -153,15 +153,10 @@ void read_material_parameters(const ObjectReader& o, Material& m) {
                     : o.optional_float(keys.parameter, keys.parameter_rule, parameter);
 }
 
-// The most a material may emit in a channel (colour times emittance): a
-// pixel sums up to 2^24 samples in float, each the emission times a path's
-// weights, and the sum must stay finite (FLT_MAX is 3.4e38).
-const double max_emitted_radiance = static_cast<double>(1e30f);  // as the loader reads 1e30
-
 void check_emission(const ObjectReader& o, const Material& m) {
     const double emitted =
         static_cast<double>(m.emittance) * std::max({m.color.x, m.color.y, m.color.z});
-    if (emitted > max_emitted_radiance) {
+    if (emitted > static_cast<double>(max_emitted_radiance)) {
         char text[32];
         std::snprintf(text, sizeof text, "%.3g", emitted);
         fail(o.at("emittance"), "the colour times the emittance is " + std::string(text) +
@@ -279,10 +274,8 @@ std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
                     }
                 }
             }
+            part.shape.source = path;
             shapes.push_back(std::move(part.shape));
-        }
-        for (Shape& shape : shapes) {
-            shape.source = path;
         }
         return shapes;
     } catch (const std::runtime_error& e) {

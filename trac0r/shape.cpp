@@ -15,7 +15,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -178,10 +177,6 @@ class TextBuffer : public std::streambuf {
     explicit TextBuffer(std::string& text) { setg(&text[0], &text[0], &text[0] + text.size()); }
 };
 
-}  // namespace
-
-namespace {
-
 // tinyobjloader's reader of the mtllib files: each one's text checked
 // (checked_mtl_text) first, relative to the OBJ's directory; which file
 // each material came from is kept.
@@ -249,9 +244,10 @@ glm::vec3 unit_colour(const std::string& where, const char* key, const glm::vec3
     return c;
 }
 
-// An emissive material of emission e (each channel in [0, 1e30]).
+// An emissive material of emission e (each channel in [0,
+// max_emitted_radiance]).
 Material emitter(const std::string& where, const char* key, const glm::vec3& e) {
-    if (!(std::min({e.x, e.y, e.z}) >= 0.0f) || !(peak(e) <= 1e30f)) {
+    if (!(std::min({e.x, e.y, e.z}) >= 0.0f) || !(peak(e) <= max_emitted_radiance)) {
         throw std::runtime_error(where + key + ": expected each in [0, 1e30]");
     }
     Material out;
@@ -502,23 +498,6 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
                         });
 }
 
-}  // namespace
-
-namespace {
-
-bool ends_with_lower(const std::string& path, const char* suffix) {
-    const std::size_t n = std::strlen(suffix);
-    if (path.size() < n) {
-        return false;
-    }
-    for (std::size_t i = 0; i < n; ++i) {
-        if (std::tolower(static_cast<unsigned char>(path[path.size() - n + i])) != suffix[i]) {
-            return false;
-        }
-    }
-    return true;
-}
-
 // A PLY or glTF 2.0 file through assimp: its meshes with their node
 // transforms applied, triangulated, points and lines left out.
 MeshParts load_assimp(const std::string& path, const glm::vec3& position,
@@ -536,12 +515,12 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);
     const unsigned flags =
         aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType;
-    const bool gltf = ends_with_lower(path, ".gltf");
-    const bool ply = ends_with_lower(path, ".ply");
+    const bool gltf = has_extension(path, ".gltf");
+    const bool ply = has_extension(path, ".ply");
     const aiScene* scene =
         gltf ? importer.ReadFile(path, flags)
              : importer.ReadFileFromMemory(text.data(), text.size(), flags,
-                                           ends_with_lower(path, ".glb") ? "glb" : "ply");
+                                           has_extension(path, ".glb") ? "glb" : "ply");
     if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
         std::string reason = importer.GetErrorString();
         reason.erase(reason.find_last_not_of(" \n\r") + 1);
@@ -604,8 +583,8 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
 MeshParts load_mesh_parts(const std::string& path, const glm::vec3& position,
                           const glm::vec3& orientation, const glm::vec3& scale, int material,
                           bool smooth, bool file_materials) {
-    if (ends_with_lower(path, ".ply") || ends_with_lower(path, ".gltf") ||
-        ends_with_lower(path, ".glb")) {
+    if (has_extension(path, ".ply") || has_extension(path, ".gltf") ||
+        has_extension(path, ".glb")) {
         return load_assimp(path, position, orientation, scale, material, smooth, file_materials);
     }
     return load_obj(path, position, orientation, scale, material, smooth, file_materials);
