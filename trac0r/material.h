@@ -31,6 +31,10 @@ struct Material {
     float emittance = 0.0f;
     float roughness = 0.0f;
     float ior = 1.5f;
+    // A base-colour texture multiplying color (diffuse and glossy only):
+    // an index into the scene's textures (Scene::textures, or
+    // MeshParts::textures for a mesh file's materials); -1 for none.
+    int texture = -1;
 };
 
 // "emissive", "diffuse", "glass", "glossy" (the scene format's names) and

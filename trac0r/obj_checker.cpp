@@ -92,6 +92,7 @@ class ObjChecker {
         }
         check_referred(vertices_);
         check_referred(normals_);
+        check_referred(texcoords_);
         return text;
     }
 
@@ -143,14 +144,12 @@ class ObjChecker {
                     // vertices stay (faces may refer to them), everything
                     // else is blanked, so that tinyobjloader cannot refuse
                     // or misread a line, point or curve the mesh never uses.
-                    if (is_word(words_[0], "vn") || is_word(words_[0], "usemtl") ||
-                        is_word(words_[0], "mtllib")) {
+                    if (is_word(words_[0], "vn") || is_word(words_[0], "vt") ||
+                        is_word(words_[0], "usemtl") || is_word(words_[0], "mtllib")) {
                         whole_line_ = true;  // checked as a whole below
                         continue;
                     }
-                    if (!is_word(words_[0], "vt")) {
-                        std::fill(begin, end, ' ');
-                    }
+                    std::fill(begin, end, ' ');
                     return;
                 }
             }
@@ -164,6 +163,8 @@ class ObjChecker {
             whole_line_ = false;
             if (is_word(words_[0], "vn")) {
                 check_normal();
+            } else if (is_word(words_[0], "vt")) {
+                check_texcoord();
             } else {
                 check_names();
             }
@@ -239,6 +240,17 @@ class ObjChecker {
         }
         check_numbers("a normal component");
         ++normals_.count;
+    }
+
+    // vt u [v [w]]: finite numbers (w is not used).
+    void check_texcoord() {
+        const std::size_t values = words_.size() - 1;
+        if (values < 1 || values > 3) {
+            fail_at(line_number_, "expected a texture coordinate as 'vt u [v [w]]', got " +
+                                      std::to_string(values) + " values");
+        }
+        check_numbers("a texture coordinate");
+        ++texcoords_.count;
     }
 
     // usemtl NAME, or mtllib FILE...: each name recorded with its line.
@@ -318,16 +330,16 @@ class ObjChecker {
         for (std::size_t k = 1; k < words_.size(); ++k) {
             const Word& w = words_[k];
             // v, v/vt, v//vn or v/vt/vn: each index present a non-zero
-            // integer (vt is not used, but tinyobjloader reads it).
+            // integer.
             const char* const slash1 = std::find(w.begin, w.end, '/');
             const char* const slash2 = slash1 == w.end ? w.end : std::find(slash1 + 1, w.end, '/');
             long index = 0;
-            long normal = 0;  // 0: none
+            long normal = 0;    // 0: none
+            long texcoord = 0;  // 0: none
             bool valid = parse_index(w.begin, slash1, &index);
             if (slash1 != w.end) {
-                long unused = 0;
                 const bool has_vt = slash2 > slash1 + 1;
-                valid = valid && (!has_vt || parse_index(slash1 + 1, slash2, &unused)) &&
+                valid = valid && (!has_vt || parse_index(slash1 + 1, slash2, &texcoord)) &&
                         (slash2 != w.end || has_vt) &&
                         (slash2 == w.end || parse_index(slash2 + 1, w.end, &normal));
             }
@@ -339,6 +351,7 @@ class ObjChecker {
             }
             refer(vertices_, index, w);
             refer(normals_, normal, w);
+            refer(texcoords_, texcoord, w);
         }
     }
 
@@ -403,6 +416,7 @@ class ObjChecker {
     long line_number_ = 0;
     Referred vertices_{"vertex", "vertices"};
     Referred normals_{"normal", "normals"};
+    Referred texcoords_{"texture coordinate", "texture coordinates (vt)"};
     bool mtl_ = false;
     bool whole_line_ = false;  // the line being split is a vn, usemtl or mtllib statement
     std::vector<ObjNameRef> materials_;

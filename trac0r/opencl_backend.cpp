@@ -224,6 +224,9 @@ enum RenderFrameArg : cl_uint {
     arg_light_count,  // uint
     arg_packets,      // __global const TrianglePacket*
     arg_normals,      // __global const VertexNormals*
+    arg_uvs,          // __global const TriangleUVs*
+    arg_textures,     // __global const TextureRecord*
+    arg_texels,       // __global const uint*
 };
 
 // Sets render_frame's argument `index` to `value`: a cl_mem for a buffer,
@@ -243,6 +246,9 @@ struct SceneBuffers {
     OpenClMem packets;
     OpenClMem lights;
     OpenClMem normals;
+    OpenClMem uvs;
+    OpenClMem textures;
+    OpenClMem texels;
 };
 
 SceneBuffers upload_scene(cl_context context, const PackedScene& scene) {
@@ -254,6 +260,9 @@ SceneBuffers upload_scene(cl_context context, const PackedScene& scene) {
     buffers.packets = upload(context, scene.packets);
     buffers.lights = upload(context, scene.lights);
     buffers.normals = upload(context, scene.normals);
+    buffers.uvs = upload(context, scene.uvs);
+    buffers.textures = upload(context, scene.textures);
+    buffers.texels = upload(context, scene.texels);
     return buffers;
 }
 
@@ -433,6 +442,9 @@ void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64
     set_arg(k, arg_light_count, state_->light_count);
     set_arg(k, arg_packets, state_->scene.packets.get());
     set_arg(k, arg_normals, state_->scene.normals.get());
+    set_arg(k, arg_uvs, state_->scene.uvs.get());
+    set_arg(k, arg_textures, state_->scene.textures.get());
+    set_arg(k, arg_texels, state_->scene.texels.get());
     std::size_t global = 0;
     const std::size_t* local = nullptr;  // the driver's choice
     if (state_->bvh) {

@@ -40,14 +40,15 @@ std::uint32_t material_feature(MaterialType type) {
     return 0;
 }
 
-const char* const feature_bit_names[T0_FEATURE_COUNT] = {
-    "emissive", "diffuse", "glass", "glossy", "emittance", "flat", "bvh", "nee", "sobol", "smooth"};
+const char* const feature_bit_names[T0_FEATURE_COUNT] = {"emissive",  "diffuse", "glass",  "glossy",
+                                                         "emittance", "flat",    "bvh",    "nee",
+                                                         "sobol",     "smooth",  "texture"};
 
 // What this build's kernel can do at all.
-const std::uint32_t implemented_features = T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE |
-                                           T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
-                                           T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT | T0_FEATURE_BVH |
-                                           T0_FEATURE_NEE | T0_FEATURE_SOBOL | T0_FEATURE_SMOOTH;
+const std::uint32_t implemented_features =
+    T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE | T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
+    T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT | T0_FEATURE_BVH | T0_FEATURE_NEE | T0_FEATURE_SOBOL |
+    T0_FEATURE_SMOOTH | T0_FEATURE_TEXTURE;
 
 }  // namespace
 
@@ -63,6 +64,9 @@ kernel::SceneView PackedScene::view() const {
     v.light_count = static_cast<std::uint32_t>(lights.size());
     v.features = features;
     v.normals = normals.data();
+    v.uvs = uvs.data();
+    v.textures = textures.data();
+    v.texels = texels.data();
     return v;
 }
 
@@ -73,6 +77,7 @@ struct UsableTriangle {
     unsigned material;
     unsigned shape;
     const VertexNormalTriple* normals;  // nullptr: flat
+    const TriangleUv* uv;               // nullptr: none
 };
 
 // The thesis' structure: each shape's usable triangles in a run, one AABB.
@@ -193,6 +198,49 @@ void pack_normals(const std::vector<UsableTriangle>& usable,
     }
 }
 
+// The textures that the packed triangles use, with their texture
+// coordinates (T0_FEATURE_TEXTURE), where any textured material's
+// triangle has coordinates; each textured material's record names its
+// texture (type.y, one past its index).
+void pack_textures(const Scene& scene, const std::vector<UsableTriangle>& usable,
+                   const std::vector<std::uint32_t>& packed_index, PackedScene& packed) {
+    const auto textured_material = [&](const Material& m) {
+        return m.texture >= 0 && static_cast<std::size_t>(m.texture) < scene.textures.size() &&
+               (m.type == MaterialType::diffuse || m.type == MaterialType::glossy);
+    };
+    const auto textured = [&](const UsableTriangle& u) {
+        return u.uv != nullptr && textured_material(scene.materials[u.material]);
+    };
+    if (std::none_of(usable.begin(), usable.end(), textured)) {
+        return;
+    }
+    packed.features |= T0_FEATURE_TEXTURE;
+    for (const Texture& t : scene.textures) {
+        kernel::TextureRecord record;
+        record.info = glm::uvec4(static_cast<std::uint32_t>(packed.texels.size()),
+                                 static_cast<std::uint32_t>(t.width),
+                                 static_cast<std::uint32_t>(t.height), 0u);
+        packed.textures.push_back(record);
+        packed.texels.insert(packed.texels.end(), t.texels.begin(), t.texels.end());
+    }
+    for (std::size_t m = 0; m < scene.materials.size(); ++m) {
+        const Material& material = scene.materials[m];
+        if (textured_material(material)) {
+            packed.materials[m].type.y = static_cast<std::uint32_t>(material.texture) + 1u;
+        }
+    }
+    packed.uvs.assign(usable.size(), kernel::TriangleUVs{});
+    for (std::size_t u = 0; u < usable.size(); ++u) {
+        if (!textured(usable[u])) {
+            continue;
+        }
+        const std::array<glm::vec2, 3>& uv = usable[u].uv->uv;
+        kernel::TriangleUVs& record = packed.uvs[packed_index[u]];
+        record.uv01 = glm::vec4(uv[0], uv[1]);
+        record.uv2 = glm::vec4(uv[2], 1.0f, 0.0f);
+    }
+}
+
 // The power of two the packer multiplies a scene's coordinates by. The
 // triangle test's distance has a numerator that grows as the cube of the
 // scene's size (kernel/triangle.h): a scene 1e13 across overflowed it and
@@ -242,8 +290,10 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
                 index < shape.normals.size() && glm::length(shape.normals[index][0]) > 0.0f
                     ? &shape.normals[index]
                     : nullptr;
+            const TriangleUv* uv =
+                index < shape.uvs.size() && shape.uvs[index].present ? &shape.uvs[index] : nullptr;
             usable.push_back(
-                {&t, static_cast<unsigned>(shape.material), static_cast<unsigned>(s), normals});
+                {&t, static_cast<unsigned>(shape.material), static_cast<unsigned>(s), normals, uv});
             magnitudes.push_back(
                 std::max({kernel::max_abs3(t.v0), kernel::max_abs3(t.v1), kernel::max_abs3(t.v2)}));
         }
@@ -271,7 +321,7 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
                 ++packed.dropped_degenerate_triangles;
                 continue;
             }
-            kept.push_back({&scaled.back(), u.material, u.shape, u.normals});
+            kept.push_back({&scaled.back(), u.material, u.shape, u.normals, u.uv});
         }
         usable.swap(kept);
     }
@@ -314,6 +364,7 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
         }
     }
     pack_normals(usable, packed_index, packed);
+    pack_textures(scene, usable, packed_index, packed);
     pack_lights(packed, packed_index);
     if (options.integrator == Integrator::nee && !packed.lights.empty()) {
         packed.features |= T0_FEATURE_NEE;

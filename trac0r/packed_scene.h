@@ -63,6 +63,11 @@ struct PackedScene {
     // By packed triangle, its vertex normals (T0_FEATURE_SMOOTH); empty when
     // no triangle has them.
     std::vector<kernel::VertexNormals> normals;
+    // With T0_FEATURE_TEXTURE (else empty): by packed triangle, its texture
+    // coordinates; the scene's textures, and their texels one after another.
+    std::vector<kernel::TriangleUVs> uvs;
+    std::vector<kernel::TextureRecord> textures;
+    std::vector<std::uint32_t> texels;
     std::uint32_t features = 0;
     std::size_t dropped_degenerate_triangles = 0;  // zero-area or non-finite
     // The power of two every coordinate was multiplied by: 1 for a scene of

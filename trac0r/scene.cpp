@@ -66,6 +66,7 @@ std::uint64_t scene_digest(const Scene& scene) {
         h.value(m.emittance);
         h.value(m.roughness);
         h.value(m.ior);
+        h.value(m.texture);
     }
     h.value(scene.shapes.size());
     for (const Shape& s : scene.shapes) {
@@ -82,6 +83,20 @@ std::uint64_t scene_digest(const Scene& scene) {
             h.vec3(n[1]);
             h.vec3(n[2]);
         }
+        h.value(s.uvs.size());
+        for (const TriangleUv& t : s.uvs) {
+            h.value(static_cast<int>(t.present));
+            for (const glm::vec2& uv : t.uv) {
+                h.value(uv.x);
+                h.value(uv.y);
+            }
+        }
+    }
+    h.value(scene.textures.size());
+    for (const Texture& t : scene.textures) {
+        h.value(t.width);
+        h.value(t.height);
+        h.bytes(t.texels.data(), t.texels.size() * sizeof(std::uint32_t));
     }
     return h.hash();
 }

@@ -28,6 +28,7 @@ struct Scene {
     RenderSettings render;
     std::vector<Material> materials;
     std::vector<Shape> shapes;
+    std::vector<Texture> textures;  // the materials' base-colour textures (Material::texture)
 
     std::size_t triangle_count() const;
 };

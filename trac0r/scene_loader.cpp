@@ -203,7 +203,23 @@ struct ShapeContext {
     std::vector<Material>* materials = nullptr;
     // A file's material (its path and name) -> its index in materials.
     std::map<std::string, int>* file_material_index = nullptr;
+    // The scene's textures, which meshes' materials add.
+    std::vector<Texture>* textures = nullptr;
 };
+
+// The scene's textures within max_scene_texels in all, or an error naming
+// the mesh file whose texture went over.
+void check_scene_texels(const std::vector<Texture>& textures, const std::string& path) {
+    std::uint64_t texels = 0;
+    for (const Texture& t : textures) {
+        texels += t.texels.size();
+    }
+    if (texels > max_scene_texels) {
+        throw std::runtime_error(path + ": its textures bring the scene's to " +
+                                 std::to_string(texels) + " texels, over the " +
+                                 std::to_string(max_scene_texels) + " a scene may have");
+    }
+}
 
 int read_material_reference(const ObjectReader& o, const ShapeContext& context) {
     const json& value = o.required("material", "the name of a material");
@@ -249,6 +265,10 @@ std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
         MeshParts mesh =
             load_mesh_parts(path, position, orientation, scale, material, smooth, file_materials);
         std::vector<Material>& materials = *context.materials;
+        std::vector<Texture>& textures = *context.textures;
+        // The file's textures that its materials use, moved into the
+        // scene's on first use: by index in mesh.textures.
+        std::vector<int> texture_in_scene(mesh.textures.size(), -1);
         std::vector<Shape> shapes;
         for (MeshPart& part : mesh.parts) {
             if (part.material >= 0) {
@@ -270,6 +290,16 @@ std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
                     } else {
                         part.shape.material = static_cast<int>(materials.size());
                         (*context.file_material_index)[key] = part.shape.material;
+                        if (m.texture >= 0) {
+                            int& index = texture_in_scene[static_cast<std::size_t>(m.texture)];
+                            if (index < 0) {
+                                index = static_cast<int>(textures.size());
+                                textures.push_back(
+                                    std::move(mesh.textures[static_cast<std::size_t>(m.texture)]));
+                                check_scene_texels(textures, path);
+                            }
+                            m.texture = index;
+                        }
                         materials.push_back(m);
                     }
                 }
@@ -379,6 +409,7 @@ Scene read_scene(const json& document, const Location& at, const std::string& ba
     context.materials = &scene.materials;
     std::map<std::string, int> file_material_index;
     context.file_material_index = &file_material_index;
+    context.textures = &scene.textures;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         context.material_index[scene.materials[i].name] = static_cast<int>(i);
         context.material_names.push_back(scene.materials[i].name);

@@ -36,7 +36,8 @@ glm::mat4 model_matrix(const glm::vec3& position, const glm::vec3& orientation,
 }
 
 Shape make_shape(std::vector<Triangle> local_triangles, const glm::mat4& model, int material,
-                 const std::vector<VertexNormalTriple>& local_normals) {
+                 const std::vector<VertexNormalTriple>& local_normals,
+                 const std::vector<TriangleUv>& local_uvs) {
     // A mirroring transform turns the winding inside out; swap two vertices
     // so normals keep pointing out of closed shapes (glass needs that).
     const bool mirrored = glm::determinant(glm::mat3(model)) < 0.0f;
@@ -68,6 +69,12 @@ Shape make_shape(std::vector<Triangle> local_triangles, const glm::mat4& model, 
                      glm::normalize(moved[mirrored ? 1 : 2])};
         }
         shape.normals.push_back(world);
+    }
+    shape.uvs = local_uvs;
+    if (mirrored) {
+        for (TriangleUv& t : shape.uvs) {
+            std::swap(t.uv[1], t.uv[2]);
+        }
     }
     return shape;
 }
@@ -361,23 +368,125 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
     return out;
 }
 
+// The index in mesh.textures of the texture from `source`, made by
+// load() the first time a material of the file uses it.
+template <typename Load>
+int texture_index(MeshParts& mesh, const std::string& source, Load load) {
+    for (std::size_t i = 0; i < mesh.textures.size(); ++i) {
+        if (mesh.textures[i].source == source) {
+            return static_cast<int>(i);
+        }
+    }
+    mesh.textures.push_back(load());
+    return static_cast<int>(mesh.textures.size()) - 1;
+}
+
+// Whether a material of this type takes a base-colour texture.
+bool takes_texture(MaterialType type) {
+    return type == MaterialType::diffuse || type == MaterialType::glossy;
+}
+
+// The base-colour texture an MTL material names, for the material `out`
+// made of it: map_Kd for a diffuse one, and for a glossy one the map of
+// the colour it took (map_Ks with Ks, else map_Kd); "" for none.
+std::string mtl_texture_name(const tinyobj::material_t& m, const Material& out) {
+    if (out.type == MaterialType::diffuse) {
+        return m.diffuse_texname;
+    }
+    if (out.type == MaterialType::glossy) {
+        const bool from_ks = m.specular[0] > 0.0f || m.specular[1] > 0.0f || m.specular[2] > 0.0f;
+        return from_ks ? m.specular_texname : m.diffuse_texname;
+    }
+    return "";
+}
+
+// A texture's file name as a material file gives it, relative to that
+// file's directory (a Windows exporter's '\\' read as '/').
+std::string texture_path_beside(const std::string& mtl_file, std::string name) {
+    std::replace(name.begin(), name.end(), '\\', '/');
+    while (name.compare(0, 2, "./") == 0) {
+        name.erase(0, 2);
+    }
+    if (!name.empty() && name[0] == '/') {
+        return name;
+    }
+    const std::size_t slash = mtl_file.find_last_of('/');
+    return (slash == std::string::npos ? "" : mtl_file.substr(0, slash + 1)) + name;
+}
+
+// The base-colour texture of an assimp material (glTF's baseColorTexture)
+// as an index into mesh.textures, or -1 for none: an image embedded in the
+// file (a .glb's buffer, a data URI: "*N") or a file beside it.
+int assimp_texture(const aiScene& scene, const aiMaterial& m, const std::string& path,
+                   MeshParts& mesh) {
+    aiString name;
+    if (m.GetTexture(aiTextureType_BASE_COLOR, 0, &name) != AI_SUCCESS &&
+        m.GetTexture(aiTextureType_DIFFUSE, 0, &name) != AI_SUCCESS) {
+        return -1;
+    }
+    aiString material_name;
+    m.Get(AI_MATKEY_NAME, material_name);
+    const std::string file = name.C_Str();
+    const std::string where = path + ": material '" + printable(material_name.C_Str(), 60) +
+                              "': base colour texture '" + printable(file, 200) + "'";
+    const aiTexture* embedded = scene.GetEmbeddedTexture(name.C_Str());
+    if (embedded != nullptr) {
+        return texture_index(mesh, path + " " + file, [&] {
+            if (embedded->mHeight != 0) {
+                // Uncompressed: mWidth x mHeight texels, BGRA.
+                if (embedded->mWidth > static_cast<unsigned>(max_texture_side) ||
+                    embedded->mHeight > static_cast<unsigned>(max_texture_side)) {
+                    throw std::runtime_error(where + ": expected each side at most " +
+                                             std::to_string(max_texture_side));
+                }
+                Texture t;
+                t.source = path + " " + file;
+                t.width = static_cast<int>(embedded->mWidth);
+                t.height = static_cast<int>(embedded->mHeight);
+                t.texels.resize(static_cast<std::size_t>(t.width) * t.height);
+                for (std::size_t i = 0; i < t.texels.size(); ++i) {
+                    const aiTexel& c = embedded->pcData[i];
+                    t.texels[i] = static_cast<std::uint32_t>(c.r) |
+                                  static_cast<std::uint32_t>(c.g) << 8 |
+                                  static_cast<std::uint32_t>(c.b) << 16 |
+                                  static_cast<std::uint32_t>(c.a) << 24;
+                }
+                return t;
+            }
+            // Compressed (PNG, JPEG): mWidth bytes.
+            return decode_texture(where, path + " " + file,
+                                  reinterpret_cast<const unsigned char*>(embedded->pcData),
+                                  embedded->mWidth);
+        });
+    }
+    if (!file.empty() && file[0] == '*') {
+        throw std::runtime_error(where + ": the file has no embedded image of that number");
+    }
+    const std::string texture = texture_path_beside(path, file);
+    return texture_index(mesh, texture, [&] { return load_texture_file(where, texture); });
+}
+
 // Faces grouped into parts by a material key (first use first), with
 // their normals; what load_obj and load_assimp fill.
 struct PartBuilder {
     std::vector<int> key;
     std::vector<std::vector<Triangle>> triangles;
     std::vector<std::vector<VertexNormalTriple>> normals;
+    std::vector<std::vector<TriangleUv>> uvs;
     std::vector<bool> any_smooth;
+    std::vector<bool> any_uv;
 
     void add(int material_key, const glm::vec3 p[3], VertexNormalTriple n, bool has_normals,
-             bool smooth) {
+             bool smooth, const TriangleUv& uv) {
         std::size_t part =
             static_cast<std::size_t>(std::find(key.begin(), key.end(), material_key) - key.begin());
         if (part == key.size()) {
             key.push_back(material_key);
             triangles.emplace_back();
             normals.emplace_back();
+            uvs.emplace_back();
             any_smooth.push_back(false);
+            any_uv.push_back(false);
         }
         triangles[part].emplace_back(p[0], p[1], p[2]);
         if (!has_normals || !smooth) {
@@ -385,10 +494,13 @@ struct PartBuilder {
         }
         any_smooth[part] = any_smooth[part] || (has_normals && smooth);
         normals[part].push_back(n);
+        any_uv[part] = any_uv[part] || uv.present;
+        uvs[part].push_back(uv);
     }
 
-    // The parts as shapes; `material_of(key)` maps a key to the file's
-    // material (its index in mesh.materials, appended), or -1.
+    // The parts as shapes; `material_of(key, mesh)` maps a key to the
+    // file's material (its index in mesh.materials, appended with its
+    // texture), or -1.
     template <typename MaterialOf>
     MeshParts finish(const std::string& path, const char* what, const glm::mat4& model,
                      int material, MaterialOf material_of) {
@@ -400,9 +512,12 @@ struct PartBuilder {
             if (!any_smooth[part]) {
                 normals[part].clear();
             }
+            if (!any_uv[part]) {
+                uvs[part].clear();
+            }
             MeshPart p;
-            p.shape = make_shape(triangles[part], model, material, normals[part]);
-            p.material = material_of(key[part], mesh.materials);
+            p.shape = make_shape(triangles[part], model, material, normals[part], uvs[part]);
+            p.material = material_of(key[part], mesh);
             mesh.parts.push_back(std::move(p));
         }
         return mesh;
@@ -445,14 +560,30 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
     }
     const std::size_t vertex_count = attrib.vertices.size() / 3;
     const std::size_t normal_count = attrib.normals.size() / 3;
+    const std::size_t texcoord_count = attrib.texcoords.size() / 2;
     PartBuilder parts;
     for (const tinyobj::shape_t& s : shapes) {
         for (std::size_t i = 0; i + 2 < s.mesh.indices.size(); i += 3) {
             glm::vec3 p[3];
             VertexNormalTriple n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
             bool has_normals = true;
+            TriangleUv uv;
+            uv.present = true;
             for (int k = 0; k < 3; ++k) {
                 const tinyobj::index_t& ref = s.mesh.indices[i + k];
+                const int texcoord = ref.texcoord_index;
+                if (texcoord >= 0 && static_cast<std::size_t>(texcoord) >= texcoord_count) {
+                    throw std::runtime_error(path + ": face of shape '" + s.name +
+                                             "' refers to texture coordinate " +
+                                             std::to_string(texcoord + 1) + ", but the file has " +
+                                             std::to_string(texcoord_count) + " (vt)");
+                }
+                if (texcoord < 0) {
+                    uv.present = false;
+                } else {
+                    uv.uv[k] = glm::vec2(attrib.texcoords[2 * texcoord],
+                                         attrib.texcoords[2 * texcoord + 1]);
+                }
                 const int index = ref.vertex_index;
                 if (index < 0 || static_cast<std::size_t>(index) >= vertex_count) {
                     throw std::runtime_error(path + ": face of shape '" + s.name +
@@ -483,19 +614,35 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
             const std::size_t face = i / 3;
             const int id =
                 read_mtl && face < s.mesh.material_ids.size() ? s.mesh.material_ids[face] : -1;
-            parts.add(id, p, n, has_normals, smooth);
+            if (!uv.present) {
+                uv = TriangleUv();
+            }
+            parts.add(id, p, n, has_normals, smooth, uv);
         }
     }
-    return parts.finish(path, "OBJ mesh", model_matrix(position, orientation, scale), material,
-                        [&](int id, std::vector<Material>& out) {
-                            if (id < 0) {
-                                return -1;
-                            }
-                            const std::size_t k = static_cast<std::size_t>(id);
-                            out.push_back(material_from_mtl(
-                                materials[k], k < reader.files.size() ? reader.files[k] : path));
-                            return static_cast<int>(out.size()) - 1;
-                        });
+    return parts.finish(
+        path, "OBJ mesh", model_matrix(position, orientation, scale), material,
+        [&](int id, MeshParts& mesh) {
+            if (id < 0) {
+                return -1;
+            }
+            const std::size_t k = static_cast<std::size_t>(id);
+            const std::string& file = k < reader.files.size() ? reader.files[k] : path;
+            Material m = material_from_mtl(materials[k], file);
+            const std::string map = mtl_texture_name(materials[k], m);
+            if (!map.empty()) {
+                const std::string texture = texture_path_beside(file, map);
+                m.texture = texture_index(mesh, texture, [&] {
+                    return load_texture_file(
+                        file + ": material '" + printable(m.name, 60) +
+                            "': " + (map == materials[k].diffuse_texname ? "map_Kd" : "map_Ks") +
+                            " '" + printable(map, 200) + "'",
+                        texture);
+                });
+            }
+            mesh.materials.push_back(m);
+            return static_cast<int>(mesh.materials.size()) - 1;
+        });
 }
 
 // A PLY or glTF 2.0 file through assimp: its meshes with their node
@@ -538,6 +685,8 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
             glm::vec3 p[3];
             VertexNormalTriple n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
             bool has_normals = mesh.HasNormals();
+            TriangleUv uv;
+            uv.present = mesh.HasTextureCoords(0);
             for (int k = 0; k < 3; ++k) {
                 const unsigned index = face.mIndices[k];
                 if (index >= mesh.mNumVertices) {
@@ -553,6 +702,11 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
                                              "': vertex " + std::to_string(index) +
                                              " is not finite");
                 }
+                if (uv.present) {
+                    const aiVector3D& t = mesh.mTextureCoords[0][index];
+                    uv.uv[k] = glm::vec2(t.x, t.y);
+                    uv.present = std::isfinite(t.x) && std::isfinite(t.y);
+                }
                 if (has_normals) {
                     const aiVector3D& vn = mesh.mNormals[index];
                     n[k] = glm::vec3(vn.x, vn.y, vn.z);
@@ -560,12 +714,15 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
                 }
             }
             // A PLY has no materials (assimp gives it a default one).
+            if (!uv.present) {
+                uv = TriangleUv();
+            }
             parts.add(file_materials && !ply ? static_cast<int>(mesh.mMaterialIndex) : -1, p, n,
-                      has_normals, smooth);
+                      has_normals, smooth, uv);
         }
     }
     return parts.finish(path, "mesh", model_matrix(position, orientation, scale), material,
-                        [&](int id, std::vector<Material>& out) {
+                        [&](int id, MeshParts& mesh) {
                             if (id < 0 || static_cast<unsigned>(id) >= scene->mNumMaterials) {
                                 return -1;
                             }
@@ -573,8 +730,12 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
                             if (is_default_material(m)) {
                                 return -1;
                             }
-                            out.push_back(material_from_assimp(m, path));
-                            return static_cast<int>(out.size()) - 1;
+                            Material out = material_from_assimp(m, path);
+                            if (takes_texture(out.type)) {
+                                out.texture = assimp_texture(*scene, m, path, mesh);
+                            }
+                            mesh.materials.push_back(out);
+                            return static_cast<int>(mesh.materials.size()) - 1;
                         });
 }
 

@@ -5,6 +5,7 @@
 
 #include "trac0r/geometry.h"
 #include "trac0r/material.h"
+#include "trac0r/texture.h"
 
 #include <glm/glm.hpp>
 
@@ -18,11 +19,20 @@ namespace trac0r {
 // where it has none (it is shaded flat).
 using VertexNormalTriple = std::array<glm::vec3, 3>;
 
+// A triangle's texture coordinates at v0, v1, v2 (u right, v up from the
+// image's bottom), where the file gives them.
+struct TriangleUv {
+    std::array<glm::vec2, 3> uv{};
+    bool present = false;
+};
+
 struct Shape {
     std::vector<Triangle> triangles;
     // Empty: every triangle is flat. Else one per triangle (a mesh whose
     // file gives vertex normals, with "smooth" on).
     std::vector<VertexNormalTriple> normals;
+    // Empty: no triangle has texture coordinates. Else one per triangle.
+    std::vector<TriangleUv> uvs;
     AABB aabb;
     int material = 0;    // index into Scene::materials
     std::string source;  // a mesh's file, as the scene loader found it; "" for the rest
@@ -35,9 +45,11 @@ glm::mat4 model_matrix(const glm::vec3& position, const glm::vec3& orientation,
 
 // Applies the model matrix to every vertex and recomputes the AABB; and to
 // the vertex normals, where given (one per triangle), by its inverse
-// transpose.
+// transpose. Texture coordinates, where given (one per triangle), stay
+// with their vertices.
 Shape make_shape(std::vector<Triangle> local_triangles, const glm::mat4& model, int material,
-                 const std::vector<VertexNormalTriple>& local_normals = {});
+                 const std::vector<VertexNormalTriple>& local_normals = {},
+                 const std::vector<TriangleUv>& local_uvs = {});
 
 // The unit plane in local xz (normal +y), size (x, z).
 Shape make_plane(const glm::vec3& position, const glm::vec3& orientation, const glm::vec2& size,
@@ -57,6 +69,7 @@ struct MeshPart {
 struct MeshParts {
     std::vector<MeshPart> parts;      // in the order their materials are first used
     std::vector<Material> materials;  // the file's materials that faces use, mapped
+    std::vector<Texture> textures;    // their base-colour textures (Material::texture)
 };
 
 // A mesh file split by its faces' materials: a PLY or glTF 2.0 by its

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 #include <new>
 #include <stdexcept>
 
@@ -115,11 +116,20 @@ void print_verbose(trac0r::Renderer& r, const Options& o) {
         const std::size_t smooth = static_cast<std::size_t>(std::count_if(
             s.normals.begin(), s.normals.end(),
             [](const trac0r::VertexNormalTriple& n) { return n[0] != glm::vec3(0.0f); }));
+        const trac0r::Material& m = scene.materials[static_cast<std::size_t>(s.material)];
+        // Its material's texture, if it has one and the triangles have
+        // coordinates for it.
+        std::string texture;
+        if (m.texture >= 0 && !s.uvs.empty()) {
+            const trac0r::Texture& t = scene.textures[static_cast<std::size_t>(m.texture)];
+            texture = ", texture " + t.source + " (" + std::to_string(t.width) + "x" +
+                      std::to_string(t.height) + ")";
+        }
         std::fprintf(stderr,
                      "mesh %s: %zu triangles, bounds (%.6g, %.6g, %.6g) to (%.6g, %.6g, %.6g), "
-                     "material %s, %zu smooth\n",
+                     "material %s%s, %zu smooth\n",
                      s.source.c_str(), s.triangles.size(), lo.x, lo.y, lo.z, hi.x, hi.y, hi.z,
-                     scene.materials[static_cast<std::size_t>(s.material)].name.c_str(), smooth);
+                     m.name.c_str(), texture.c_str(), smooth);
     }
     std::fprintf(stderr, "backend: %s (%s)\n", r.backend().name().c_str(),
                  r.backend().device().c_str());

@@ -28,6 +28,7 @@
 
 #define T0_GLOBAL __global
 #define T0_LOCAL __local
+#define T0_CONSTANT __constant
 #define T0_INLINE inline __attribute__((always_inline))
 #define T0_FORCE_INLINE T0_INLINE
 #define T0_ALIGN16
@@ -72,6 +73,8 @@ T0_INLINE t0_u32 buffer_uint_component(__global const uint4* v, int k) {
 
 #define T0_GLOBAL
 #define T0_LOCAL
+// A table at file scope: OpenCL's constant memory, a C++ constant.
+#define T0_CONSTANT static const
 #define T0_INLINE inline
 // Inlined even where the compiler would not: the sampler's draws, whose
 // chains of multiplies overlap only when they sit side by side.

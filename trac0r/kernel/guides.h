@@ -51,7 +51,10 @@ T0_INLINE GuidePixel pixel_guides(const SceneView* scene, CameraRecord camera, t
             const float peak = fmax(colour.x, fmax(colour.y, colour.z));
             const float3 albedo =
                 type == T0_MATERIAL_EMISSIVE && peak > 1.0f ? colour / peak : colour;
-            const float3 a = tint * albedo;
+            float3 a = tint * albedo;
+            if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) {
+                a *= surface_texture(scene, m, hit);
+            }
             g.albedo = make_float4(a.x, a.y, a.z, g.albedo.w);
             g.normal = make_float4(facing_normal.x, facing_normal.y, facing_normal.z, 0.0f);
             return g;

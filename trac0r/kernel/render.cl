@@ -5,12 +5,14 @@
 #include "trace.h"
 
 // The kernel's view of the packed buffers (PackedScene::view on the host).
-// A kernel that reads no materials, lights or normals (the ray-cast
-// benchmark's) passes 0 for them.
+// A kernel that reads no materials, lights, normals or textures (the
+// ray-cast benchmark's) passes 0 for them.
 SceneView scene_view(__global const TriangleRecord* triangles, __global const ShapeRecord* shapes,
                      __global const MaterialRecord* materials, __global const BvhNode* nodes,
                      __global const TrianglePacket* packets, __global const LightRecord* lights,
-                     __global const VertexNormals* normals, uint shape_count, uint light_count) {
+                     __global const VertexNormals* normals, __global const TriangleUVs* uvs,
+                     __global const TextureRecord* textures, __global const uint* texels,
+                     uint shape_count, uint light_count) {
     SceneView scene;
     scene.triangles = triangles;
     scene.shapes = shapes;
@@ -19,6 +21,9 @@ SceneView scene_view(__global const TriangleRecord* triangles, __global const Sh
     scene.packets = packets;
     scene.lights = lights;
     scene.normals = normals;
+    scene.uvs = uvs;
+    scene.textures = textures;
+    scene.texels = texels;
     scene.shape_count = shape_count;
     scene.light_count = light_count;
     scene.features = T0_FEATURES;
@@ -102,9 +107,11 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
                            ulong seed, uint frame, int max_depth,
                            __global const LightRecord* lights, uint light_count,
                            __global const TrianglePacket* packets,
-                           __global const VertexNormals* normals) {
+                           __global const VertexNormals* normals,
+                           __global const TriangleUVs* uvs,
+                           __global const TextureRecord* textures, __global const uint* texels) {
     const SceneView scene = scene_view(triangles, shapes, materials, nodes, packets, lights,
-                                       normals, shape_count, light_count);
+                                       normals, uvs, textures, texels, shape_count, light_count);
     if (!T0_HAS_FEATURE(&scene, T0_FEATURE_BVH)) {
         // A pixel a work-item.
         const uint pixel = (uint)get_global_id(0);

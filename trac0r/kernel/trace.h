@@ -10,6 +10,7 @@
 #include "ray.h"
 #include "ray_offset.h"
 #include "sampler.h"
+#include "texture.h"
 #include "traverse.h"
 #include "types.h"
 
@@ -152,6 +153,13 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         }
         const float3 position = hit_position(tri, hit);
         const float magnitude = hit_magnitude(tri, position);
+        // A base-colour texture multiplies the material's colour, which
+        // both the light sample and the scattered ray's weight are linear
+        // in (their densities do not depend on it).
+        float3 texture = float3_splat(1.0f);
+        if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) {
+            texture = surface_texture(scene, m, hit);
+        }
 
         // Sample a light (next-event estimation), before the roulette: the
         // light sample is this vertex's and counts whether or not the path
@@ -165,9 +173,9 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
             material_samples_lights(scene, m)) {
             const float u_pick = vertex_1d(sampler, draws.light_pick);
             const float2 u_point = vertex_2d(sampler, draws.light_point);
-            radiance +=
-                throughput * sample_light(scene, m, ray.direction, facing_normal, facing_geometric,
-                                          position, magnitude, u_pick, u_point);
+            radiance += throughput * texture *
+                        sample_light(scene, m, ray.direction, facing_normal, facing_geometric,
+                                     position, magnitude, u_pick, u_point);
             lights_sampled = 1;
         }
 
@@ -193,7 +201,7 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
                 (dot(s.direction, facing_normal) > 0.0f)) {
             break;
         }
-        throughput *= s.weight;
+        throughput *= s.weight * texture;
         scatter_pdf = s.pdf;
 
         // Continue from just off the surface, on the side the new ray leaves.

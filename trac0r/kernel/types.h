@@ -26,7 +26,8 @@
 #define T0_FEATURE_NEE (1u << 7)        // next-event estimation with MIS
 #define T0_FEATURE_SOBOL (1u << 8)      // Owen-scrambled Sobol samples (sampler.h)
 #define T0_FEATURE_SMOOTH (1u << 9)     // vertex normals (VertexNormals) on some triangles
-#define T0_FEATURE_COUNT 10
+#define T0_FEATURE_TEXTURE (1u << 10)   // base-colour textures (texture.h) on some triangles
+#define T0_FEATURE_COUNT 11
 
 T0_NAMESPACE_BEGIN
 
@@ -106,10 +107,26 @@ typedef struct T0_ALIGN16 VertexNormals {
     float4 n2;  // xyz: unit normal at v2
 } VertexNormals;
 
+// A triangle's texture coordinates at v0, v1, v2 (T0_FEATURE_TEXTURE), by
+// triangle index, with u to the right and v up from the image's bottom
+// row (OBJ's and assimp's convention). uv2.z is 1 where the triangle has
+// them, 0 where it has none (its material's colour is used untextured).
+typedef struct T0_ALIGN16 TriangleUVs {
+    float4 uv01;  // xy: (u, v) at v0, zw: at v1
+    float4 uv2;   // xy: (u, v) at v2, z: 1 if the triangle has them, w: unused
+} TriangleUVs;
+
+// A base-colour texture: `width` x `height` texels from `first` on in the
+// scene's texel buffer, row by row from the image's top row, each RGBA8 in
+// sRGB (red in the low byte; alpha unused).
+typedef struct T0_ALIGN16 TextureRecord {
+    uint4 info;  // x: first texel, y: width, z: height, w: unused
+} TextureRecord;
+
 typedef struct T0_ALIGN16 MaterialRecord {
     float4 color;   // xyz: colour (albedo, or emitted colour), w: unused
     float4 params;  // x: emittance, y: roughness, z: ior, w: glossy_cone_sin2
-    uint4 type;     // x: T0_MATERIAL_*
+    uint4 type;     // x: T0_MATERIAL_*, y: base-colour texture + 1 (0: none)
 } MaterialRecord;
 
 // The camera as the kernel needs it: an orthonormal frame and the image
@@ -145,6 +162,11 @@ typedef struct SceneView {
     t0_u32 light_count;
     t0_u32 features;
     T0_GLOBAL const VertexNormals* normals;  // by triangle; only with T0_FEATURE_SMOOTH
+    // Only with T0_FEATURE_TEXTURE: by triangle, its texture coordinates;
+    // the textures; and their texels.
+    T0_GLOBAL const TriangleUVs* uvs;
+    T0_GLOBAL const TextureRecord* textures;
+    T0_GLOBAL const t0_u32* texels;
 } SceneView;
 
 // Per-frame settings of the render.
@@ -164,6 +186,8 @@ T0_STATIC_ASSERT_SIZE(BvhNode, 256);
 T0_STATIC_ASSERT_SIZE(TrianglePacket, 176);
 T0_STATIC_ASSERT_SIZE(LightRecord, 32);
 T0_STATIC_ASSERT_SIZE(VertexNormals, 48);
+T0_STATIC_ASSERT_SIZE(TriangleUVs, 32);
+T0_STATIC_ASSERT_SIZE(TextureRecord, 16);
 T0_STATIC_ASSERT_SIZE(CameraRecord, 96);
 T0_STATIC_ASSERT_SIZE(AccumPixel, 48);
 T0_STATIC_ASSERT_SIZE(FrameRecord, 32);

@@ -1,0 +1,39 @@
+// Base-colour textures as the kernel reads them (kernel/texture.h): 8-bit
+// sRGB texels, decoded from the image files and bytes that meshes name.
+#ifndef TRAC0R_TEXTURE_H
+#define TRAC0R_TEXTURE_H
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace trac0r {
+
+struct Texture {
+    std::string source;  // the file, or the mesh file and its embedded image
+    int width = 0;
+    int height = 0;
+    // Row by row from the image's top row, RGBA8 in sRGB, red in the low
+    // byte (alpha is kept but not used).
+    std::vector<std::uint32_t> texels;
+};
+
+// The largest texture side, and the most texels a scene's textures may
+// have in all (the kernel indexes them with 32 bits).
+const int max_texture_side = 16384;
+const std::uint64_t max_scene_texels = std::uint64_t(1) << 31;
+
+// An image file (PNG, JPEG, BMP, TGA or GIF, through stb_image; HDR is
+// refused) as a texture; `where` starts each message ("mesh.mtl:
+// material 'wood': map_Kd 'wood.png'"). Throws std::runtime_error
+// "WHERE: cannot open/read texture ..." or "WHERE: cannot decode ...".
+Texture load_texture_file(const std::string& where, const std::string& path);
+
+// The same for an image file's bytes in memory (an embedded glTF image).
+Texture decode_texture(const std::string& where, const std::string& source,
+                       const unsigned char* bytes, std::size_t size);
+
+}  // namespace trac0r
+
+#endif
