@@ -15,6 +15,7 @@ GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord&
     g.albedo.resize(pixels);
     g.normal.resize(pixels);
     g.depth.resize(pixels);
+    g.emitter.resize(pixels);
     const kernel::SceneView view = packed.view();
     const kernel::CameraRecord scaled = scaled_camera(camera, packed.scale);
     const int height = g.height;
@@ -27,6 +28,7 @@ GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord&
             const std::size_t i = static_cast<std::size_t>(y) * width + x;
             g.albedo[i] = glm::vec3(p.albedo);
             g.normal[i] = glm::vec3(p.normal);
+            g.emitter[i] = p.normal.w > 0.0f ? 1 : 0;
             g.depth[i] = p.albedo.w >= T0_NO_HIT ? std::numeric_limits<float>::infinity()
                                                  : p.albedo.w / packed.scale;
         }

@@ -19,9 +19,10 @@ struct GuideImages {
     int width = 0;
     int height = 0;
     // Row-major, row 0 at the top, as Image.
-    std::vector<glm::vec3> albedo;  // zero where the ray meets nothing
-    std::vector<glm::vec3> normal;  // unit, in world space, facing the camera; zero: nothing
-    std::vector<float> depth;       // along the camera's forward axis; +inf: nothing
+    std::vector<glm::vec3> albedo;       // zero where the ray meets nothing
+    std::vector<glm::vec3> normal;       // unit, in world space, facing the camera; zero: nothing
+    std::vector<float> depth;            // along the camera's forward axis; +inf: nothing
+    std::vector<unsigned char> emitter;  // 1 where the surface is a pure emitter (a lamp)
 };
 
 // One ray through each pixel's centre of `camera` (as the Renderer holds it:

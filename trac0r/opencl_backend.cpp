@@ -273,6 +273,8 @@ std::shared_ptr<OpenClDeviceCache> keep_opencl_device(int device_index) {
     return shared_device(device_index);
 }
 
+void check_opencl(cl_int status, const char* what) { check(status, what); }
+
 OpenClQueue shared_opencl_queue(int device_index) {
     const std::shared_ptr<OpenClDeviceCache> d = keep_opencl_device(device_index);
     return {d->device, d->context.get(), d->queue.get(), d->description, d};

@@ -30,6 +30,10 @@ struct OpenClQueue {
 // is no such device.
 OpenClQueue shared_opencl_queue(int device_index);
 
+// Throws OpenClError "OpenCL: WHAT failed (error N, NAME)" unless status
+// is CL_SUCCESS.
+void check_opencl(cl_int status, const char* what);
+
 // The build options of the renderer's program for feature mask `features`:
 // the OpenCL C version, the mask, and $TRAC0R_OPENCL_OPTIONS.
 std::string opencl_build_options(std::uint32_t features);

@@ -108,6 +108,7 @@ using glm::length;
 using glm::normalize;
 using std::copysign;
 using std::cos;
+using std::exp;
 using std::fabs;
 using std::floor;
 using std::sin;

@@ -19,7 +19,8 @@ typedef struct T0_ALIGN16 GuidePixel {
     float4 albedo;  // xyz: the surface's colour, times the tint of any glass
                     // on the way; w: depth, the first hit's distance along the
                     // camera's forward axis (T0_NO_HIT: none)
-    float4 normal;  // xyz: unit shading normal facing the ray (zero: none)
+    float4 normal;  // xyz: unit shading normal facing the ray (zero: none),
+                    // w: 1 where the surface is a pure emitter
 } GuidePixel;
 
 T0_INLINE GuidePixel pixel_guides(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y) {
@@ -56,7 +57,8 @@ T0_INLINE GuidePixel pixel_guides(const SceneView* scene, CameraRecord camera, t
                 a *= surface_texture(scene, m, hit);
             }
             g.albedo = make_float4(a.x, a.y, a.z, g.albedo.w);
-            g.normal = make_float4(facing_normal.x, facing_normal.y, facing_normal.z, 0.0f);
+            g.normal = make_float4(facing_normal.x, facing_normal.y, facing_normal.z,
+                                   type == T0_MATERIAL_EMISSIVE ? 1.0f : 0.0f);
             return g;
         }
         // On through the mirror or the glass: glass refracts (its choice

@@ -1,6 +1,7 @@
 // The OpenCL entry point: the same kernel headers the CPU backend compiles.
 // The library embeds this file after the headers (cmake/embed.cmake), and
 // builds it with -DT0_FEATURES=<mask> so unused branches are compiled out.
+#include "filter.h"
 #include "tile_grid.h"
 #include "trace.h"
 
@@ -126,5 +127,32 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
     if (t.inside) {
         accumulate_sample(&accum[t.pixel],
                           trace_path_from(&scene, t.sample.ray, t.first, max_depth, &t.sample.sampler));
+    }
+}
+
+// The edge-preserving filter (filter.h), a pixel a work-item: the first
+// pass's input from the accumulator, one a-trous pass, and the colour.
+__kernel void filter_begin(__global const AccumPixel* accum, __global const FilterGuide* guides,
+                           __global FilterPixel* out, uint pixels) {
+    const uint i = (uint)get_global_id(0);
+    if (i < pixels) {
+        out[i] = filter_input(accum[i], guides[i]);
+    }
+}
+
+__kernel void filter_pass(__global const FilterPixel* in, __global const FilterGuide* guides,
+                          __global FilterPixel* out, int width, int height, int pass) {
+    const int i = (int)get_global_id(0);
+    if (i < width * height) {
+        out[i] = atrous_pixel(in, guides, width, height, i % width, i / width, pass);
+    }
+}
+
+__kernel void filter_end(__global const FilterPixel* in, __global const FilterGuide* guides,
+                         __global float4* out, uint pixels) {
+    const uint i = (uint)get_global_id(0);
+    if (i < pixels) {
+        const float3 c = filter_output(in[i], guides[i]);
+        out[i] = (float4)(c, 0.0f);
     }
 }

@@ -1,0 +1,217 @@
+// The edge-preserving filter (kernel/filter.h): it keeps the image's
+// energy and its edges (of geometry and of light), smooths noise, and
+// leaves pixels that see nothing as they are.
+#include "test_support.h"
+
+#include "trac0r/camera.h"
+#include "trac0r/cpu_backend.h"
+#include "trac0r/filter.h"
+#include "trac0r/renderer.h"
+
+#include <cmath>
+#include <memory>
+#include <random>
+
+using namespace trac0r;
+
+namespace {
+
+// A pixel that accumulated n samples of mean `colour` whose luminance has
+// sample variance `variance`.
+kernel::AccumPixel pixel_of(const glm::vec3& colour, float variance, float n) {
+    kernel::AccumPixel p{};
+    p.sum = glm::vec4(colour * n, 0.0f);
+    p.compensation = glm::vec4(0.0f);
+    p.moments = glm::vec4(kernel::luminance(colour), variance * (n - 1.0f), n, 0.0f);
+    return p;
+}
+
+kernel::FilterGuide guide_of(const glm::vec3& albedo, float depth, const glm::vec3& normal) {
+    kernel::FilterGuide g;
+    g.albedo = glm::vec4(albedo, depth);
+    g.normal = glm::vec4(normal, 0.0f);
+    return g;
+}
+
+double mean_luminance(const Image& image, int x0, int x1) {
+    double sum = 0.0;
+    int n = 0;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = x0; x < x1; ++x) {
+            sum += kernel::luminance(image.at(x, y));
+            ++n;
+        }
+    }
+    return sum / n;
+}
+
+double spread(const Image& image, int x0, int x1) {
+    const double mean = mean_luminance(image, x0, x1);
+    double sum = 0.0;
+    int n = 0;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = x0; x < x1; ++x) {
+            const double d = kernel::luminance(image.at(x, y)) - mean;
+            sum += d * d;
+            ++n;
+        }
+    }
+    return std::sqrt(sum / n);
+}
+
+const int width = 64;
+const int height = 32;
+
+// Noisy halves: the left of brightness `left`, the right of `right`, each
+// pixel off its half's value by noise of relative size 0.3 (4 samples of
+// that spread); the guides from guide(x).
+template <typename Guide>
+void noisy_halves(float left, float right, Guide guide, std::vector<kernel::AccumPixel>* accum,
+                  std::vector<kernel::FilterGuide>* guides) {
+    std::mt19937 rng(5);
+    std::normal_distribution<float> noise(0.0f, 0.3f);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const float base = x < width / 2 ? left : right;
+            const float v = base * std::max(0.05f, 1.0f + noise(rng));
+            // Four samples: the variance of one is (0.3 base)^2 * 4.
+            accum->push_back(pixel_of(glm::vec3(v), 0.36f * base * base, 4.0f));
+            guides->push_back(guide(x));
+        }
+    }
+}
+
+}  // namespace
+
+TEST_CASE("the filter smooths noise and keeps a shadow's edge", "[filter]") {
+    std::vector<kernel::AccumPixel> accum;
+    std::vector<kernel::FilterGuide> guides;
+    // One plane (same normal and depth): a lit half and a shadowed one.
+    noisy_halves(
+        1.0f, 0.1f, [](int) { return guide_of(glm::vec3(0.5f), 3.0f, glm::vec3(0, 0, -1)); },
+        &accum, &guides);
+    const Image raw = accumulated_image(accum, width, height);
+    const Image filtered = filter_image(accum, width, height, guides, T0_FILTER_PASSES);
+    // Noise: the lit half's spread at least three times smaller.
+    CAPTURE(spread(raw, 0, 28), spread(filtered, 0, 28));
+    CHECK(spread(filtered, 0, 28) < spread(raw, 0, 28) / 3.0);
+    // The edge: a few pixels from it, each side keeps its brightness (a
+    // filter without edge-stopping weights spreads it over its 61-pixel
+    // footprint). The pixels right beside it may blend a little.
+    const double lit = mean_luminance(filtered, 26, 30);
+    const double dark = mean_luminance(filtered, 34, 38);
+    CAPTURE(lit, dark, mean_luminance(filtered, 31, 32), mean_luminance(filtered, 32, 33));
+    CHECK(lit > 0.9 * mean_luminance(raw, 0, 32));
+    CHECK(dark < 1.5 * mean_luminance(raw, 32, 64));
+    // Energy: the image mean kept within 1 %.
+    const double raw_mean = mean_luminance(raw, 0, width);
+    CHECK(std::fabs(mean_luminance(filtered, 0, width) / raw_mean - 1.0) < 0.01);
+    // No passes: the image as it is.
+    const Image none = filter_image(accum, width, height, guides, 0);
+    CHECK(none.pixels == raw.pixels);
+}
+
+TEST_CASE("the filter keeps a corner: normals and depths stop it", "[filter]") {
+    for (const int which : {0, 1}) {
+        CAPTURE(which);
+        std::vector<kernel::AccumPixel> accum;
+        std::vector<kernel::FilterGuide> guides;
+        // Equal brightness noise on both sides, so only the guides can
+        // keep them apart: two walls meeting (normals at right angles), or
+        // a near and a far surface (depths 1 and 5).
+        noisy_halves(
+            1.0f, 0.4f,
+            [which](int x) {
+                const bool left = x < width / 2;
+                return which == 0
+                           ? guide_of(glm::vec3(0.5f), 3.0f,
+                                      left ? glm::vec3(1, 0, 0) : glm::vec3(0, 0, -1))
+                           : guide_of(glm::vec3(0.5f), left ? 1.0f : 5.0f, glm::vec3(0, 0, -1));
+            },
+            &accum, &guides);
+        // A large per-sample variance: luminance alone would not stop it.
+        for (kernel::AccumPixel& p : accum) {
+            p.moments.y *= 100.0f;
+        }
+        const Image raw = accumulated_image(accum, width, height);
+        const Image filtered = filter_image(accum, width, height, guides, T0_FILTER_PASSES);
+        const double near_left = mean_luminance(filtered, 31, 32);
+        const double near_right = mean_luminance(filtered, 32, 33);
+        CAPTURE(near_left, near_right);
+        CHECK(std::fabs(near_left / mean_luminance(raw, 0, 32) - 1.0) < 0.1);
+        CHECK(std::fabs(near_right / mean_luminance(raw, 32, 64) - 1.0) < 0.1);
+    }
+}
+
+TEST_CASE("the filter leaves pixels that see nothing, and divides by albedo", "[filter]") {
+    std::vector<kernel::AccumPixel> accum;
+    std::vector<kernel::FilterGuide> guides;
+    // A textured-looking surface: albedo alternating by column, the
+    // colour following it exactly (uniform light); beside a background.
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const bool background = x >= 48;
+            const glm::vec3 albedo(x % 2 == 0 ? 0.8f : 0.2f);
+            const glm::vec3 colour = background ? glm::vec3(0.3f, 0.6f, 0.9f) : albedo * 2.0f;
+            accum.push_back(pixel_of(colour, 0.05f, 4.0f));
+            guides.push_back(background ? guide_of(glm::vec3(0.0f), T0_NO_HIT, glm::vec3(0.0f))
+                                        : guide_of(albedo, 2.0f, glm::vec3(0, 0, -1)));
+        }
+    }
+    const Image raw = accumulated_image(accum, width, height);
+    const Image filtered = filter_image(accum, width, height, guides, T0_FILTER_PASSES);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            CAPTURE(x, y);
+            // The texture's detail is kept (the lighting is uniform), and
+            // the background is not touched.
+            REQUIRE(glm::length(filtered.at(x, y) - raw.at(x, y)) <
+                    1e-5f * (1.0f + glm::length(raw.at(x, y))));
+        }
+    }
+}
+
+TEST_CASE("the filter keeps a rendered image's mean", "[filter]") {
+    // Diffuse walls, and the thesis' box with its glass and glossy objects.
+    for (const char* name : {"cornell_diffuse.json", "cornell.json"}) {
+        CAPTURE(name);
+        Scene scene = load_test_scene(name, 80, 60);
+        PackOptions options;
+        options.integrator = Integrator::nee;
+        Renderer r(scene, std::make_unique<CpuBackend>(), 3, options);
+        for (int i = 0; i < 4; ++i) {
+            r.render_frame();
+        }
+        const std::vector<kernel::FilterGuide> guides =
+            filter_guides(render_guides(r.packed(), r.camera_record()));
+        const Image raw = r.image();
+        const Image filtered = filter_image(r.accumulator(), 80, 60, guides, T0_FILTER_PASSES);
+        for (const glm::vec3& p : filtered.pixels) {
+            REQUIRE((std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)));
+        }
+        const double raw_mean = mean_luminance(raw, 0, 80);
+        CAPTURE(raw_mean, mean_luminance(filtered, 0, 80));
+        CHECK(std::fabs(mean_luminance(filtered, 0, 80) / raw_mean - 1.0) < 0.01);
+        CHECK(spread(filtered, 10, 70) < spread(raw, 10, 70));
+    }
+}
+
+TEST_CASE("the filter is the same on OpenCL", "[filter][opencl]") {
+    Scene scene = load_test_scene("cornell.json", 64, 48);
+    PackOptions options;
+    options.integrator = Integrator::nee;
+    Renderer r(scene, std::make_unique<CpuBackend>(), 3, options);
+    for (int i = 0; i < 4; ++i) {
+        r.render_frame();
+    }
+    const std::vector<kernel::FilterGuide> guides =
+        filter_guides(render_guides(r.packed(), r.camera_record()));
+    const Image cpu = filter_image(r.accumulator(), 64, 48, guides, T0_FILTER_PASSES);
+    const Image gpu = opencl_filter_image(0, r.accumulator(), 64, 48, guides, T0_FILTER_PASSES);
+    // exp and sqrt may differ by a few ulp between the compilers.
+    for (std::size_t i = 0; i < cpu.pixels.size(); ++i) {
+        CAPTURE(i);
+        REQUIRE(glm::length(cpu.pixels[i] - gpu.pixels[i]) <=
+                1e-4f * (1e-3f + glm::length(cpu.pixels[i])));
+    }
+}

@@ -1,0 +1,35 @@
+// The edge-preserving filter (kernel/filter.h) over an accumulated image,
+// on the CPU: what `--filter` shows and writes. The accumulator is read,
+// never changed.
+#ifndef TRAC0R_FILTER_H
+#define TRAC0R_FILTER_H
+
+#include "trac0r/guides.h"
+#include "trac0r/image_io.h"
+#include "trac0r/kernel/filter.h"
+
+#include <vector>
+
+namespace trac0r {
+
+// The filter's guides for the kernel: the camera ray's first non-specular
+// surface's albedo, depth and normal (render_guides), as FilterGuide.
+std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides);
+
+// The accumulated image filtered: `passes` a-trous passes (0: the image
+// as it is; default T0_FILTER_PASSES) with the guides. Throws
+// std::invalid_argument for guides of another size than the accumulator.
+Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height,
+                   const std::vector<kernel::FilterGuide>& guides, int passes);
+
+#ifdef TRAC0R_HAVE_OPENCL
+// filter_image on OpenCL device `device_index` (list_opencl_devices): the
+// same kernel code, run by the embedded program. Throws OpenClError.
+Image opencl_filter_image(int device_index, const std::vector<kernel::AccumPixel>& accumulator,
+                          int width, int height, const std::vector<kernel::FilterGuide>& guides,
+                          int passes);
+#endif
+
+}  // namespace trac0r
+
+#endif
