@@ -15,6 +15,8 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 
+#include <Imath/half.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
@@ -191,4 +193,56 @@ TEST_CASE("an EXR that does not fit leaves the old file as it was", "[exr]") {
     CHECK(r.err.find("exr_old.exr: write failed: File too large") != std::string::npos);
     CHECK(trac0r_test::read_text_file("exr_old.exr") == "old image");
     std::remove("exr_old.exr");
+}
+
+TEST_CASE("a half EXR holds each value rounded to half, beyond 65504 clamped", "[exr]") {
+    trac0r::Image image;
+    image.width = 4;
+    image.height = 2;
+    const float values[] = {0.0f,   1.0f,      0.1f,     1.0f / 3.0f, 3.14159f, 1e-5f,
+                            -2.5f,  1234.567f, 65504.0f, 65519.0f,    70000.0f, 1e30f,
+                            -1e30f, 0.7f,      100.25f,  0.001f,      42.0f,    -0.3f,
+                            8.0f,   9.5f,      1e-8f,    2.0f,        0.5f,     0.25f};
+    for (int i = 0; i < 8; ++i) {
+        image.pixels.emplace_back(values[3 * i], values[3 * i + 1], values[3 * i + 2]);
+    }
+    std::vector<trac0r::ExrChannel> extra(1);
+    extra[0].name = "Z";
+    extra[0].values = {0.1f, 2.0f, 1e6f, 3.3f, 4.4f, 5.5f, 6.6f, 7.7f};
+    trac0r::write_exr("exr_half.exr", image, extra, trac0r::ExrPrecision::Half);
+    const auto expect = [](float v) {
+        return static_cast<float>(half(std::min(std::max(v, -65504.0f), 65504.0f)));
+    };
+    Imf::InputFile file("exr_half.exr");
+    for (const char* name : {"R", "G", "B", "Z"}) {
+        const Imf::Channel* channel = file.header().channels().findChannel(name);
+        REQUIRE(channel != nullptr);
+        CHECK(channel->type == Imf::HALF);
+    }
+    std::vector<float> r(8), g(8), b(8), z(8);
+    Imf::FrameBuffer frame;
+    frame.insert("R", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(r.data()), 4, 16));
+    frame.insert("G", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(g.data()), 4, 16));
+    frame.insert("B", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(b.data()), 4, 16));
+    frame.insert("Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(z.data()), 4, 16));
+    file.setFrameBuffer(frame);
+    file.readPixels(0, 1);
+    for (int i = 0; i < 8; ++i) {
+        INFO("pixel " << i);
+        CHECK(r[i] == expect(values[3 * i]));
+        CHECK(g[i] == expect(values[3 * i + 1]));
+        CHECK(b[i] == expect(values[3 * i + 2]));
+        CHECK(z[i] == expect(extra[0].values[i]));
+    }
+    CHECK(b[3] == 65504.0f);  // 1e30: the largest finite half, not infinity
+    CHECK(r[4] == -65504.0f);
+    CHECK(z[2] == 65504.0f);
+    // The float path as before: every value exact.
+    trac0r::write_exr("exr_float.exr", image, extra);
+    CHECK(read_exr_channel("exr_float.exr", "Z") == extra[0].values);
+    const trac0r::Image back = read_exr_with_openexr("exr_float.exr");
+    CHECK(std::memcmp(back.pixels.data(), image.pixels.data(),
+                      image.pixels.size() * sizeof(glm::vec3)) == 0);
+    std::remove("exr_half.exr");
+    std::remove("exr_float.exr");
 }

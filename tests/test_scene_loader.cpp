@@ -1036,6 +1036,30 @@ TEST_CASE("PLY and glTF 2.0 meshes, with their normals and materials", "[scene_l
         CHECK_THAT(scene_file_error(mesh_scene("oor.ply")),
                    EndsWith(path + "/oor.ply: mesh '': a face refers to vertex 9, but the mesh "
                                    "has 3"));
+        // Found by tests/fuzz/fuzz_mesh: a header without end_header hung
+        // assimp's PLY reader; an STL or a PLY named .glb or .gltf was read
+        // by whichever other reader of assimp's guessed its format.
+        dir.write("cut.ply",
+                  "ply\nformat ascii 1.0\nelement vertex 8\nproperty float32 x\n"
+                  "proper\n1 0 0\n1 0 1\n4 0 1 2 3\n");
+        CHECK_THAT(scene_file_error(mesh_scene("cut.ply")),
+                   EndsWith(path + "/cut.ply: cannot read mesh: the PLY header has no "
+                                   "end_header line"));
+        const std::string stl =
+            "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
+            "vertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
+        for (const char* name : {"stl.glb", "stl.gltf"}) {
+            dir.write(name, stl);
+            CHECK_THAT(scene_file_error(mesh_scene(name)),
+                       Contains(path + "/" + name + ": cannot read mesh: GLTF: "));
+        }
+        dir.write("ply.gltf",
+                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
+                  "property float y\nproperty float z\nelement face 1\n"
+                  "property list uchar int vertex_indices\nend_header\n"
+                  "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+        CHECK_THAT(scene_file_error(mesh_scene("ply.gltf")),
+                   Contains(path + "/ply.gltf: cannot read mesh: GLTF: "));
         dir.write("bad.gltf", "{\"asset\": ");
         CHECK_THAT(scene_file_error(mesh_scene("bad.gltf")),
                    Contains(path + "/bad.gltf: cannot read mesh: "));

@@ -135,7 +135,8 @@ Image read_pfm(const std::string& path) {
     return image;
 }
 
-void write_exr(const std::string& path, const Image& image, const std::vector<ExrChannel>& extra) {
+void write_exr(const std::string& path, const Image& image, const std::vector<ExrChannel>& extra,
+               ExrPrecision precision) {
     const std::size_t pixels = image.pixels.size();
     // R, G and B, then the extra channels; written in the order OpenEXR
     // sorts their names (byte order: B, G, R, Z, albedo.B, ...).
@@ -175,13 +176,28 @@ void write_exr(const std::string& path, const Image& image, const std::vector<Ex
         }
     }
     const int count = static_cast<int>(order.size());
+    const bool half = precision == ExrPrecision::Half;
+    // For half, a copy clamped to the largest finite half (65504), which
+    // tinyexr's conversion would otherwise round to infinity; NaN stays.
+    std::vector<std::vector<float>> clamped(half ? order.size() : 0);
+    for (std::size_t k = 0; k < clamped.size(); ++k) {
+        clamped[k] = order[k]->values;
+        for (float& v : clamped[k]) {
+            if (v > 65504.0f) {
+                v = 65504.0f;
+            } else if (v < -65504.0f) {
+                v = -65504.0f;
+            }
+        }
+    }
     std::vector<unsigned char*> plane_pointers(order.size());
     std::vector<EXRChannelInfo> channels(order.size());
     std::vector<int> types(order.size(), TINYEXR_PIXELTYPE_FLOAT);
+    std::vector<int> stored(order.size(), half ? TINYEXR_PIXELTYPE_HALF : TINYEXR_PIXELTYPE_FLOAT);
     std::memset(channels.data(), 0, sizeof(EXRChannelInfo) * channels.size());
     for (std::size_t k = 0; k < order.size(); ++k) {
-        plane_pointers[k] =
-            reinterpret_cast<unsigned char*>(const_cast<float*>(order[k]->values.data()));
+        const float* values = half ? clamped[k].data() : order[k]->values.data();
+        plane_pointers[k] = reinterpret_cast<unsigned char*>(const_cast<float*>(values));
         std::memcpy(channels[k].name, order[k]->name.c_str(), order[k]->name.size() + 1);
     }
     EXRImage exr;
@@ -195,7 +211,7 @@ void write_exr(const std::string& path, const Image& image, const std::vector<Ex
     header.num_channels = count;
     header.channels = channels.data();
     header.pixel_types = types.data();
-    header.requested_pixel_types = types.data();  // stored as float, as computed
+    header.requested_pixel_types = stored.data();  // float as computed, or half
     header.compression_type = TINYEXR_COMPRESSIONTYPE_ZIP;
     unsigned char* memory = nullptr;
     const char* error = nullptr;

@@ -59,12 +59,20 @@ struct ExrChannel {
     std::vector<float> values;
 };
 
-// OpenEXR, scanlines with ZIP compression: channels R, G, B as 32-bit
-// float, the pixels exactly as the PFM of the same image holds them, and
-// the `extra` channels (32-bit float). Throws std::invalid_argument for an
-// extra channel of the wrong size or a name given twice.
+// How write_exr stores every channel: 32-bit float, or 16-bit half
+// (OpenEXR's HALF, half the file). Half keeps about 3 decimal digits and
+// values up to 65504: a value beyond that (infinity included) is stored as
+// +-65504, the largest finite half, never as infinity; NaN stays NaN.
+enum class ExrPrecision { Float, Half };
+
+// OpenEXR, scanlines with ZIP compression: channels R, G, B, with Float
+// the pixels exactly as the PFM of the same image holds them, with Half
+// each rounded to the nearest half (clamped as ExrPrecision says), and the
+// `extra` channels in the same precision. Throws std::invalid_argument for
+// an extra channel of the wrong size or a name given twice.
 void write_exr(const std::string& path, const Image& image,
-               const std::vector<ExrChannel>& extra = {});
+               const std::vector<ExrChannel>& extra = {},
+               ExrPrecision precision = ExrPrecision::Float);
 
 }  // namespace trac0r
 

@@ -73,7 +73,9 @@ struct MeshParts {
 };
 
 // A mesh file split by its faces' materials: a PLY or glTF 2.0 by its
-// extension (.ply, .gltf, .glb, any case), else an OBJ. An OBJ (tinyobjloader, after
+// extension (.ply, .gltf, .glb, any case), else an OBJ; a file that is not
+// of the format its extension names is refused (assimp's reader of that
+// format alone reads it, never one that guesses from the contents). An OBJ (tinyobjloader, after
 // trac0r's checker) with the materials of its mtllib files (relative to
 // the OBJ, checked as checked_mtl_text says), a PLY, or a glTF 2.0 (.gltf,
 // .glb; assimp) with its metallic-roughness materials. Each material is

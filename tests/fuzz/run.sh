@@ -10,7 +10,7 @@ seconds=${1:-60}
 build=build-fuzz
 cmake -S . -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DTRAC0R_FUZZ=ON -DTRAC0R_BUILD_TESTS=OFF \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build "$build" -j2 --target fuzz_scene fuzz_obj fuzz_replay
+cmake --build "$build" -j2 --target fuzz_scene fuzz_obj fuzz_mesh fuzz_replay
 mkdir -p "$build/artifacts"
 run() {  # harness seed-files...
     local harness=$1
@@ -29,5 +29,6 @@ run() {  # harness seed-files...
 }
 run fuzz_scene scenes/*.json
 run fuzz_obj scenes/meshes/*.obj
+run fuzz_mesh tests/fuzz/corpus/mesh/*
 run fuzz_replay tests/fuzz/corpus/replay/*
 echo "fuzz: all harnesses ran $seconds s without a finding"

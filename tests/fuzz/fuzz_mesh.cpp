@@ -1,0 +1,57 @@
+// Fuzzes the PLY and glTF 2.0 mesh loader (assimp, then trac0r's checks
+// and material mapping): each input is written to a file as a .ply, a .glb
+// and a .gltf in turn (the loader takes a path and picks the format by its
+// extension) and loaded with the file's materials. Loading or a
+// std::runtime_error (the loader's documented answer) is correct; anything
+// else is a finding. The files lie in a directory of their own, where a
+// .gltf's relative buffer URI finds nothing.
+#include "trac0r/shape.h"
+
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+namespace {
+
+const std::string& directory() {
+    static const std::string dir = [] {
+        std::string d = "/tmp/trac0r_fuzz_mesh_XXXXXX";
+        if (mkdtemp(&d[0]) == nullptr) {
+            std::perror("fuzz_mesh: mkdtemp");
+            std::abort();
+        }
+        return d;
+    }();
+    return dir;
+}
+
+void load_as(const std::uint8_t* data, std::size_t size, const char* extension) {
+    const std::string path = directory() + "/mesh" + extension;
+    FILE* f = std::fopen(path.c_str(), "wb");
+    if (!f) {
+        return;
+    }
+    std::fwrite(data, 1, size, f);
+    std::fclose(f);
+    try {
+        trac0r::load_mesh_parts(path, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f), 0, true,
+                                true);
+    } catch (const std::runtime_error&) {
+        // a file that cannot be read or a material that cannot be mapped
+    }
+    std::remove(path.c_str());
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    load_as(data, size, ".ply");
+    load_as(data, size, ".glb");
+    load_as(data, size, ".gltf");
+    return 0;
+}
