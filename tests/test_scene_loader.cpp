@@ -1036,6 +1036,21 @@ TEST_CASE("PLY and glTF 2.0 meshes, with their normals and materials", "[scene_l
         CHECK_THAT(scene_file_error(mesh_scene("oor.ply")),
                    EndsWith(path + "/oor.ply: mesh '': a face refers to vertex 9, but the mesh "
                                    "has 3"));
+        // A polygon is a fan of triangles; one with a corner beyond the
+        // vertices is refused (assimp's own triangulation aborted the
+        // process on such a face: tests/fuzz/corpus/mesh/broken_face_cube.ply).
+        const std::string pentagon_header =
+            "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+            "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+            "end_header\n0 0 0\n1 0 0\n1.5 1 0\n0.5 2 0\n-0.5 1 0\n";
+        dir.write("five.ply", pentagon_header + "5 0 1 2 3 4\n");
+        const Scene five = load_scene_file(mesh_scene("five.ply"));
+        REQUIRE(five.shapes.size() == 1);
+        CHECK(five.shapes[0].triangles.size() == 3);
+        dir.write("five.ply", pentagon_header + "5 0 1 2 3 70000\n");
+        CHECK_THAT(scene_file_error(mesh_scene("five.ply")),
+                   EndsWith(path + "/five.ply: mesh '': a face refers to vertex 70000, but the "
+                                   "mesh has 5"));
         // Found by tests/fuzz/fuzz_mesh: a header without end_header hung
         // assimp's PLY reader; an STL or a PLY named .glb or .gltf was read
         // by whichever other reader of assimp's guessed its format.

@@ -10,7 +10,6 @@
 #include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
 #include <assimp/importerdesc.h>
-#include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -20,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 #include <map>
 #include <istream>
 #include <streambuf>
@@ -675,7 +675,7 @@ void keep_only_reader(Assimp::Importer& importer, const char* name, const std::s
 
 // A PLY or glTF 2.0 file through assimp (its PLY or glTF 2.0 reader only,
 // by the extension): its meshes with their node transforms applied,
-// triangulated, points and lines left out.
+// polygons as fans of triangles, points and lines left out.
 MeshParts load_assimp(const std::string& path, const glm::vec3& position,
                       const glm::vec3& orientation, const glm::vec3& scale, int material,
                       bool smooth, bool file_materials) {
@@ -689,8 +689,12 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-    const unsigned flags =
-        aiProcess_Triangulate | aiProcess_PreTransformVertices | aiProcess_SortByPType;
+    // No post-processing: assimp 5.2's steps trust the faces' indices,
+    // and on a broken PLY face its triangulation aborts the process (an
+    // ai_assert) and its vertex pre-transform reads out of bounds (both
+    // found by tests/fuzz/fuzz_mesh). Indices are checked below, polygons
+    // split into fans and the nodes' transforms applied here.
+    const unsigned flags = 0;
     const bool gltf = has_extension(path, ".gltf");
     const bool ply = has_extension(path, ".ply");
     keep_only_reader(importer, ply ? "Stanford Polygon Library (PLY) Importer" : "glTF2 Importer",
@@ -712,51 +716,82 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
         throw std::runtime_error(path + ": cannot read mesh: " +
                                  (reason.empty() ? std::string("no scene in it") : reason));
     }
+    // Each node's meshes, with the node's transform (and its parents'):
+    // (mesh index, transform) in the order of a depth-first walk.
+    std::vector<std::pair<unsigned, aiMatrix4x4>> instances;
+    const int max_node_depth = 256;
+    const std::function<void(const aiNode&, const aiMatrix4x4&, int)> walk =
+        [&](const aiNode& node, const aiMatrix4x4& parent, int depth) {
+            if (depth > max_node_depth) {
+                throw std::runtime_error(path + ": cannot read mesh: its nodes nest deeper than " +
+                                         std::to_string(max_node_depth));
+            }
+            const aiMatrix4x4 transform = parent * node.mTransformation;
+            for (unsigned k = 0; k < node.mNumMeshes; ++k) {
+                if (node.mMeshes[k] < scene->mNumMeshes) {
+                    instances.emplace_back(node.mMeshes[k], transform);
+                }
+            }
+            for (unsigned c = 0; c < node.mNumChildren; ++c) {
+                if (node.mChildren[c] != nullptr) {
+                    walk(*node.mChildren[c], transform, depth + 1);
+                }
+            }
+        };
+    if (scene->mRootNode != nullptr) {
+        walk(*scene->mRootNode, aiMatrix4x4(), 0);
+    }
     PartBuilder parts;
-    for (unsigned mi = 0; mi < scene->mNumMeshes; ++mi) {
-        const aiMesh& mesh = *scene->mMeshes[mi];
+    for (const std::pair<unsigned, aiMatrix4x4>& instance : instances) {
+        const aiMesh& mesh = *scene->mMeshes[instance.first];
+        const aiMatrix4x4& to_world = instance.second;
+        aiMatrix3x3 normal_matrix(to_world);
+        normal_matrix.Inverse().Transpose();
         for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
             const aiFace& face = mesh.mFaces[f];
-            if (face.mNumIndices != 3) {
-                continue;  // points and lines (SortByPType leaves none)
+            // A polygon as a fan of triangles around its first corner;
+            // points and lines (SortByPType leaves none) give none.
+            for (unsigned fan = 1; fan + 1 < face.mNumIndices; ++fan) {
+                const unsigned corners[3] = {face.mIndices[0], face.mIndices[fan],
+                                             face.mIndices[fan + 1]};
+                glm::vec3 p[3];
+                VertexNormalTriple n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+                bool has_normals = mesh.HasNormals();
+                TriangleUv uv;
+                uv.present = mesh.HasTextureCoords(0);
+                for (int k = 0; k < 3; ++k) {
+                    const unsigned index = corners[k];
+                    if (index >= mesh.mNumVertices) {
+                        throw std::runtime_error(
+                            path + ": mesh '" + printable(mesh.mName.C_Str(), 60) +
+                            "': a face refers to vertex " + std::to_string(index) +
+                            ", but the mesh has " + std::to_string(mesh.mNumVertices));
+                    }
+                    const aiVector3D v = to_world * mesh.mVertices[index];
+                    p[k] = glm::vec3(v.x, v.y, v.z);
+                    if (!is_finite(p[k])) {
+                        throw std::runtime_error(path + ": mesh '" +
+                                                 printable(mesh.mName.C_Str(), 60) + "': vertex " +
+                                                 std::to_string(index) + " is not finite");
+                    }
+                    if (uv.present) {
+                        const aiVector3D& t = mesh.mTextureCoords[0][index];
+                        uv.uv[k] = glm::vec2(t.x, t.y);
+                        uv.present = std::isfinite(t.x) && std::isfinite(t.y);
+                    }
+                    if (has_normals) {
+                        const aiVector3D vn = normal_matrix * mesh.mNormals[index];
+                        n[k] = glm::vec3(vn.x, vn.y, vn.z);
+                        has_normals = is_finite(n[k]) && glm::length(n[k]) > 0.0f;
+                    }
+                }
+                // A PLY has no materials (assimp gives it a default one).
+                if (!uv.present) {
+                    uv = TriangleUv();
+                }
+                parts.add(file_materials && !ply ? static_cast<int>(mesh.mMaterialIndex) : -1, p, n,
+                          has_normals, smooth, uv);
             }
-            glm::vec3 p[3];
-            VertexNormalTriple n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
-            bool has_normals = mesh.HasNormals();
-            TriangleUv uv;
-            uv.present = mesh.HasTextureCoords(0);
-            for (int k = 0; k < 3; ++k) {
-                const unsigned index = face.mIndices[k];
-                if (index >= mesh.mNumVertices) {
-                    throw std::runtime_error(path + ": mesh '" + printable(mesh.mName.C_Str(), 60) +
-                                             "': a face refers to vertex " + std::to_string(index) +
-                                             ", but the mesh has " +
-                                             std::to_string(mesh.mNumVertices));
-                }
-                const aiVector3D& v = mesh.mVertices[index];
-                p[k] = glm::vec3(v.x, v.y, v.z);
-                if (!is_finite(p[k])) {
-                    throw std::runtime_error(path + ": mesh '" + printable(mesh.mName.C_Str(), 60) +
-                                             "': vertex " + std::to_string(index) +
-                                             " is not finite");
-                }
-                if (uv.present) {
-                    const aiVector3D& t = mesh.mTextureCoords[0][index];
-                    uv.uv[k] = glm::vec2(t.x, t.y);
-                    uv.present = std::isfinite(t.x) && std::isfinite(t.y);
-                }
-                if (has_normals) {
-                    const aiVector3D& vn = mesh.mNormals[index];
-                    n[k] = glm::vec3(vn.x, vn.y, vn.z);
-                    has_normals = is_finite(n[k]) && glm::length(n[k]) > 0.0f;
-                }
-            }
-            // A PLY has no materials (assimp gives it a default one).
-            if (!uv.present) {
-                uv = TriangleUv();
-            }
-            parts.add(file_materials && !ply ? static_cast<int>(mesh.mMaterialIndex) : -1, p, n,
-                      has_normals, smooth, uv);
         }
     }
     return parts.finish(path, "mesh", model_matrix(position, orientation, scale), material,
