@@ -243,6 +243,12 @@ TEST_CASE("--help is generated from the options: every group, the keys, examples
             at = r.out.find(part, at);
             CHECK(at != std::string::npos);
         }
+        // Refilled to 80 columns.
+        std::istringstream lines(r.out);
+        for (std::string line; std::getline(lines, line);) {
+            CAPTURE(line);
+            CHECK(line.size() <= 80);
+        }
         // No option is missing from it.
         for (const char* option :
              {"--device", "--list-devices", "--width", "--height", "--seconds", "--seed",

@@ -22,7 +22,8 @@ const char* key_help_text() {
   Shift              move five times faster
   right mouse drag   look around
   mouse wheel        field of view (zoom)
-  F1                 debug overlay: AABBs, timings, camera, pixel under the mouse
+  F1                 debug overlay: AABBs, timings, camera, the pixel under the
+                     mouse
   P                  screenshot: the window as a timestamped PNG and the render
                      as a PFM beside it, in the current directory
   B                  switch backend, CPU <-> OpenCL
