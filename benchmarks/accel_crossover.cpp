@@ -26,44 +26,17 @@ using namespace trac0r;
 
 namespace {
 
-const char* const usage = R"(Usage: bench_accel_crossover [--frames N] [--size W H]
-
-Paths per second of the flat list and the BVH, side by side, on scenes of
-growing triangle count (the built-in Cornell box's walls and lamp plus a
-grid of 0 to 20 x 20 small boxes), on the CPU backend and, in a build with
-OpenCL, on OpenCL device 0; prints a Markdown table.
-
-  --frames N    timed frames after one warm-up, in [1, 100000] (default 30)
-  --size W H    resolution, each in [1, 16384] (default 200 x 150)
-  -h, --help    this text
-)";
+const char* const description =
+    "Paths per second of the flat list and the BVH, side by side, on scenes of growing "
+    "triangle count (the built-in Cornell box's walls and lamp plus a grid of 0 to 20 x 20 "
+    "small boxes), on the CPU backend and, in a build with OpenCL, on OpenCL device 0; prints "
+    "a Markdown table.";
 
 struct Options {
     int frames = 30;
     int width = 200;
     int height = 150;
 };
-
-// false for --help.
-bool parse(int argc, char** argv, Options& o) {
-    trac0r_bench::check_given_once(argc, argv);
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (trac0r_bench::is_help(a)) {
-            return false;
-        } else if (a == "--frames") {
-            o.frames = static_cast<int>(trac0r_bench::parse_long(
-                a, trac0r_bench::flag_value(argc, argv, &i, a), 1, 100000));
-        } else if (a == "--size") {
-            trac0r_bench::size_values(argc, argv, &i, a, 16384, &o.width, &o.height);
-        } else if (!a.empty() && a[0] == '-') {
-            throw trac0r_bench::UsageError(a + ": unknown option (see --help)");
-        } else {
-            throw trac0r_bench::UsageError("unexpected argument '" + a + "' (see --help)");
-        }
-    }
-    return true;
-}
 
 // The built-in scene's six walls and lamp, plus boxes x boxes small boxes.
 Scene box_grid(int boxes) {
@@ -138,6 +111,15 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    return trac0r_bench::parse_and_run<Options>("bench_accel_crossover", usage, argc, argv, parse,
-                                                run);
+    return trac0r_bench::run_main("bench_accel_crossover", [&] {
+        Options o;
+        trac0r_cli::CommandLine cl("bench_accel_crossover",
+                                   "bench_accel_crossover [--frames N] [--size W H]", description,
+                                   16);
+        cl.integer("--frames", &o.frames, 1, 100000,
+                   "timed frames after one warm-up, in [1, 100000] (default 30)");
+        cl.size("--size", &o.width, &o.height, 16384,
+                "resolution, each in [1, 16384] (default 200 x 150)");
+        return cl.parse_or_print(argc, argv) ? run(o) : 0;
+    });
 }

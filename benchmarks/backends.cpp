@@ -43,23 +43,14 @@ struct Config {
     std::vector<Accel> accels = {Accel::flat, Accel::bvh};
     std::vector<std::string> scenes;
     bool default_scenes = false;  // none given: scenes/*.json, from the working directory
-    bool help = false;
+    bool help = false;            // --help or --version: printed, nothing to run
 };
 
-const char* usage = R"(Usage: bench_backends [options] [SCENE.json ...]
-
-Paths per second of the CPU (OpenMP) and OpenCL backends with each
-acceleration structure, rays per second of ray casting alone, and OpenCL
-program build times, for each scene (default: scenes/cornell.json and
-scenes/cornell_diffuse.json, relative to the working directory: run from
-the repository root), as Markdown tables.
-
-  --frames N            timed frames (and ray casting passes) after one warm-up,
-                        in [1, 100000] (default 5)
-  --width W --height H  resolution, each in [1, 16384] (default 800 x 600)
-  --accel LIST          structures to compare, of flat, bvh, auto (default flat,bvh)
-  -h, --help            this text
-)";
+const char* const description =
+    "Paths per second of the CPU (OpenMP) and OpenCL backends with each acceleration "
+    "structure, rays per second of ray casting alone, and OpenCL program build times, for each "
+    "scene (default: scenes/cornell.json and scenes/cornell_diffuse.json, relative to the "
+    "working directory: run from the repository root), as Markdown tables.";
 
 std::vector<Accel> parse_accels(const std::string& list) {
     std::vector<Accel> out;
@@ -76,25 +67,19 @@ std::vector<Accel> parse_accels(const std::string& list) {
 
 Config parse(int argc, char** argv) {
     Config c;
-    trac0r_bench::check_given_once(argc, argv);
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        const auto value = [&]() { return trac0r_bench::flag_value(argc, argv, &i, a); };
-        if (trac0r_bench::is_help(a)) {
-            c.help = true;
-        } else if (a == "--frames") {
-            c.frames = static_cast<int>(parse_long(a, value(), 1, 100000));
-        } else if (a == "--accel") {
-            c.accels = parse_accels(value());
-        } else if (a == "--width") {
-            c.width = static_cast<int>(parse_long(a, value(), 1, 16384));
-        } else if (a == "--height") {
-            c.height = static_cast<int>(parse_long(a, value(), 1, 16384));
-        } else if (!a.empty() && a[0] == '-') {
-            throw UsageError(a + ": unknown option (see --help)");
-        } else {
-            c.scenes.push_back(a);
-        }
+    trac0r_cli::CommandLine cl("bench_backends", "bench_backends [options] [SCENE.json ...]",
+                               description, 24);
+    cl.app().add_option("SCENE.json", c.scenes, "the scenes to time");
+    cl.integer("--frames", &c.frames, 1, 100000,
+               "timed frames (and ray casting passes) after one warm-up, in [1, 100000] "
+               "(default 5)");
+    cl.integer("--width", &c.width, 1, 16384, "resolution, in [1, 16384] (default 800)", "W");
+    cl.integer("--height", &c.height, 1, 16384, "resolution, in [1, 16384] (default 600)", "H");
+    cl.value("--accel", "LIST", "structures to compare, of flat, bvh, auto (default flat,bvh)",
+             [&c](const std::string& v) { c.accels = parse_accels(v); });
+    c.help = !cl.parse_or_print(argc, argv);
+    if (c.help) {
+        return c;
     }
     if (c.scenes.empty()) {
         c.scenes = {"scenes/cornell.json", "scenes/cornell_diffuse.json"};
@@ -223,8 +208,7 @@ int main(int argc, char** argv) {
         setenv("POCL_KERNEL_CACHE", "0", 1);
         const Config config = parse(argc, argv);
         if (config.help) {
-            std::fputs(usage, stdout);
-            return 0;
+            return 0;  // --help or --version, printed
         }
         const std::vector<Scene> scenes = load_scenes(config);
         const std::uint32_t all_materials = T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE |

@@ -38,25 +38,11 @@ using Clock = std::chrono::steady_clock;
 using trac0r_bench::parse_long;
 using trac0r_bench::UsageError;
 
-const char* usage = R"(Usage: bench_complexity [options]
-
-Renders the Cornell box's walls and lamp plus a 4 x 4 wall of icospheres of
-0, 1, ... --max-subdivisions subdivisions (332 to 1,310,732 triangles at
-the default 6) with each backend and acceleration structure, and prints
-frames per second against the triangle count as a Markdown table and a CSV.
-
-  --frames N            timed frames per measurement, after one warm-up (default 5)
-  --repeats R           measure each cell R times, in turn, and keep the median (default 1)
-  --width W --height H  resolution (default 160 x 120)
-  --max-subdivisions N  the spheres' last subdivision level, 0-7 (default 6)
-  --backends LIST       cpu, opencl or cpu,opencl (default cpu,opencl)
-  --flat-limit S        skip the flat list at a level where its frame time,
-                        predicted linearly in triangles from the level before,
-                        exceeds S seconds (default 5; 0: never skip)
-  --csv FILE            where to write the CSV (default
-                        benchmarks/results/complexity.csv)
-  -h, --help            this text
-)";
+const char* const description =
+    "Renders the Cornell box's walls and lamp plus a 4 x 4 wall of icospheres of 0, 1, ... "
+    "--max-subdivisions subdivisions (332 to 1,310,732 triangles at the default 6) with each "
+    "backend and acceleration structure, and prints frames per second against the triangle "
+    "count as a Markdown table and a CSV.";
 
 struct Options {
     int frames = 5;
@@ -88,39 +74,26 @@ void parse_backends(const std::string& list, Options& o) {
     }
 }
 
+// false for --help and --version (printed).
 bool parse(int argc, char** argv, Options& o) {
-    trac0r_bench::check_given_once(argc, argv);
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&]() -> const char* {
-            if (i + 1 >= argc) {
-                throw UsageError(a + ": expected a value");
-            }
-            return argv[++i];
-        };
-        if (a == "-h" || a == "--help") {
-            return false;
-        } else if (a == "--frames") {
-            o.frames = static_cast<int>(parse_long(a, value(), 1, 100000));
-        } else if (a == "--width") {
-            o.width = static_cast<int>(parse_long(a, value(), 1, 16384));
-        } else if (a == "--height") {
-            o.height = static_cast<int>(parse_long(a, value(), 1, 16384));
-        } else if (a == "--max-subdivisions") {
-            o.max_subdivisions = static_cast<int>(parse_long(a, value(), 0, 7));
-        } else if (a == "--backends") {
-            parse_backends(value(), o);
-        } else if (a == "--repeats") {
-            o.repeats = static_cast<int>(parse_long(a, value(), 1, 1000));
-        } else if (a == "--flat-limit") {
-            o.flat_limit = trac0r_bench::parse_number(a, value(), 0.0, 1e6);
-        } else if (a == "--csv") {
-            o.csv_path = value();
-        } else {
-            throw UsageError(a + ": unknown option (see --help)");
-        }
-    }
-    return true;
+    trac0r_cli::CommandLine cl("bench_complexity", "bench_complexity [options]", description, 24);
+    cl.integer("--frames", &o.frames, 1, 100000,
+               "timed frames per measurement, after one warm-up (default 5)");
+    cl.integer("--repeats", &o.repeats, 1, 1000,
+               "measure each cell R times, in turn, and keep the median (default 1)", "R");
+    cl.integer("--width", &o.width, 1, 16384, "resolution (default 160)", "W");
+    cl.integer("--height", &o.height, 1, 16384, "resolution (default 120)", "H");
+    cl.integer("--max-subdivisions", &o.max_subdivisions, 0, 7,
+               "the spheres' last subdivision level, 0-7 (default 6)");
+    cl.value("--backends", "LIST", "cpu, opencl or cpu,opencl (default cpu,opencl)",
+             [&o](const std::string& v) { parse_backends(v, o); });
+    cl.number("--flat-limit", &o.flat_limit, 0.0, 1e6,
+              "skip the flat list at a level where its frame time, predicted linearly in "
+              "triangles from the level before, exceeds S seconds (default 5; 0: never skip)",
+              "S");
+    cl.text("--csv", &o.csv_path,
+            "where to write the CSV (default benchmarks/results/complexity.csv)");
+    return cl.parse_or_print(argc, argv);
 }
 
 // The built-in scene's five walls and lamp, plus 16 diffuse white
@@ -413,5 +386,8 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    return trac0r_bench::parse_and_run<Options>("bench_complexity", usage, argc, argv, parse, run);
+    return trac0r_bench::run_main("bench_complexity", [&] {
+        Options o;
+        return parse(argc, argv, o) ? run(o) : 0;
+    });
 }

@@ -48,42 +48,14 @@ using Clock = std::chrono::steady_clock;
 using trac0r_bench::parse_long;
 using trac0r_bench::UsageError;
 
-const char* usage = R"(Usage: bench_convergence [SCENE.json] [options]
-
-Renders SCENE.json (default: the built-in Cornell box) with each --config,
-with checkpoints at 1, 2, 4, ... samples per pixel (the configurations take
-turns frame by frame, so they share the machine's load alike), and prints at each the
-render time, RMSE, relative MSE and PSNR against a reference, and the
-renderer's own relative MSE estimate; then the fitted slopes and, with two
-or more configurations, the time each of the others takes to the first
-one's error at its last checkpoint, and the samples and time each takes
-to --target-rmse and --target-relmse.
-
-  --config SPEC       a configuration, repeatable (default: backend=cpu):
-                      comma-separated key=value of backend=cpu|opencl,
-                      accel=flat|bvh|auto, max_depth=N, integrator=naive|nee,
-                      sampler=random|sobol (default: the library's, cpu,
-                      auto, the scene's depth, naive, random), each key at most once
-                      e.g. --config backend=opencl --config backend=cpu,max_depth=2
-  --max-spp N         last checkpoint (default 1024)
-  --target-rmse E     report the samples and time each configuration takes to
-                      an RMSE of E (interpolated between checkpoints); once
-                      it has reached every target, a configuration stops
-  --target-relmse E   the same for a relative MSE of E
-  --seconds S         no new checkpoint once a configuration has rendered S s
-                      (on free cores, as in the table), S in [1e-06, 1e+09]
-  --width W --height H  resolution (default 200 x 150)
-  --reference FILE    reference image (.pfm, the same resolution); default:
-                      rendered on the CPU with another seed at --reference-spp
-                      and cached in --cache
-  --reference-spp N   samples per pixel of a rendered reference (default 16 x --max-spp);
-                      not with --reference
-  --cache DIR         where rendered references are kept (default convergence_cache;
-                      created if missing, its parent must exist; checked before
-                      anything renders)
-  --csv FILE          write the checkpoints as CSV (default convergence.csv)
-  -h, --help          this text
-)";
+const char* const description =
+    "Renders SCENE.json (default: the built-in Cornell box) with each --config, with "
+    "checkpoints at 1, 2, 4, ... samples per pixel (the configurations take turns frame by "
+    "frame, so they share the machine's load alike), and prints at each the render time, RMSE, "
+    "relative MSE and PSNR against a reference, and the renderer's own relative MSE estimate; "
+    "then the fitted slopes and, with two or more configurations, the time each of the others "
+    "takes to the first one's error at its last checkpoint, and the samples and time each "
+    "takes to --target-rmse and --target-relmse.";
 
 struct Config {
     std::string backend = "cpu";
@@ -156,49 +128,47 @@ Config parse_config(const std::string& spec) {
     return c;
 }
 
+// --help and --version are printed, and end the program.
 Options parse_options(int argc, char** argv) {
     Options o;
-    trac0r_bench::check_given_once(argc, argv, {"--config"});
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        const auto value = [&]() -> std::string {
-            if (i + 1 >= argc) {
-                throw UsageError(a + ": expected a value");
-            }
-            return argv[++i];
-        };
-        if (trac0r_bench::is_help(a)) {
-            std::fputs(usage, stdout);
-            std::exit(0);
-        } else if (a == "--config") {
-            o.configs.push_back(parse_config(value()));
-        } else if (a == "--max-spp") {
-            o.max_spp = parse_long(a, value(), 1, 1L << 24);
-        } else if (a == "--reference-spp") {
-            o.reference_spp = parse_long(a, value(), 1, 1L << 24);
-        } else if (a == "--width") {
-            o.width = static_cast<int>(parse_long(a, value(), 1, 16384));
-        } else if (a == "--height") {
-            o.height = static_cast<int>(parse_long(a, value(), 1, 16384));
-        } else if (a == "--seconds") {
-            o.seconds = trac0r_bench::parse_number(a, value(), 1e-6, 1e9);
-        } else if (a == "--target-rmse") {
-            o.target_rmse = trac0r_bench::parse_number(a, value(), 1e-9, 1e9);
-        } else if (a == "--target-relmse") {
-            o.target_relmse = trac0r_bench::parse_number(a, value(), 1e-9, 1e9);
-        } else if (a == "--reference") {
-            o.reference_path = value();
-        } else if (a == "--cache") {
-            o.cache_dir = value();
-        } else if (a == "--csv") {
-            o.csv_path = value();
-        } else if (!a.empty() && a[0] == '-') {
-            throw UsageError(a + ": unknown option (see --help)");
-        } else if (o.scene_path.empty()) {
-            o.scene_path = a;
-        } else {
-            throw UsageError(a + ": only one scene file");
-        }
+    trac0r_cli::CommandLine cl("bench_convergence", "bench_convergence [SCENE.json] [options]",
+                               description, 22);
+    cl.positional("SCENE.json", &o.scene_path, "the scene (default: the built-in Cornell box)");
+    cl.on_extra([](const std::string& a) { throw UsageError(a + ": only one scene file"); });
+    cl.repeated("--config", "SPEC",
+                "a configuration, repeatable (default: backend=cpu): comma-separated key=value "
+                "of backend=cpu|opencl, accel=flat|bvh|auto, max_depth=N, integrator=naive|nee, "
+                "sampler=random|sobol (default: the library's, cpu, auto, the scene's depth, "
+                "naive, random), each key at most once\ne.g. --config backend=opencl --config "
+                "backend=cpu,max_depth=2",
+                [&o](const std::string& v) { o.configs.push_back(parse_config(v)); });
+    cl.integer("--max-spp", &o.max_spp, 1, 1L << 24, "last checkpoint (default 1024)");
+    cl.number("--target-rmse", &o.target_rmse, 1e-9, 1e9,
+              "report the samples and time each configuration takes to an RMSE of E "
+              "(interpolated between checkpoints); once it has reached every target, a "
+              "configuration stops",
+              "E");
+    cl.number("--target-relmse", &o.target_relmse, 1e-9, 1e9, "the same for a relative MSE of E",
+              "E");
+    cl.number("--seconds", &o.seconds, 1e-6, 1e9,
+              "no new checkpoint once a configuration has rendered S s (on free cores, as in "
+              "the table), S in [1e-06, 1e+09]",
+              "S");
+    cl.integer("--width", &o.width, 1, 16384, "resolution (default 200)", "W");
+    cl.integer("--height", &o.height, 1, 16384, "resolution (default 150)", "H");
+    cl.text("--reference", &o.reference_path,
+            "reference image (.pfm, the same resolution); default: rendered on the CPU with "
+            "another seed at --reference-spp and cached in --cache");
+    cl.integer("--reference-spp", &o.reference_spp, 1, 1L << 24,
+               "samples per pixel of a rendered reference (default 16 x --max-spp); not with "
+               "--reference");
+    cl.text("--cache", &o.cache_dir,
+            "where rendered references are kept (default convergence_cache; created if "
+            "missing, its parent must exist; checked before anything renders)",
+            "DIR");
+    cl.text("--csv", &o.csv_path, "write the checkpoints as CSV (default convergence.csv)");
+    if (!cl.parse_or_print(argc, argv)) {
+        std::exit(0);
     }
     if (o.configs.empty()) {
         o.configs.push_back(parse_config("backend=cpu"));

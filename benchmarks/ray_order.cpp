@@ -26,17 +26,12 @@ using namespace trac0r::kernel;
 
 namespace {
 
-const char* const usage =
-    "Usage: bench_ray_order [SCENE.json] [--size W H] [--passes N]\n"
-    "\n"
-    "Casts the primary and diffuse-bounce rays of SCENE (default\n"
-    "scenes/cornell.json, relative to the working directory) at W x H (default\n"
-    "800 x 600; at least 4096 pixels, e.g. 128 x 128, each side at most 16384)\n"
-    "through its BVH on one thread, in pixel order, shuffled, sorted by\n"
-    "direction octant (within runs of 64 rays, as a tile's paths, and over the\n"
-    "whole set), and each ray twice in a row; prints a ray's time, the median of\n"
-    "N passes (N in [1, 1000], default 7). A set of fewer than 4096 rays is too\n"
-    "short a pass to time on one thread: its rows say so.\n";
+const char* const description =
+    "Casts the primary and diffuse-bounce rays of SCENE at W x H through its BVH on one "
+    "thread, in pixel order, shuffled, sorted by direction octant (within runs of 64 rays, as "
+    "a tile's paths, and over the whole set), and each ray twice in a row; prints a ray's "
+    "time, the median of N passes. A set of fewer than 4096 rays is too short a pass to time "
+    "on one thread: its rows say so.";
 
 // Fewer rays than this make a pass of tens of microseconds, which the
 // thread's CPU clock and the machine's interrupts time no better than to
@@ -51,38 +46,31 @@ struct Options {
     int passes = 7;
 };
 
-// false for --help.
+// false for --help and --version (printed).
 bool parse(int argc, char** argv, Options& o) {
-    bool have_scene = false;
-    trac0r_bench::check_given_once(argc, argv);
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&](const std::string& flag) {
-            return trac0r_bench::flag_value(argc, argv, &i, flag);
-        };
-        if (trac0r_bench::is_help(a)) {
-            return false;
-        } else if (a == "--size") {
-            trac0r_bench::size_values(argc, argv, &i, a, 16384, &o.width, &o.height);
-            const long pixels = static_cast<long>(o.width) * o.height;
-            if (pixels < static_cast<long>(min_rays_to_time)) {
-                throw trac0r_bench::UsageError(
-                    "--size " + std::to_string(o.width) + " " + std::to_string(o.height) + ": " +
-                    std::to_string(pixels) + " pixel" + (pixels == 1 ? "" : "s") +
-                    ", expected at least " + std::to_string(min_rays_to_time) +
-                    " (e.g. 128 x 128): fewer rays are too short a pass to time");
-            }
-        } else if (a == "--passes") {
-            o.passes =
-                static_cast<int>(trac0r_bench::parse_long("--passes", value("--passes"), 1, 1000));
-        } else if (!a.empty() && a[0] != '-' && !have_scene) {
-            o.scene = a;
-            have_scene = true;
-        } else {
-            throw trac0r_bench::UsageError(
-                a[0] == '-' ? a + ": unknown option (see --help)"
-                            : "'" + a + "': only one scene file may be given (see --help)");
-        }
+    trac0r_cli::CommandLine cl("bench_ray_order",
+                               "bench_ray_order [SCENE.json] [--size W H] [--passes N]",
+                               description, 16);
+    cl.positional("SCENE.json", &o.scene,
+                  "the scene (default scenes/cornell.json, relative to the working directory)");
+    cl.on_extra([](const std::string& a) {
+        throw trac0r_bench::UsageError("'" + a +
+                                       "': only one scene file may be given (see --help)");
+    });
+    cl.size("--size", &o.width, &o.height, 16384,
+            "resolution (default 800 x 600; at least 4096 pixels, e.g. 128 x 128, each side at "
+            "most 16384)");
+    cl.integer("--passes", &o.passes, 1, 1000, "timed passes, in [1, 1000] (default 7)");
+    if (!cl.parse_or_print(argc, argv)) {
+        return false;
+    }
+    const long pixels = static_cast<long>(o.width) * o.height;
+    if (pixels < static_cast<long>(min_rays_to_time)) {
+        throw trac0r_bench::UsageError(
+            "--size " + std::to_string(o.width) + " " + std::to_string(o.height) + ": " +
+            std::to_string(pixels) + " pixel" + (pixels == 1 ? "" : "s") + ", expected at least " +
+            std::to_string(min_rays_to_time) +
+            " (e.g. 128 x 128): fewer rays are too short a pass to time");
     }
     return true;
 }
@@ -203,5 +191,8 @@ int run(const Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    return trac0r_bench::parse_and_run<Options>("bench_ray_order", usage, argc, argv, parse, run);
+    return trac0r_bench::run_main("bench_ray_order", [&] {
+        Options o;
+        return parse(argc, argv, o) ? run(o) : 0;
+    });
 }

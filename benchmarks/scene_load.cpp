@@ -3,6 +3,7 @@
 // 1 10 100) into a temporary directory, each a room of many small planes,
 // and times trac0r::load_scene_file on each (best of --repeats). Loading is
 // linear when the MB/s column stays level. Prints a Markdown table.
+#include "cli.h"
 #include "timing.h"
 
 #include "trac0r/scene_loader.h"
@@ -10,16 +11,20 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <stdexcept>
 #include <fstream>
 #include <string>
 #include <vector>
 
 namespace {
 
-const char* const usage =
-    "Usage: bench_scene_load [--repeats N] [MB ...]\n"
-    "Times loading generated scene files of the given sizes (default 1 10 100 MB).\n";
+const char* const description =
+    "Times loading generated scene files of the given sizes (default 1 10 100 MB): a room of "
+    "many small planes each, loaded with trac0r::load_scene_file, best of --repeats; prints a "
+    "Markdown table.";
 
 // A scene of about `bytes` bytes: planes on a grid, one material.
 std::string scene_text(std::size_t bytes) {
@@ -42,41 +47,10 @@ std::string scene_text(std::size_t bytes) {
     return text + "\n]}\n";
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-    int repeats = 3;
-    std::vector<double> sizes_mb;
-    for (int i = 1; i < argc; ++i) {
-        const std::string arg = argv[i];
-        if (arg == "--help" || arg == "-h") {
-            std::fputs(usage, stdout);
-            return 0;
-        }
-        char* end = nullptr;
-        if (arg == "--repeats" && i + 1 < argc) {
-            repeats = static_cast<int>(std::strtol(argv[++i], &end, 10));
-            if (*end != '\0' || repeats < 1 || repeats > 100) {
-                std::fprintf(stderr, "bench_scene_load: --repeats: expected 1 to 100\n");
-                return 2;
-            }
-            continue;
-        }
-        const double mb = std::strtod(arg.c_str(), &end);
-        if (*end != '\0' || !(mb > 0.0) || mb > 2000.0) {
-            std::fprintf(stderr, "bench_scene_load: %s: expected a size in MB (0 to 2000)\n%s",
-                         arg.c_str(), usage);
-            return 2;
-        }
-        sizes_mb.push_back(mb);
-    }
-    if (sizes_mb.empty()) {
-        sizes_mb = {1.0, 10.0, 100.0};
-    }
+int run(int repeats, const std::vector<double>& sizes_mb) {
     char dir_template[] = "/tmp/trac0r_scene_load_XXXXXX";
     if (!mkdtemp(dir_template)) {
-        std::perror("bench_scene_load: mkdtemp");
-        return 1;
+        throw std::runtime_error(std::string("mkdtemp: ") + std::strerror(errno));
     }
     const std::string dir = dir_template;
     std::printf("| file MB | shapes | load s (best of %d) | MB/s |\n|---|---|---|---|\n", repeats);
@@ -99,4 +73,33 @@ int main(int argc, char** argv) {
     }
     rmdir(dir.c_str());
     return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    return trac0r_bench::run_main("bench_scene_load", [&] {
+        int repeats = 3;
+        std::vector<std::string> sizes;
+        trac0r_cli::CommandLine cl("bench_scene_load", "bench_scene_load [--repeats N] [MB ...]",
+                                   description, 16);
+        cl.app().add_option("MB", sizes, "the sizes of the scene files, each in (0, 2000]");
+        cl.integer("--repeats", &repeats, 1, 100, "loads of each file, in [1, 100] (default 3)");
+        if (!cl.parse_or_print(argc, argv)) {
+            return 0;
+        }
+        std::vector<double> sizes_mb;
+        for (const std::string& text : sizes) {
+            const double mb = trac0r_bench::parse_number("MB", text, 0.0, 2000.0);
+            if (!(mb > 0.0)) {
+                throw trac0r_bench::UsageError("MB: expected a number in (0, 2000], got '" + text +
+                                               "'");
+            }
+            sizes_mb.push_back(mb);
+        }
+        if (sizes_mb.empty()) {
+            sizes_mb = {1.0, 10.0, 100.0};
+        }
+        return run(repeats, sizes_mb);
+    });
 }

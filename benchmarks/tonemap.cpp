@@ -14,37 +14,39 @@ namespace {
 
 using trac0r_bench::UsageError;
 
-const char* const usage = R"(Usage: tonemap IN.pfm OUT.png [EXPOSURE]
-
-Tone-maps the linear RGB image IN.pfm to the 8-bit sRGB image OUT.png, as
-trac0r_viewer --output does for a .png: each channel times EXPOSURE, clamped
-to [0, 1], then the sRGB curve.
-
-  IN.pfm      a linear PFM image (e.g. trac0r_viewer --output x.pfm)
-  OUT.png     the PNG to write (a name ending in .png; not IN.pfm itself)
-  EXPOSURE    a number in [1e-06, 1e+06] (default 1)
-  -h, --help  this text
-)";
+const char* const description =
+    "Tone-maps the linear RGB image IN.pfm to the 8-bit sRGB image OUT.png, as trac0r_viewer "
+    "--output does for a .png: each channel times EXPOSURE, clamped to [0, 1], then the sRGB "
+    "curve.";
 
 const double min_exposure = 1e-6;
 const double max_exposure = 1e6;
 
 int run(int argc, char** argv) {
-    std::vector<std::string> args;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        if (trac0r_bench::is_help(a)) {
-            std::fputs(usage, stdout);
-            return 0;
-        }
-        if (a.size() > 2 && a.compare(0, 2, "--") == 0) {
-            throw UsageError(a + ": unknown option (see --help)");
-        }
-        args.push_back(a);
+    std::string in_arg;
+    std::string out_arg;
+    std::string exposure_arg;
+    std::size_t extras = 0;
+    trac0r_cli::CommandLine cl("tonemap", "tonemap IN.pfm OUT.png [EXPOSURE]", description, 14);
+    cl.positional("IN.pfm", &in_arg, "a linear PFM image (e.g. trac0r_viewer --output x.pfm)");
+    cl.positional("OUT.png", &out_arg,
+                  "the PNG to write (a name ending in .png; not IN.pfm itself)");
+    cl.positional("EXPOSURE", &exposure_arg, "a number in [1e-06, 1e+06] (default 1)");
+    cl.on_extra([&extras](const std::string&) { ++extras; });
+    if (!cl.parse_or_print(argc, argv)) {
+        return 0;
     }
-    if (args.size() < 2 || args.size() > 3) {
-        throw UsageError("expected IN.pfm OUT.png [EXPOSURE], got " + std::to_string(args.size()) +
-                         " argument" + (args.size() == 1 ? "" : "s") + " (see --help)");
+    // The positionals fill in order: those given, then any extras.
+    std::vector<std::string> args = {in_arg, out_arg, exposure_arg};
+    while (!args.empty() && cl.app().count(args.size() == 3   ? "EXPOSURE"
+                                           : args.size() == 2 ? "OUT.png"
+                                                              : "IN.pfm") == 0) {
+        args.pop_back();
+    }
+    const std::size_t given = args.size() + extras;
+    if (given < 2 || given > 3) {
+        throw UsageError("expected IN.pfm OUT.png [EXPOSURE], got " + std::to_string(given) +
+                         " argument" + (given == 1 ? "" : "s") + " (see --help)");
     }
     const std::string& in = args[0];
     const std::string& out = args[1];

@@ -168,6 +168,34 @@ TEST_CASE("bench_ray_order: sizes too small to time and scenes with no triangles
         1);
 }
 
+TEST_CASE("the benchmark programs: --version, --flag=value, generated --help", "[benchmark_cli]") {
+    for (const char* program : {"tonemap", "bench_accel_crossover", "bench_complexity",
+                                "bench_convergence", "bench_ray_order", "bench_scene_load"}) {
+        CAPTURE(program);
+        const ViewerRun r = run_benchmark(program, "--version");
+        CAPTURE(r.err);
+        CHECK(r.exit_code == 0);
+        CHECK(r.err.empty());
+        CHECK(r.out.find(std::string(program) + " trac0r " + TRAC0R_PROJECT_VERSION + " (") == 0);
+        CHECK(r.out.find('\n') == r.out.size() - 1);  // one line
+    }
+    check_help("bench_complexity", {"Options:", "--frames N", "--backends LIST", "--csv FILE",
+                                    "--version", "-h, --help"});
+    check_help("bench_scene_load", {"Arguments:", "MB", "--repeats N"});
+    // --flag=value reads as --flag value, its errors too.
+    check_refused("bench_ray_order",
+                  {{"--passes=1.5", "--passes: expected an integer in [1, 1000], got '1.5'"},
+                   {"--passes=", "--passes: expected a value after '='"},
+                   {"--passes=2 --passes=3", "--passes: given more than once"},
+                   {"--bogus=2", "--bogus: unknown option"}},
+                  2);
+    check_refused("bench_accel_crossover",
+                  {{"--frames=abc", "--frames: expected an integer in [1, 100000], got 'abc'"},
+                   {"--version=2", "--version: takes no value, got '2'"},
+                   {"stray", "unexpected argument 'stray'"}},
+                  2);
+}
+
 TEST_CASE("the benchmark programs refuse an option given twice", "[benchmark_cli]") {
     check_refused("bench_accel_crossover",
                   {{"--frames 1 --frames 2", "--frames: given more than once"},
@@ -269,7 +297,7 @@ TEST_CASE("bench_convergence: the samples to --target-rmse, and a configuration 
           "[benchmark_cli]") {
     REQUIRE(system("rm -rf bench_cli_conv_cache && mkdir bench_cli_conv_cache") == 0);
     const std::string common =
-        "--width 16 --height 12 --max-spp 16 --reference-spp 64 --cache bench_cli_conv_cache "
+        "--width=16 --height 12 --max-spp 16 --reference-spp=64 --cache bench_cli_conv_cache "
         "--config integrator=nee --config integrator=nee,sampler=sobol ";
     // Out of reach: every checkpoint is there, and says so.
     ViewerRun r =

@@ -225,6 +225,40 @@ TEST_CASE("--help lists the options and exits 0", "[cli]") {
     REQUIRE(r.output.find("--spp") != std::string::npos);
 }
 
+TEST_CASE("--help is generated from the options: every group, the keys, examples", "[cli]") {
+    for (const char* flag : {"--help", "-h"}) {
+        CAPTURE(flag);
+        const trac0r_test::ViewerRun r = trac0r_test::run_viewer_process(flag);
+        CHECK(r.exit_code == 0);
+        CHECK(r.err.empty());
+        CHECK(r.out.find("Usage: trac0r_viewer [SCENE.json] [options]\n") == 0);
+        // Each group's name, then one of its options, in that order.
+        std::size_t at = 0;
+        for (const char* part :
+             {"Arguments:\n", "SCENE.json", "Rendering:\n", "--backend cpu|opencl", "--spp N",
+              "--sampler random|sobol", "Output:\n", "-o, --output FILE", "--headless",
+              "--max-input-mb N", "Other:\n", "-h, --help", "--version", "Window keys and mouse:\n",
+              "Esc", "Examples:\n"}) {
+            CAPTURE(part);
+            at = r.out.find(part, at);
+            CHECK(at != std::string::npos);
+        }
+        // Refilled to 80 columns.
+        std::istringstream lines(r.out);
+        for (std::string line; std::getline(lines, line);) {
+            CAPTURE(line);
+            CHECK(line.size() <= 80);
+        }
+        // No option is missing from it.
+        for (const char* option :
+             {"--device", "--list-devices", "--width", "--height", "--seconds", "--seed",
+              "--max-depth", "--threads", "--accel", "--integrator", "--target-error", "--exposure",
+              "--verbose", "--exr-layers", "--benchmark", "--replay"}) {
+            CHECK(r.out.find(std::string("  ") + option + " ") != std::string::npos);
+        }
+    }
+}
+
 TEST_CASE("--verbose names each mesh: file, triangles, bounds, material", "[cli]") {
     const Run r = run_viewer(std::string(TRAC0R_SOURCE_DIR) +
                              "/scenes/mesh_demo.json --headless --width 16 --height 12 --spp 1 "
@@ -245,6 +279,10 @@ TEST_CASE("--version says the version and exits 0", "[cli]") {
     const Run r = run_viewer("--version");
     REQUIRE(r.exit_code == 0);
     CHECK(r.output.find("trac0r_viewer trac0r " + std::string(TRAC0R_PROJECT_VERSION)) == 0);
+    CHECK(std::count(r.output.begin(), r.output.end(), '\n') == 1);
+    // With other options too; a bad one is still refused.
+    CHECK(run_viewer("--width 8 --version").exit_code == 0);
+    CHECK(run_viewer("--version=1").exit_code == 2);
 }
 
 TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]") {
@@ -285,6 +323,11 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
         {"--headless --spp=abc --output x.png", "--spp: expected an integer"},
         {"--headless --spp=2 --spp 3 --output x.png", "--spp: given more than once"},
         {"--headless -o x.jpg", "expected a .png, .pfm or .exr"},
+        {"--headless -o", "--output: expected a value"},
+        {"--headless --frobnicate=3 --output x.png", "--frobnicate: unknown option"},
+        {"a.json b.json --headless", "'b.json': only one scene file may be given"},
+        {"--headless --headless --output x.png", "--headless: given more than once"},
+        {"--headless --seed -1 --output x.png", "--seed: expected a non-negative 64-bit"},
     };
     for (const Case& c : cases) {
         CAPTURE(c.args);

@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
     try {
         const Options options = trac0r_viewer::parse_options(argc, argv);
         if (options.help) {
-            std::fputs(trac0r_viewer::usage_text(), stdout);
+            std::fputs(trac0r_viewer::usage_text().c_str(), stdout);
             return 0;
         }
         if (options.version) {

@@ -25,23 +25,16 @@ namespace {
 using trac0r_viewer::Options;
 using trac0r_viewer::UsageError;
 
-const char* mpi_usage_text() {
-    return R"(Usage: mpirun -n N trac0r_mpi [SCENE.json] --output FILE [options]
-
-trac0r_viewer's batch render (--headless) split across MPI ranks: rank r of
-N renders the frames r, r + N, r + 2N, ... of the same render, rank 0 merges
-the per-pixel sums, prints the progress and writes the outputs. The image is
-the one trac0r_viewer renders with the same seed and spp, to float rounding.
---spp, --seconds and --target-error count every rank's samples; all ranks
-stop after the same round. --threads N sets the CPU threads a rank (or
-OMP_NUM_THREADS); --backend opencl gives the ranks on a node its OpenCL
-devices in turn (one GPU a rank), --device D all the same one. Every rank
-must load the same scene with the same options (checked: a digest).
-The window, --benchmark, --replay and --list-devices are trac0r_viewer's.
-
-trac0r_viewer's options:
-)";
-}
+const char* const mpi_description =
+    "trac0r_viewer's batch render (--headless) split across MPI ranks: rank r of N renders the "
+    "frames r, r + N, r + 2N, ... of the same render, rank 0 merges the per-pixel sums, prints "
+    "the progress and writes the outputs. The image is the one trac0r_viewer renders with the "
+    "same seed and spp, to float rounding. --spp, --seconds and --target-error count every "
+    "rank's samples; all ranks stop after the same round. --threads N sets the CPU threads a "
+    "rank (or OMP_NUM_THREADS); --backend opencl gives the ranks on a node its OpenCL devices "
+    "in turn (one GPU a rank), --device D all the same one. Every rank must load the same "
+    "scene with the same options (checked: a digest). The window, --benchmark, --replay and "
+    "--list-devices are trac0r_viewer's.";
 
 void refuse_window_options(const Options& o) {
     if (o.benchmark_frames > 0 || !o.replay_path.empty() || o.list_devices) {
@@ -50,7 +43,8 @@ void refuse_window_options(const Options& o) {
             "in batch only");
     }
     if (o.outputs.empty()) {
-        throw UsageError("nothing to do; give --output FILE (.png, .pfm or .exr): rank 0 writes it");
+        throw UsageError(
+            "nothing to do; give --output FILE (.png, .pfm or .exr): rank 0 writes it");
     }
 }
 
@@ -144,8 +138,11 @@ int run(int argc, char** argv) {
         if (first && mine.help == 2) {
             std::printf("trac0r_mpi %s\n", trac0r::version_line().c_str());
         } else if (first) {
-            std::fputs(mpi_usage_text(), stdout);
-            std::fputs(trac0r_viewer::usage_text(), stdout);
+            std::fputs(trac0r_viewer::help_text(
+                           "mpirun -n N trac0r_mpi [SCENE.json] --output FILE [options]",
+                           mpi_description, "")
+                           .c_str(),
+                       stdout);
         }
         return 0;
     }

@@ -2,8 +2,9 @@
 #ifndef TRAC0R_VIEWER_OPTIONS_H
 #define TRAC0R_VIEWER_OPTIONS_H
 
+#include "cli/parse.h"
+
 #include <cstdint>
-#include <stdexcept>
 #include <set>
 #include <string>
 #include <vector>
@@ -43,11 +44,9 @@ struct Options {
 };
 
 // A bad command line: the message names the flag and what was expected.
-class UsageError : public std::runtime_error {
-  public:
-    using std::runtime_error::runtime_error;
-};
+using UsageError = trac0r_cli::UsageError;
 
+// The options (help and version as flags: the caller prints them).
 Options parse_options(int argc, const char* const* argv);
 
 // --accel, --integrator and --sampler as the library's packing options.
@@ -57,7 +56,12 @@ trac0r::PackOptions pack_options(const Options& options);
 // set (trac0r_mpi sets its own before it starts).
 const char* program_name();
 void set_program_name(const char* name);
-const char* usage_text();
+// --help of trac0r_viewer, generated from the options.
+std::string usage_text();
+// --help of a program with the viewer's options (trac0r_mpi): `usage`
+// after "Usage: ", then `description`, the options and `footer`.
+std::string help_text(const std::string& usage, const std::string& description,
+                      const std::string& footer);
 // The window's keys and mouse, one per line: in --help and behind H.
 const char* key_help_text();
 

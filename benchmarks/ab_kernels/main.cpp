@@ -62,41 +62,50 @@ struct Options {
     int height = 150;
 };
 
-// The options after A and B (benchmarks/ab_kernels.sh, which has the usage).
-void parse(int argc, char** argv, Options& o) {
-    bool have_scene = false;
-    trac0r_bench::check_given_once(argc, argv);
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&](const std::string& flag) {
-            return trac0r_bench::flag_value(argc, argv, &i, flag);
-        };
-        try {
-            if (a == "--accel") {
-                o.accel = trac0r::parse_accel(value(a));
-                if (o.accel == trac0r::Accel::automatic) {
-                    throw std::invalid_argument("expected flat or bvh");
-                }
-            } else if (a == "--integrator") {
-                o.integrator = trac0r::parse_integrator(value(a));
-            } else if (a == "--sampler") {
-                o.sampler = trac0r::parse_sampler(value(a));
-            } else if (a == "--pairs") {
-                o.pairs = static_cast<int>(trac0r_bench::parse_long(a, value(a), 1, 100000));
-            } else if (a == "--size") {
-                o.width = static_cast<int>(trac0r_bench::parse_long(a, value(a), 1, 16384));
-                o.height = static_cast<int>(trac0r_bench::parse_long(a, value(a), 1, 16384));
-            } else if (!a.empty() && a[0] != '-' && !have_scene) {
-                o.scene = a;
-                have_scene = true;
-            } else {
-                throw trac0r_bench::UsageError("unexpected argument '" + a +
-                                               "' (see benchmarks/ab_kernels.sh --help)");
-            }
-        } catch (const std::invalid_argument& e) {
-            throw trac0r_bench::UsageError(a + ": " + e.what());
-        }
+// A library's name as a flag's value, or a UsageError naming the flag.
+template <typename Parse>
+auto named(const std::string& flag, const std::string& value, Parse parse)
+    -> decltype(parse(value)) {
+    try {
+        return parse(value);
+    } catch (const std::invalid_argument& e) {
+        throw trac0r_bench::UsageError(flag + ": " + e.what());
     }
+}
+
+// The options after A and B (benchmarks/ab_kernels.sh, which has the usage).
+// false for --help and --version (printed).
+bool parse(int argc, char** argv, Options& o) {
+    trac0r_cli::CommandLine cl("ab_kernels", "benchmarks/ab_kernels.sh A B [SCENE.json] [options]",
+                               "Times two versions of the kernel headers against each other "
+                               "(benchmarks/ab_kernels.sh builds and runs this).",
+                               22);
+    cl.positional("SCENE.json", &o.scene, "the scene (default scenes/cornell.json)");
+    cl.on_extra([](const std::string& a) {
+        throw trac0r_bench::UsageError("unexpected argument '" + a +
+                                       "' (see benchmarks/ab_kernels.sh --help)");
+    });
+    cl.value("--accel", "flat|bvh", "acceleration structure (default bvh)",
+             [&o](const std::string& v) {
+                 o.accel = named("--accel", v, [](const std::string& n) {
+                     const trac0r::Accel accel = trac0r::parse_accel(n);
+                     if (accel == trac0r::Accel::automatic) {
+                         throw std::invalid_argument("expected flat or bvh");
+                     }
+                     return accel;
+                 });
+             });
+    cl.value("--integrator", "naive|nee", "integrator (default naive)", [&o](const std::string& v) {
+        o.integrator = named("--integrator", v,
+                             [](const std::string& n) { return trac0r::parse_integrator(n); });
+    });
+    cl.value("--sampler", "random|sobol", "sampler (default random)", [&o](const std::string& v) {
+        o.sampler =
+            named("--sampler", v, [](const std::string& n) { return trac0r::parse_sampler(n); });
+    });
+    cl.integer("--pairs", &o.pairs, 1, 100000, "timed pairs of frames (default 150)");
+    cl.size("--size", &o.width, &o.height, 16384, "resolution (default 200 x 150)");
+    return cl.parse_or_print(argc, argv);
 }
 
 void check_layouts() {
@@ -195,7 +204,6 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
     return trac0r_bench::run_main("ab_kernels", [&] {
         Options o;
-        parse(argc, argv, o);
-        return run(o);
+        return parse(argc, argv, o) ? run(o) : 0;
     });
 }
