@@ -12,6 +12,8 @@ cmake -S . -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DTRAC0R_FUZZ=ON -DTRAC0R_BU
     -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build "$build" -j2 --target fuzz_scene fuzz_obj fuzz_mesh fuzz_replay
 mkdir -p "$build/artifacts"
+# Leaks inside the libraries we call, not ours (tests/lsan.supp says which).
+export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
 run() {  # harness seed-files...
     local harness=$1
     shift
