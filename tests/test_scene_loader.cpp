@@ -1059,7 +1059,14 @@ TEST_CASE("PLY and glTF 2.0 meshes, with their normals and materials", "[scene_l
                   "proper\n1 0 0\n1 0 1\n4 0 1 2 3\n");
         CHECK_THAT(scene_file_error(mesh_scene("cut.ply")),
                    EndsWith(path + "/cut.ply: cannot read mesh: the PLY header has no "
-                                   "end_header line"));
+                                   "end_header line (a line of its own)"));
+        // "end_header" run into the data made it loop.
+        dir.write("run_on.ply",
+                  "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                  "property float z\nend_header0\n0 0 0\n0 0 1\n0 1 1\n");
+        CHECK_THAT(scene_file_error(mesh_scene("run_on.ply")),
+                   EndsWith(path + "/run_on.ply: cannot read mesh: the PLY header has no "
+                                   "end_header line (a line of its own)"));
         const std::string stl =
             "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"
             "vertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n";

@@ -370,6 +370,22 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
     return out;
 }
 
+// Whether a PLY's text has the line that ends its header: "end_header"
+// alone on a line (LF or CR LF), within the first megabyte.
+bool has_ply_header_end(const std::string& text) {
+    const std::size_t limit = std::min<std::size_t>(text.size(), 1u << 20);
+    for (std::size_t at = text.find("\nend_header"); at != std::string::npos && at < limit;
+         at = text.find("\nend_header", at + 1)) {
+        const std::size_t after = at + 11;
+        if (after < text.size() &&
+            (text[after] == '\n' ||
+             (text[after] == '\r' && after + 1 < text.size() && text[after + 1] == '\n'))) {
+            return true;
+        }
+    }
+    return false;
+}
+
 // The index in mesh.textures of the texture from `source`, made by
 // load() the first time a material of the file uses it.
 template <typename Load>
@@ -700,11 +716,13 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
     keep_only_reader(importer, ply ? "Stanford Polygon Library (PLY) Importer" : "glTF2 Importer",
                      path);
     // assimp 5.2's PLY reader, given a header without its end_header
-    // line, allocates without end (found by tests/fuzz/fuzz_mesh): such a
-    // file is refused before it sees it.
-    if (ply && text.find("end_header") == std::string::npos) {
+    // line, or with one that does not end the line ("end_header0"),
+    // allocates or loops without end (found by tests/fuzz/fuzz_mesh):
+    // such a file is refused before it sees it.
+    if (ply && !has_ply_header_end(text)) {
         throw std::runtime_error(path +
-                                 ": cannot read mesh: the PLY header has no end_header line");
+                                 ": cannot read mesh: the PLY header has no end_header "
+                                 "line (a line of its own)");
     }
     const aiScene* scene =
         gltf ? importer.ReadFile(path, flags)
