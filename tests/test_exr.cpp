@@ -246,3 +246,33 @@ TEST_CASE("a half EXR holds each value rounded to half, beyond 65504 clamped", "
     std::remove("exr_half.exr");
     std::remove("exr_float.exr");
 }
+
+TEST_CASE("--exr-half writes the render's pixels as half", "[exr][cli]") {
+    const trac0r_test::ViewerRun r = trac0r_test::run_viewer_process(
+        "--headless --width 16 --height 12 --spp 2 --exr-half --output exr_cli_half.exr "
+        "--output exr_cli_half.pfm");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const trac0r::Image pfm = trac0r::read_pfm("exr_cli_half.pfm");
+    Imf::InputFile file("exr_cli_half.exr");
+    REQUIRE(file.header().channels().findChannel("R") != nullptr);
+    CHECK(file.header().channels().findChannel("R")->type == Imf::HALF);
+    std::vector<float> red(pfm.pixels.size());
+    Imf::FrameBuffer frame;
+    frame.insert("R", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(red.data()), sizeof(float),
+                                 sizeof(float) * 16));
+    file.setFrameBuffer(frame);
+    file.readPixels(0, 11);
+    for (std::size_t i = 0; i < red.size(); ++i) {
+        INFO("pixel " << i);
+        CHECK(red[i] == static_cast<float>(half(std::min(pfm.pixels[i].x, 65504.0f))));
+    }
+    // Without a .exr output it has nothing to do.
+    const trac0r_test::ViewerRun none =
+        trac0r_test::run_viewer_process("--headless --spp 1 --exr-half --output exr_cli_half.png");
+    CHECK(none.exit_code == 2);
+    CHECK(none.err.find("--exr-half: sets how .exr outputs are stored; no --output is a .exr") !=
+          std::string::npos);
+    std::remove("exr_cli_half.exr");
+    std::remove("exr_cli_half.pfm");
+}

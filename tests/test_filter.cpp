@@ -2,10 +2,12 @@
 // energy and its edges (of geometry and of light), smooths noise, and
 // leaves pixels that see nothing as they are.
 #include "test_support.h"
+#include "viewer_process.h"
 
 #include "trac0r/camera.h"
 #include "trac0r/cpu_backend.h"
 #include "trac0r/filter.h"
+#include "trac0r/image_io.h"
 #include "trac0r/renderer.h"
 
 #include <cmath>
@@ -213,5 +215,34 @@ TEST_CASE("the filter is the same on OpenCL", "[filter][opencl]") {
         CAPTURE(i);
         REQUIRE(glm::length(cpu.pixels[i] - gpu.pixels[i]) <=
                 1e-4f * (1e-3f + glm::length(cpu.pixels[i])));
+    }
+}
+
+TEST_CASE("--filter writes the filtered image and the raw one beside it", "[filter][cli]") {
+    const std::string scene = std::string(TRAC0R_SOURCE_DIR) + "/scenes/cornell_diffuse.json";
+    const std::string common = scene + " --headless --width 80 --height 60 --spp 4 ";
+    const trac0r_test::ViewerRun filtered =
+        trac0r_test::run_viewer_process(common + "--filter --verbose -o cli_filter.pfm");
+    INFO(filtered.err);
+    REQUIRE(filtered.exit_code == 0);
+    CHECK(filtered.err.find("filter: on") != std::string::npos);
+    CHECK(filtered.err.find("wrote cli_filter.raw.pfm") != std::string::npos);
+    const trac0r_test::ViewerRun plain =
+        trac0r_test::run_viewer_process(common + "-o cli_plain.pfm");
+    REQUIRE(plain.exit_code == 0);
+    // The raw image is the render without --filter, bit for bit; the
+    // filtered one differs and keeps its mean.
+    const Image raw = read_pfm("cli_filter.raw.pfm");
+    CHECK(read_pfm("cli_plain.pfm").pixels == raw.pixels);
+    const Image f = read_pfm("cli_filter.pfm");
+    CHECK(f.pixels != raw.pixels);
+    CHECK(std::fabs(mean_luminance(f, 0, 80) / mean_luminance(raw, 0, 80) - 1.0) < 0.01);
+    // Not in the window, and not without an output.
+    const trac0r_test::ViewerRun window =
+        trac0r_test::run_viewer_process("--filter -o cli_filter.pfm");
+    CHECK(window.exit_code == 2);
+    CHECK(window.err.find("--filter: only with --headless") != std::string::npos);
+    for (const char* f : {"cli_filter.pfm", "cli_filter.raw.pfm", "cli_plain.pfm"}) {
+        std::remove(f);
     }
 }

@@ -32,6 +32,7 @@ class Renderer {
     const kernel::CameraRecord& camera_record() const { return camera_record_; }
     const PackedScene& packed() const { return packed_; }
     Backend& backend() { return *backend_; }
+    const Backend& backend() const { return *backend_; }
     int width() const { return scene_.render.width; }
     int height() const { return scene_.render.height; }
     std::uint32_t frames() const { return frame_; }

@@ -1,7 +1,9 @@
 #include "headless.h"
 
+#include "startup.h"
 #include "stop_rule.h"
 
+#include "trac0r/filter.h"
 #include "trac0r/guides.h"
 #include "trac0r/image_io.h"
 #include "trac0r/noise.h"
@@ -191,22 +193,54 @@ std::string json_escape(const std::string& s) {
 void save_outputs(const trac0r::Image& image, const Options& options,
                   const trac0r::Renderer* renderer,
                   const std::vector<trac0r::kernel::AccumPixel>* accumulator) {
-    // The --exr-layers, made once for every .exr output.
+    const bool with_guides = renderer != nullptr && accumulator != nullptr;
+    // The guides, made once for the --exr-layers and the --filter.
+    trac0r::GuideImages guides;
+    if (with_guides && (options.filter || options.exr_layers.albedo || options.exr_layers.normal ||
+                        options.exr_layers.depth)) {
+        guides = trac0r::render_guides(renderer->packed(), renderer->camera_record());
+    }
     std::vector<trac0r::ExrChannel> layers;
-    if (options.exr_layers.any() && renderer != nullptr && accumulator != nullptr) {
-        trac0r::GuideImages guides;
-        if (options.exr_layers.albedo || options.exr_layers.normal || options.exr_layers.depth) {
-            guides = trac0r::render_guides(renderer->packed(), renderer->camera_record());
-        }
+    if (options.exr_layers.any() && with_guides) {
         layers = trac0r::exr_layers(options.exr_layers, guides, *accumulator);
     }
-    for (const std::string& path : options.outputs) {
-        if (!layers.empty() && trac0r::is_exr_path(path)) {
-            trac0r::write_exr(path, image, layers);
+    const trac0r::ExrPrecision precision =
+        options.exr_half ? trac0r::ExrPrecision::Half : trac0r::ExrPrecision::Float;
+    const auto write = [&](const std::string& path, const trac0r::Image& picture) {
+        if (trac0r::is_exr_path(path)) {
+            trac0r::write_exr(path, picture, layers, precision);
         } else {
-            trac0r::write_image(path, image, options.exposure);
+            trac0r::write_image(path, picture, options.exposure);
         }
         std::fprintf(stderr, "wrote %s\n", path.c_str());
+    };
+    if (options.filter && with_guides) {
+        // The same kernel code on the backend that rendered.
+        const std::vector<trac0r::kernel::FilterGuide> g = trac0r::filter_guides(guides);
+        const int w = renderer->width();
+        const int h = renderer->height();
+        trac0r::Image filtered;
+        const Clock::time_point start = Clock::now();
+#ifdef TRAC0R_HAVE_OPENCL
+        if (renderer->backend().name() == "opencl") {
+            filtered = trac0r::opencl_filter_image(std::max(options.device, 0), *accumulator, w, h,
+                                                   g, T0_FILTER_PASSES);
+        } else
+#endif
+        {
+            filtered = trac0r::filter_image(*accumulator, w, h, g, T0_FILTER_PASSES);
+        }
+        std::fprintf(stderr, "filtered in %.3f s (%d passes)\n",
+                     std::chrono::duration<double>(Clock::now() - start).count(),
+                     T0_FILTER_PASSES);
+        for (const std::string& path : options.outputs) {
+            write(path, filtered);
+            write(raw_output_path(path), image);
+        }
+        return;
+    }
+    for (const std::string& path : options.outputs) {
+        write(path, image);
     }
 }
 

@@ -122,6 +122,13 @@ void define_options(trac0r_cli::CommandLine& cl, Options& o) {
              "with --headless, add to each .exr output the layers a denoiser or compositor "
              "reads: albedo, normal, depth, variance (comma-separated), or all",
              [&o](const std::string& v) { o.exr_layers = parse_exr_layers("--exr-layers", v); });
+    cl.flag("--exr-half", &o.exr_half,
+            "store .exr outputs (and their layers) as 16-bit half floats: half the size; "
+            "values beyond 65504 are clamped to it");
+    cl.flag("--filter", &o.filter,
+            "with --headless, each --output FILE.EXT holds the image after the "
+            "edge-preserving filter (docs/filter.md) and FILE.raw.EXT beside it the "
+            "unfiltered accumulation");
     cl.flag("--headless", &o.headless,
             "no window; with --output a batch render with a progress bar on stderr (default "
             "--spp 64 when neither --seconds nor --target-error is given)");

@@ -34,6 +34,8 @@ struct Options {
     double target_error = 0.0;
     float exposure = 1.0f;
     trac0r::ExrLayerChoice exr_layers;  // --exr-layers
+    bool exr_half = false;              // --exr-half
+    bool filter = false;                // --filter
     std::string replay_path;            // --replay: scripted window input (replay.h)
     long max_input_mb = 0;              // --max-input-mb; 0: the library's limit (4000)
     bool verbose = false;

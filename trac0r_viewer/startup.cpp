@@ -3,6 +3,7 @@
 #include "slow_step.h"
 
 #include "trac0r/cpu_backend.h"
+#include "trac0r/filter.h"
 #include "trac0r/image_io.h"
 #include "trac0r/input_file.h"
 #include "trac0r/input_checks.h"
@@ -17,6 +18,15 @@
 #include <stdexcept>
 
 namespace trac0r_viewer {
+
+std::string raw_output_path(const std::string& path) {
+    const std::size_t dot = path.find_last_of('.');
+    const std::size_t slash = path.find_last_of('/');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) {
+        return path + ".raw";
+    }
+    return path.substr(0, dot) + ".raw" + path.substr(dot);
+}
 
 void check_options(const Options& o, bool writes_outputs) {
 #ifndef TRAC0R_HAVE_OPENCL
@@ -60,8 +70,27 @@ void check_options(const Options& o, bool writes_outputs) {
             throw UsageError("--exr-layers: adds layers to .exr outputs; no --output is a .exr");
         }
     }
-    // Checked before rendering, not after.
-    for (const std::string& f : o.outputs) {
+    if (o.exr_half && std::none_of(o.outputs.begin(), o.outputs.end(), trac0r::is_exr_path)) {
+        throw UsageError("--exr-half: sets how .exr outputs are stored; no --output is a .exr");
+    }
+    if (o.filter) {
+        if (!o.headless) {
+            throw UsageError(
+                "--filter: only with --headless for now (the window shows the unfiltered image)");
+        }
+        if (o.outputs.empty()) {
+            throw UsageError("--filter: filters the --output images; no --output is given");
+        }
+    }
+    // Checked before rendering, not after; with --filter the .raw files
+    // beside them too.
+    std::vector<std::string> written = o.outputs;
+    if (o.filter) {
+        for (const std::string& f : o.outputs) {
+            written.push_back(raw_output_path(f));
+        }
+    }
+    for (const std::string& f : written) {
         if (!trac0r::is_supported_image_path(f)) {
             throw UsageError("--output " + f + ": expected a .png, .pfm or .exr file name");
         }
@@ -133,6 +162,12 @@ void print_verbose(trac0r::Renderer& r, const Options& o) {
     }
     std::fprintf(stderr, "backend: %s (%s)\n", r.backend().name().c_str(),
                  r.backend().device().c_str());
+    if (o.filter) {
+        std::fprintf(stderr,
+                     "filter: on (edge-preserving a-trous, %d passes, on the %s backend); each "
+                     "output's unfiltered image goes beside it as FILE.raw.EXT\n",
+                     T0_FILTER_PASSES, r.backend().name().c_str());
+    }
     std::fprintf(stderr, "features: %s (mask 0x%02x); left out: %s\n",
                  trac0r::feature_names(p.features).c_str(), p.features,
                  trac0r::left_out_feature_names(p.features).c_str());

@@ -18,6 +18,10 @@ namespace trac0r_viewer {
 
 class SlowStep;
 
+// Where --filter puts the unfiltered image of output `path`: FILE.raw.EXT
+// beside FILE.EXT.
+std::string raw_output_path(const std::string& path);
+
 // Checks combinations of flags that each parse fine alone (UsageError),
 // and, where `writes_outputs`, that every --output can be written.
 void check_options(const Options& o, bool writes_outputs = true);
