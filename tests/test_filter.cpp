@@ -83,6 +83,21 @@ void noisy_halves(float left, float right, Guide guide, std::vector<kernel::Accu
     }
 }
 
+// Scene `name` rendered at w x h, 4 spp (NEE) on the CPU, and
+// its filter guides.
+std::unique_ptr<Renderer> render_4spp(const char* name, int w, int h,
+                                      std::vector<kernel::FilterGuide>* guides) {
+    PackOptions options;
+    options.integrator = Integrator::nee;
+    std::unique_ptr<Renderer> r(
+        new Renderer(load_test_scene(name, w, h), std::make_unique<CpuBackend>(), 3, options));
+    for (int i = 0; i < 4; ++i) {
+        r->render_frame();
+    }
+    *guides = filter_guides(render_guides(r->packed(), r->camera_record()));
+    return r;
+}
+
 }  // namespace
 
 TEST_CASE("the filter smooths noise and keeps a shadow's edge", "[filter]") {
@@ -177,15 +192,9 @@ TEST_CASE("the filter keeps a rendered image's mean", "[filter]") {
     // Diffuse walls, and the thesis' box with its glass and glossy objects.
     for (const char* name : {"cornell_diffuse.json", "cornell.json"}) {
         CAPTURE(name);
-        Scene scene = load_test_scene(name, 80, 60);
-        PackOptions options;
-        options.integrator = Integrator::nee;
-        Renderer r(scene, std::make_unique<CpuBackend>(), 3, options);
-        for (int i = 0; i < 4; ++i) {
-            r.render_frame();
-        }
-        const std::vector<kernel::FilterGuide> guides =
-            filter_guides(render_guides(r.packed(), r.camera_record()));
+        std::vector<kernel::FilterGuide> guides;
+        const std::unique_ptr<Renderer> rendered = render_4spp(name, 80, 60, &guides);
+        Renderer& r = *rendered;
         const Image raw = r.image();
         const Image filtered = filter_image(r.accumulator(), 80, 60, guides, T0_FILTER_PASSES);
         for (const glm::vec3& p : filtered.pixels) {
@@ -199,15 +208,9 @@ TEST_CASE("the filter keeps a rendered image's mean", "[filter]") {
 }
 
 TEST_CASE("the filter is the same on OpenCL", "[filter][opencl]") {
-    Scene scene = load_test_scene("cornell.json", 64, 48);
-    PackOptions options;
-    options.integrator = Integrator::nee;
-    Renderer r(scene, std::make_unique<CpuBackend>(), 3, options);
-    for (int i = 0; i < 4; ++i) {
-        r.render_frame();
-    }
-    const std::vector<kernel::FilterGuide> guides =
-        filter_guides(render_guides(r.packed(), r.camera_record()));
+    std::vector<kernel::FilterGuide> guides;
+    const std::unique_ptr<Renderer> rendered = render_4spp("cornell.json", 64, 48, &guides);
+    Renderer& r = *rendered;
     const Image cpu = filter_image(r.accumulator(), 64, 48, guides, T0_FILTER_PASSES);
     const Image gpu = opencl_filter_image(0, r.accumulator(), 64, 48, guides, T0_FILTER_PASSES);
     // exp and sqrt may differ by a few ulp between the compilers.
