@@ -993,6 +993,18 @@ TEST_CASE("PLY and glTF 2.0 meshes, with their normals and materials", "[scene_l
         dir.write("t.bin", two_triangle_buffer());
         dir.write("t.gltf", two_triangle_gltf("t.bin"));
         check_two_triangles(load_scene_file(mesh_scene("t.gltf")));
+        // A mirroring node: the winding is swapped with it, so the
+        // triangle's normal still agrees with its vertex normals (+z).
+        std::string mirrored = two_triangle_gltf("t.bin");
+        const std::string node = R"({"mesh": 0})";
+        REQUIRE(mirrored.find(node) != std::string::npos);
+        mirrored.replace(mirrored.find(node), node.size(), R"({"mesh": 0, "scale": [-1, 1, 1]})");
+        dir.write("m.gltf", mirrored);
+        const Scene flipped = load_scene_file(mesh_scene("m.gltf"));
+        CHECK(flipped.shapes[0].aabb.min.x == -1.0f);
+        CHECK(flipped.shapes[0].triangles[0].normal.z > 0.99f);
+        REQUIRE(flipped.shapes[0].normals.size() == 1);
+        CHECK(flipped.shapes[0].normals[0][1].z > 0.99f);
         dir.write(
             "e.gltf",
             two_triangle_gltf("data:application/octet-stream;base64,"

@@ -452,7 +452,8 @@ int assimp_texture(const aiScene& scene, const aiMaterial& m, const std::string&
         return texture_index(mesh, path + " " + file, [&] {
             if (embedded->mHeight != 0) {
                 // Uncompressed: mWidth x mHeight texels, BGRA.
-                if (embedded->mWidth > static_cast<unsigned>(max_texture_side) ||
+                if (embedded->mWidth == 0 ||
+                    embedded->mWidth > static_cast<unsigned>(max_texture_side) ||
                     embedded->mHeight > static_cast<unsigned>(max_texture_side)) {
                     throw std::runtime_error(where + ": expected each side at most " +
                                              std::to_string(max_texture_side));
@@ -764,14 +765,18 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
         const aiMesh& mesh = *scene->mMeshes[instance.first];
         const aiMatrix4x4& to_world = instance.second;
         aiMatrix3x3 normal_matrix(to_world);
+        // A mirroring node turns the winding inside out: two corners are
+        // swapped (with their normals and coordinates), as make_shape does.
+        const bool mirrored = aiMatrix3x3(to_world).Determinant() < 0.0f;
         normal_matrix.Inverse().Transpose();
         for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
             const aiFace& face = mesh.mFaces[f];
             // A polygon as a fan of triangles around its first corner;
             // points and lines (SortByPType leaves none) give none.
             for (unsigned fan = 1; fan + 1 < face.mNumIndices; ++fan) {
-                const unsigned corners[3] = {face.mIndices[0], face.mIndices[fan],
-                                             face.mIndices[fan + 1]};
+                const unsigned corners[3] = {face.mIndices[0],
+                                             face.mIndices[mirrored ? fan + 1 : fan],
+                                             face.mIndices[mirrored ? fan : fan + 1]};
                 glm::vec3 p[3];
                 VertexNormalTriple n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
                 bool has_normals = mesh.HasNormals();
