@@ -113,7 +113,7 @@ TEST_CASE("the filter smooths noise and keeps a shadow's edge", "[filter]") {
     CAPTURE(spread(raw, 0, 28), spread(filtered, 0, 28));
     CHECK(spread(filtered, 0, 28) < spread(raw, 0, 28) / 3.0);
     // The edge: a few pixels from it, each side keeps its brightness (a
-    // filter without edge-stopping weights spreads it over its 61-pixel
+    // filter without edge-stopping weights spreads it over its 125-pixel
     // footprint). The pixels right beside it may blend a little.
     const double lit = mean_luminance(filtered, 26, 30);
     const double dark = mean_luminance(filtered, 34, 38);

@@ -20,8 +20,8 @@
 
 T0_NAMESPACE_BEGIN
 
-// How many a-trous passes (taps 1, 2, 4, 8, 16 pixels apart: a 61-pixel
-// footprint), and the edge-stopping strengths (SVGF's values).
+// How many a-trous passes (taps 1, 2, 4, 8, 16 pixels apart: a footprint
+// 125 pixels across), and the edge-stopping strengths (SVGF's values).
 #define T0_FILTER_PASSES 5
 #define T0_FILTER_SIGMA_LUMINANCE 4.0f
 #define T0_FILTER_SIGMA_DEPTH 1.0f
@@ -118,7 +118,8 @@ T0_INLINE FilterPixel atrous_pixel(T0_GLOBAL const FilterPixel* in,
     const float kernel_weights[3] = {0.375f, 0.25f, 0.0625f};
     const int step = 1 << pass;
     const float l = luminance(xyz(centre.value));
-    const float sigma_z = T0_FILTER_SIGMA_DEPTH * depth_slope(guides, width, height, x, y);
+    const float sigma_z =
+        fmax(T0_FILTER_SIGMA_DEPTH * depth_slope(guides, width, height, x, y), 1e-20f);
     const float3 n = xyz(g.normal);
     float3 sum = float3_splat(0.0f);
     float variance = 0.0f;
@@ -159,6 +160,11 @@ T0_INLINE FilterPixel atrous_pixel(T0_GLOBAL const FilterPixel* in,
                 1e-6f;
             const float w_l = exp(-fabs(l - luminance(xyz(p.value))) / sigma_l);
             const float w = h * w_n * w_z * w_l;
+            // A tap whose weight or value is not finite is left out, so one
+            // bad pixel does not spoil its neighbours.
+            if (!(w >= 0.0f) || !is_finite_f(p.value.x + p.value.y + p.value.z + p.value.w)) {
+                continue;
+            }
             sum += xyz(p.value) * w;
             variance += w * w * p.value.w;
             total += w;
