@@ -37,6 +37,12 @@ struct Material {
     int texture = -1;
 };
 
+// Whether a material of this type takes a base-colour texture (diffuse
+// and glossy ones).
+inline bool takes_texture(MaterialType type) {
+    return type == MaterialType::diffuse || type == MaterialType::glossy;
+}
+
 // "emissive", "diffuse", "glass", "glossy" (the scene format's names) and
 // back; parse_material_type throws std::invalid_argument.
 const char* to_string(MaterialType type);

@@ -206,7 +206,7 @@ void pack_textures(const Scene& scene, const std::vector<UsableTriangle>& usable
                    const std::vector<std::uint32_t>& packed_index, PackedScene& packed) {
     const auto textured_material = [&](const Material& m) {
         return m.texture >= 0 && static_cast<std::size_t>(m.texture) < scene.textures.size() &&
-               (m.type == MaterialType::diffuse || m.type == MaterialType::glossy);
+               takes_texture(m.type);
     };
     const auto textured = [&](const UsableTriangle& u) {
         return u.uv != nullptr && textured_material(scene.materials[u.material]);

@@ -399,21 +399,22 @@ int texture_index(MeshParts& mesh, const std::string& source, Load load) {
     return static_cast<int>(mesh.textures.size()) - 1;
 }
 
-// Whether a material of this type takes a base-colour texture.
-bool takes_texture(MaterialType type) {
-    return type == MaterialType::diffuse || type == MaterialType::glossy;
-}
-
 // The base-colour texture an MTL material names, for the material `out`
 // made of it: map_Kd for a diffuse one, and for a glossy one the map of
-// the colour it took (map_Ks with Ks, else map_Kd); "" for none.
-std::string mtl_texture_name(const tinyobj::material_t& m, const Material& out) {
+// the colour it took (map_Ks with Ks, else map_Kd); "" for none. *key is
+// the statement's name, for messages.
+std::string mtl_texture_name(const tinyobj::material_t& m, const Material& out, const char** key) {
+    *key = "map_Kd";
     if (out.type == MaterialType::diffuse) {
         return m.diffuse_texname;
     }
     if (out.type == MaterialType::glossy) {
         const bool from_ks = m.specular[0] > 0.0f || m.specular[1] > 0.0f || m.specular[2] > 0.0f;
-        return from_ks ? m.specular_texname : m.diffuse_texname;
+        if (from_ks) {
+            *key = "map_Ks";
+            return m.specular_texname;
+        }
+        return m.diffuse_texname;
     }
     return "";
 }
@@ -514,7 +515,8 @@ struct PartBuilder {
         any_smooth[part] = any_smooth[part] || (has_normals && smooth);
         normals[part].push_back(n);
         any_uv[part] = any_uv[part] || uv.present;
-        uvs[part].push_back(uv);
+        // Coordinates of some corners only: none.
+        uvs[part].push_back(uv.present ? uv : TriangleUv());
     }
 
     // The parts as shapes; `material_of(key, mesh)` maps a key to the
@@ -633,9 +635,6 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
             const std::size_t face = i / 3;
             const int id =
                 read_mtl && face < s.mesh.material_ids.size() ? s.mesh.material_ids[face] : -1;
-            if (!uv.present) {
-                uv = TriangleUv();
-            }
             parts.add(id, p, n, has_normals, smooth, uv);
         }
     }
@@ -648,15 +647,14 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
             const std::size_t k = static_cast<std::size_t>(id);
             const std::string& file = k < reader.files.size() ? reader.files[k] : path;
             Material m = material_from_mtl(materials[k], file);
-            const std::string map = mtl_texture_name(materials[k], m);
+            const char* key = "";
+            const std::string map = mtl_texture_name(materials[k], m, &key);
             if (!map.empty()) {
                 const std::string texture = texture_path_beside(file, map);
                 m.texture = texture_index(mesh, texture, [&] {
-                    return load_texture_file(
-                        file + ": material '" + printable(m.name, 60) +
-                            "': " + (map == materials[k].diffuse_texname ? "map_Kd" : "map_Ks") +
-                            " '" + printable(map, 200) + "'",
-                        texture);
+                    return load_texture_file(file + ": material '" + printable(m.name, 60) +
+                                                 "': " + key + " '" + printable(map, 200) + "'",
+                                             texture);
                 });
             }
             mesh.materials.push_back(m);
@@ -809,9 +807,6 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
                     }
                 }
                 // A PLY has no materials (assimp gives it a default one).
-                if (!uv.present) {
-                    uv = TriangleUv();
-                }
                 parts.add(file_materials && !ply ? static_cast<int>(mesh.mMaterialIndex) : -1, p, n,
                           has_normals, smooth, uv);
             }
