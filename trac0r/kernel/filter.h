@@ -57,15 +57,19 @@ T0_STATIC_ASSERT_SIZE(FilterGuide, 32);
 // A channel's albedo as a divisor: tiny and zero ones are not divided by.
 T0_INLINE float demodulation_divisor(float albedo) { return albedo > 1e-3f ? albedo : 1.0f; }
 
+// The three channels' divisors of a guide's albedo.
+T0_INLINE float3 demodulation(FilterGuide g) {
+    return make_float3(demodulation_divisor(g.albedo.x), demodulation_divisor(g.albedo.y),
+                       demodulation_divisor(g.albedo.z));
+}
+
 // The first pass's input for one pixel: its accumulated mean over the
 // albedo, and the variance of that mean's luminance (the per-sample
 // variance over the samples, likewise demodulated by the albedo's
 // luminance).
 T0_INLINE FilterPixel filter_input(AccumPixel px, FilterGuide g) {
     const float3 colour = accumulated_mean(px);
-    const float3 a = xyz(g.albedo);
-    const float3 d = make_float3(demodulation_divisor(a.x), demodulation_divisor(a.y),
-                                 demodulation_divisor(a.z));
+    const float3 d = demodulation(g);
     const float n = px.moments.z;
     const float dl = demodulation_divisor(luminance(d));
     const float variance = n > 1.0f ? px.moments.y / (n - 1.0f) / n / (dl * dl) : 1e30f;
@@ -76,9 +80,7 @@ T0_INLINE FilterPixel filter_input(AccumPixel px, FilterGuide g) {
 
 // The filtered pixel's colour: its lighting times the albedo again.
 T0_INLINE float3 filter_output(FilterPixel p, FilterGuide g) {
-    const float3 a = xyz(g.albedo);
-    return make_float3(p.value.x * demodulation_divisor(a.x), p.value.y * demodulation_divisor(a.y),
-                       p.value.z * demodulation_divisor(a.z));
+    return xyz(p.value) * demodulation(g);
 }
 
 // The depth's change per pixel at (x, y): on each axis the smaller of the
@@ -140,7 +142,9 @@ T0_INLINE FilterPixel atrous_pixel(T0_GLOBAL const FilterPixel* in,
                 continue;
             }
             const FilterPixel p = in[q];
-            const float h = kernel_weights[dx < 0 ? -dx : dx] * kernel_weights[dy < 0 ? -dy : dy];
+            const int adx = dx < 0 ? -dx : dx;
+            const int ady = dy < 0 ? -dy : dy;
+            const float h = kernel_weights[adx] * kernel_weights[ady];
             // A pixel without a normal (its ray went on through glass or a
             // mirror and met nothing) is mixed only with its like.
             const float3 nq = xyz(gq.normal);
@@ -148,7 +152,7 @@ T0_INLINE FilterPixel atrous_pixel(T0_GLOBAL const FilterPixel* in,
             const int has_nq = dot(nq, nq) > 0.0f;
             const float w_n =
                 has_n && has_nq ? pow128(fmax(dot(n, nq), 0.0f)) : (has_n == has_nq ? 1.0f : 0.0f);
-            const float distance = (float)(dx < 0 ? -dx : dx) + (float)(dy < 0 ? -dy : dy);
+            const float distance = (float)(adx + ady);
             const float w_z = exp(-fabs(g.albedo.w - gq.albedo.w) /
                                   (sigma_z * (float)step * fmax(distance, 1.0f)));
             // The luminance noise that the two pixels' variances (filtered
