@@ -169,8 +169,9 @@ TEST_CASE("bench_ray_order: sizes too small to time and scenes with no triangles
 }
 
 TEST_CASE("the benchmark programs: --version, --flag=value, generated --help", "[benchmark_cli]") {
-    for (const char* program : {"tonemap", "bench_accel_crossover", "bench_complexity",
-                                "bench_convergence", "bench_ray_order", "bench_scene_load"}) {
+    for (const char* program :
+         {"tonemap", "bench_accel_crossover", "bench_complexity", "bench_convergence",
+          "bench_ray_order", "bench_scene_load", "bench_temporal"}) {
         CAPTURE(program);
         const ViewerRun r = run_benchmark(program, "--version");
         CAPTURE(r.err);
@@ -194,6 +195,23 @@ TEST_CASE("the benchmark programs: --version, --flag=value, generated --help", "
                    {"--version=2", "--version: takes no value, got '2'"},
                    {"stray", "unexpected argument 'stray'"}},
                   2);
+}
+
+TEST_CASE("bench_temporal: its figures for a tiny view, and its mistakes refused",
+          "[benchmark_cli]") {
+    check_refused(
+        "bench_temporal",
+        {{"--preview-factor 16 --width 8", "--preview-factor 16: leaves no pixel of 8 x 480"},
+         {"--steps 0", "--steps: expected an integer in [1, 100000], got '0'"},
+         {"--output-prefix /nonexistent/x", "--output-prefix /nonexistent/x: cannot be written"}},
+        2);
+    const ViewerRun r = run_benchmark(
+        "bench_temporal", "--width 64 --height 48 --history-spp 4 --reference-spp 4 --steps 2");
+    CAPTURE(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.out.find("view 64 x 48, preview 16 x 12, 4 spp before the move, 2 step(s)") == 0);
+    CHECK(r.out.find("temporal reuse") != std::string::npos);
+    CHECK(r.out.find("ratio (target <= 0.5)") != std::string::npos);
 }
 
 TEST_CASE("the benchmark programs refuse an option given twice", "[benchmark_cli]") {

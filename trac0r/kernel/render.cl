@@ -2,6 +2,7 @@
 // The library embeds this file after the headers (cmake/embed.cmake), and
 // builds it with -DT0_FEATURES=<mask> so unused branches are compiled out.
 #include "filter.h"
+#include "temporal.h"
 #include "tile_grid.h"
 #include "trace.h"
 
