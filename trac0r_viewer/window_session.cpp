@@ -348,7 +348,7 @@ void Session::take_from_worker() {
         have_frame_ = true;
         window_.set_image(trac0r::tonemap_image(shown_.image, exposure_));
         if (!shown_.preview) {
-            last_full_image_ = shown_.image;
+            last_full_image_ = shown_.accumulation;
         }
         dirty_ = true;
     }
@@ -451,7 +451,8 @@ void Session::save_screenshot() {
     const std::string pfm = base + ".pfm";
     try {
         trac0r::write_png(png, window_.read_image_area());
-        trac0r::write_pfm(pfm, shown_.image);
+        // The render itself: the running mean, not the display's blend.
+        trac0r::write_pfm(pfm, shown_.preview ? shown_.image : shown_.accumulation);
     } catch (const std::exception& e) {
         say(std::string("screenshot failed: ") + e.what());
         return;

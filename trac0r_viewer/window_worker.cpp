@@ -151,7 +151,8 @@ void RenderWorker::run() {
                 // A request that changed nothing (a backend switch to the
                 // backend in use, or one that failed): the same image under
                 // the new generation, not one more sample past --spp.
-                publish(*full_, false, Clock::now());
+                publish(*full_, false, Clock::now(),
+                        shown_full_.pixels.empty() ? full_->image() : shown_full_);
             } else if (requests.camera_changed && preview_factor_ > 1) {
                 render_preview();
             } else {
@@ -174,6 +175,7 @@ void RenderWorker::apply(const Requests& requests) {
     }
     if (requests.restart) {
         full_stale_ = true;
+        drop_history_ = true;
     }
     if (!requests.backend.empty()) {
         change_backend(requests.backend);
@@ -195,6 +197,10 @@ void RenderWorker::change_backend(const std::string& name) {
                                                    settings_.pack);
         preview_.reset();  // made again on the new backend when needed
         full_stale_ = true;
+        drop_history_ = true;
+        history_ = trac0r::TemporalFrame();
+        history_is_accumulation_ = false;
+        full_guides_ = trac0r::GuideImages();
         tell("backend: " + name + " (" + full_->backend().device() + ")");
     } catch (const std::exception& e) {
         tell("cannot switch to " + name + ": " + e.what() + "; staying on " + current);
@@ -227,13 +233,50 @@ void RenderWorker::render_preview() {
     }
     const Clock::time_point start = Clock::now();
     preview_->set_camera(camera_);  // one frame per camera: no accumulation
+    // Each preview its own samples: with the same ones every frame, the
+    // noise would stand still on the screen while the view slides under it,
+    // and temporal reuse would smear it into streaks.
+    preview_->set_frame_sequence(preview_frames_++, 1);
     preview_->render_frame();
-    publish(*preview_, true, start);
+    settle_history();
+    if (drop_history_) {
+        history_ = trac0r::TemporalFrame();
+        drop_history_ = false;
+    }
+    const trac0r::GuideImages guides =
+        trac0r::render_guides(preview_->packed(), preview_->camera_record());
+    history_ =
+        trac0r::temporal_blend(history_, preview_->image(), static_cast<float>(preview_->frames()),
+                               preview_->camera_record(), guides);
+    publish(*preview_, true, start, history_.image());
+}
+
+const trac0r::GuideImages& RenderWorker::full_guides() {
+    if (full_guides_.width == 0) {
+        full_guides_ = trac0r::render_guides(full_->packed(), full_->camera_record());
+    }
+    return full_guides_;
+}
+
+void RenderWorker::settle_history() {
+    if (history_is_accumulation_) {
+        history_ = trac0r::temporal_blend(trac0r::TemporalFrame(), full_->image(),
+                                          static_cast<float>(full_->frames()),
+                                          full_->camera_record(), full_guides());
+        history_is_accumulation_ = false;
+    }
 }
 
 void RenderWorker::render_full() {
     if (full_stale_) {
+        // What was shown last (the moves' frames, or the old view's
+        // accumulation) is carried into the new accumulation's first frames.
+        settle_history();
+        carried_ = drop_history_ ? trac0r::TemporalFrame() : std::move(history_);
+        history_ = trac0r::TemporalFrame();
+        drop_history_ = false;
         full_->set_camera(camera_);  // restarts accumulation
+        full_guides_ = trac0r::GuideImages();
         full_started_ = Clock::now();
         full_stale_ = false;
         last_estimate_spp_ = 0;
@@ -241,7 +284,20 @@ void RenderWorker::render_full() {
     }
     const Clock::time_point start = Clock::now();
     full_->render_frame();
-    publish(*full_, false, start);
+    trac0r::Image shown = full_->image();
+    if (!carried_.empty() && full_->frames() >= carried_history_frames) {
+        carried_ = trac0r::TemporalFrame();
+    }
+    if (carried_.empty()) {
+        history_is_accumulation_ = true;
+    } else {
+        history_ = trac0r::temporal_blend(carried_, shown, static_cast<float>(full_->frames()),
+                                          full_->camera_record(), full_guides());
+        history_is_accumulation_ = false;
+        shown = history_.image();
+    }
+    shown_full_ = shown;
+    publish(*full_, false, start, shown);
 }
 
 double RenderWorker::noise_estimate() {
@@ -266,9 +322,13 @@ double RenderWorker::noise_estimate() {
     return last_estimate_;
 }
 
-void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time_point start) {
+void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time_point start,
+                           const trac0r::Image& shown) {
     WorkerFrame frame;
-    frame.image = renderer.image();
+    frame.image = shown;
+    if (!preview) {
+        frame.accumulation = renderer.image();
+    }
     frame.spp = renderer.frames();
     frame.preview = preview;
     frame.frame_seconds = seconds_since(start);

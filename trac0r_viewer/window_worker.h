@@ -7,7 +7,12 @@
 //
 // While the camera moves (a new camera arrived during the last frame), the
 // thread renders single frames at a reduced resolution, so navigation stays
-// fluid; once it stops, accumulation restarts at full resolution.
+// fluid; once it stops, accumulation restarts at full resolution. Each
+// frame shown is blended with the one before it, reprojected into its
+// view (trac0r/temporal.h): while moving, the image keeps what the last
+// view saw and starts again only where something came into sight; after a
+// stop, what the moves left fades out over the first full frames. The
+// accumulation itself is never touched.
 #ifndef TRAC0R_VIEWER_WINDOW_WORKER_H
 #define TRAC0R_VIEWER_WINDOW_WORKER_H
 
@@ -15,7 +20,9 @@
 
 #include "trac0r/camera.h"
 #include "trac0r/image_io.h"
+#include "trac0r/guides.h"
 #include "trac0r/renderer.h"
+#include "trac0r/temporal.h"
 
 #include <chrono>
 #include <condition_variable>
@@ -39,7 +46,8 @@ constexpr double noise_estimate_cost_factor = 10.0;
 
 // A finished frame: the running mean and what the overlay says about it.
 struct WorkerFrame {
-    trac0r::Image image;  // linear radiance
+    trac0r::Image image;         // linear radiance, as shown (temporal reuse blended in)
+    trac0r::Image accumulation;  // the running mean itself; empty for previews
     std::uint32_t spp = 0;
     bool preview = false;        // reduced resolution, while the camera moves
     double frame_seconds = 0.0;  // rendering and reading back this frame
@@ -117,8 +125,15 @@ class RenderWorker {
     void change_backend(const std::string& name);
     void render_preview();
     void render_full();
-    // Copies the running mean out; frame_seconds counts from `start`.
-    void publish(trac0r::Renderer& renderer, bool preview, Clock::time_point start);
+    // The guides of full_'s view, made once per view.
+    const trac0r::GuideImages& full_guides();
+    // Makes history_ from full_'s accumulation where that is what was shown
+    // last.
+    void settle_history();
+    // Publishes `shown` (and, for a full frame, the running mean);
+    // frame_seconds counts from `start`.
+    void publish(trac0r::Renderer& renderer, bool preview, Clock::time_point start,
+                 const trac0r::Image& shown);
     // The noise estimate of full_'s mean, or the last one while it is recent.
     double noise_estimate();
     void tell(const std::string& message);
@@ -127,6 +142,7 @@ class RenderWorker {
     std::unique_ptr<trac0r::Renderer> full_;
     std::unique_ptr<trac0r::Renderer> preview_;  // made on the first move
     int preview_factor_;                         // 1: no preview
+    std::uint32_t preview_frames_ = 0;           // previews rendered: each its own samples
     BackendFactory make_backend_;
     WorkerSettings settings_;
     trac0r::Camera camera_;
@@ -138,6 +154,16 @@ class RenderWorker {
     std::string pause_reason_;             // of the last full frame (pause_reason_now)
     Clock::time_point last_estimate_time_;
     double last_estimate_cost_ = 0.0;  // seconds
+    // Temporal reuse: the frame on display with its guides (empty: none,
+    // or see history_is_accumulation_); what the moves left, blended into
+    // the full frames after a stop; full_'s guides (empty until needed);
+    // the last full frame as shown.
+    trac0r::TemporalFrame history_;
+    bool history_is_accumulation_ = false;  // history_ is full_'s running mean: made when needed
+    bool drop_history_ = false;             // a restart or backend switch: start from nothing
+    trac0r::TemporalFrame carried_;
+    trac0r::GuideImages full_guides_;
+    trac0r::Image shown_full_;
 
     // Shared with the window's thread, under mutex_.
     std::mutex mutex_;
@@ -157,6 +183,11 @@ class RenderWorker {
 // The divisor of the preview's resolution: about a sixteenth of the pixels,
 // but no smaller than 80 x 60; 1 (no preview) for images too small for it.
 int preview_factor(int width, int height);
+
+// The full frames after a stop blend in what the moves left until the
+// accumulation has this many samples a pixel (then the history's share
+// would be at most a fifth).
+constexpr std::uint32_t carried_history_frames = 64;
 
 }  // namespace trac0r_viewer
 
