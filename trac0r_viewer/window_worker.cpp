@@ -346,8 +346,14 @@ void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time
     frame.device = renderer.backend().device();
     {
         std::lock_guard<std::mutex> lock(mutex_);
-        if (last_generation_ != applied_generation_) {
-            return;  // a request came in during the frame: it shows an old view
+        // A request came in during the frame: a full frame shows an old
+        // view and is dropped. A preview is shown all the same: while a key
+        // is held the camera changes every few milliseconds, faster than a
+        // preview renders, and dropping each would show nothing until the
+        // key is let go. It is a frame behind the input, and its generation
+        // says so (--replay's wait_spp does not count it).
+        if (last_generation_ != applied_generation_ && !preview) {
+            return;
         }
         frame_ = std::move(frame);
         frame_fresh_ = true;
