@@ -164,6 +164,61 @@ key Escape
     CHECK(yellow_pixels(png[3]) > 100);
 }
 
+// How grainy an image is: the mean difference of horizontal neighbours
+// over the mean level, both as sums of R, G and B.
+double roughness(const trac0r::Image& image) {
+    double steps = 0.0;
+    double level = 0.0;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x + 1 < image.width; ++x) {
+            const glm::vec3 a = image.at(x, y);
+            const glm::vec3 d = glm::abs(image.at(x + 1, y) - a);
+            steps += d.x + d.y + d.z;
+            level += a.x + a.y + a.z;
+        }
+    }
+    return steps / level;
+}
+
+TEST_CASE("while the camera moves, the window shows the history reprojected, not one sample",
+          "[window]") {
+    const std::string dir = empty_directory("window_temporal");
+    write_file(dir + "/script.txt", R"(wait_spp 16
+key_down D
+wait 400
+key P            # while moving: a preview, blended with what came before
+key_up D
+key Escape
+)");
+    const ViewerRun r = run_viewer_process(
+        cornell + " --width 200 --height 150 --replay script.txt", "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    REQUIRE(r.err.find("low-resolution preview") != std::string::npos);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 1);
+    const trac0r::Image moving = trac0r::read_pfm(shots[0].pfm);
+    REQUIRE(moving.width == 100);  // the preview: half of 200 x 150
+    // One sample a pixel of the scene's view at the preview's size: what
+    // the window showed while moving before temporal reuse.
+    const ViewerRun one = run_viewer_process(
+        "--headless --width 100 --height 75 --spp 1 --output one.pfm", "cd " + dir + " &&");
+    REQUIRE(one.exit_code == 0);
+    const trac0r::Image single = trac0r::read_pfm(dir + "/one.pfm");
+    CAPTURE(roughness(moving), roughness(single));
+    // The history holds about 16 samples a pixel: a quarter of one
+    // sample's grain; a restart would show all of it.
+    CHECK(roughness(moving) < 0.5 * roughness(single));
+    // The same room, as bright: no flash to black.
+    double moving_sum = 0.0;
+    double single_sum = 0.0;
+    for (std::size_t i = 0; i < moving.pixels.size(); ++i) {
+        moving_sum += moving.pixels[i].x + moving.pixels[i].y + moving.pixels[i].z;
+        single_sum += single.pixels[i].x + single.pixels[i].y + single.pixels[i].z;
+    }
+    CHECK(moving_sum > 0.7 * single_sum);
+}
+
 TEST_CASE("right-drag looks around, the wheel zooms, R restarts, B says what it did", "[window]") {
     const std::string dir = empty_directory("window_look");
     write_file(dir + "/script.txt", R"(wait_spp 3
