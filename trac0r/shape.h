@@ -88,6 +88,15 @@ MeshParts load_mesh_parts(const std::string& path, const glm::vec3& position,
                           const glm::vec3& orientation, const glm::vec3& scale, int material,
                           bool smooth, bool file_materials);
 
+// A PLY or glTF file is read (by assimp) in a child process of its own,
+// so that a reader that crashes, hangs or corrupts memory on a malformed
+// file is one clear error naming the file, not the program's end; one
+// that runs longer than this limit (300 s unless set) is stopped. Throws
+// std::invalid_argument unless seconds is in (0, 1e6]. Not thread-safe:
+// for a program's start (the fuzzer sets less than its own time limit).
+void set_mesh_import_time_limit(double seconds);
+double mesh_import_time_limit();
+
 // An OBJ mesh (all its shapes, faces triangulated). With `smooth`, a face
 // whose three vertices have normals (vn) is shaded with them; without, or
 // where a vertex has none, the face is flat. Throws std::runtime_error
