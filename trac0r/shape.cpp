@@ -439,7 +439,9 @@ std::string texture_path_beside(const std::string& mtl_file, std::string name) {
 // as an index into mesh.textures, or -1 for none: an image embedded in the
 // file (a .glb's buffer, a data URI: "*N") or a file beside it.
 int assimp_texture(const aiScene& scene, const aiMaterial& m, const std::string& path,
-                   MeshParts& mesh) {
+                   MeshParts& mesh, std::uint64_t texel_budget) {
+    // What the file's textures so far leave of the scene's room.
+    const std::uint64_t room = texel_budget - texel_count(mesh.textures);
     aiString name;
     if (m.GetTexture(aiTextureType_BASE_COLOR, 0, &name) != AI_SUCCESS &&
         m.GetTexture(aiTextureType_DIFFUSE, 0, &name) != AI_SUCCESS) {
@@ -461,6 +463,8 @@ int assimp_texture(const aiScene& scene, const aiMaterial& m, const std::string&
                     throw std::runtime_error(where + ": expected each side at most " +
                                              std::to_string(max_texture_side));
                 }
+                check_texture_room(where, static_cast<int>(embedded->mWidth),
+                                   static_cast<int>(embedded->mHeight), room);
                 Texture t;
                 t.source = path + " " + file;
                 t.width = static_cast<int>(embedded->mWidth);
@@ -478,14 +482,15 @@ int assimp_texture(const aiScene& scene, const aiMaterial& m, const std::string&
             // Compressed (PNG, JPEG): mWidth bytes.
             return decode_texture(where, path + " " + file,
                                   reinterpret_cast<const unsigned char*>(embedded->pcData),
-                                  embedded->mWidth);
+                                  embedded->mWidth, room);
         });
     }
     if (!file.empty() && file[0] == '*') {
         throw std::runtime_error(where + ": the file has no embedded image of that number");
     }
     const std::string texture = texture_path_beside(path, file);
-    return texture_index(mesh, texture, [&] { return load_texture_file(where, texture); });
+    return texture_index(mesh, texture,
+                         [&] { return load_texture_file(where, texture, room); });
 }
 
 // Faces grouped into parts by a material key (first use first), with
@@ -548,7 +553,8 @@ struct PartBuilder {
 };
 
 MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm::vec3& orientation,
-                   const glm::vec3& scale, int material, bool smooth, bool read_mtl) {
+                   const glm::vec3& scale, int material, bool smooth, bool read_mtl,
+                   std::uint64_t texel_budget) {
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
@@ -656,7 +662,7 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
                 m.texture = texture_index(mesh, texture, [&] {
                     return load_texture_file(file + ": material '" + printable(m.name, 60) +
                                                  "': " + key + " '" + printable(map, 200) + "'",
-                                             texture);
+                                             texture, texel_budget - texel_count(mesh.textures));
                 });
             }
             mesh.materials.push_back(m);
@@ -790,7 +796,7 @@ std::string assimp_reader_name(bool ply) {
 // textures; everything that touches assimp's structures is here. Throws
 // std::runtime_error naming the file for what assimp or our checks refuse.
 std::string import_assimp(const std::string& path, const std::string& text, bool ply,
-                          bool smooth, bool file_materials) {
+                          bool smooth, bool file_materials, std::uint64_t texel_budget) {
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);
@@ -907,7 +913,7 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
         }
         Material out = material_from_assimp(m, path);
         if (takes_texture(out.type)) {
-            out.texture = assimp_texture(*scene, m, path, files);
+            out.texture = assimp_texture(*scene, m, path, files, texel_budget);
         }
         files.materials.push_back(out);
         return static_cast<int>(files.materials.size()) - 1;
@@ -1107,7 +1113,7 @@ double mesh_import_seconds = 300.0;
 // applied, polygons as fans of triangles, points and lines left out.
 MeshParts load_assimp(const std::string& path, const glm::vec3& position,
                       const glm::vec3& orientation, const glm::vec3& scale, int material,
-                      bool smooth, bool file_materials) {
+                      bool smooth, bool file_materials, std::uint64_t texel_budget) {
     // Only a regular file within the size limit (input_file.h). A .gltf
     // may refer to other files (its buffers), which assimp opens beside
     // it; the others are read from memory.
@@ -1128,7 +1134,7 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
     }
     const std::string reader = assimp_reader_name(ply);
     const IsolatedOutcome outcome = run_isolated(
-        [&] { return import_assimp(path, text, ply, smooth, file_materials); },
+        [&] { return import_assimp(path, text, ply, smooth, file_materials, texel_budget); },
         mesh_import_seconds);
     using Kind = IsolatedOutcome::Kind;
     switch (outcome.kind) {
@@ -1183,18 +1189,22 @@ double mesh_import_time_limit() { return mesh_import_seconds; }
 
 MeshParts load_mesh_parts(const std::string& path, const glm::vec3& position,
                           const glm::vec3& orientation, const glm::vec3& scale, int material,
-                          bool smooth, bool file_materials) {
+                          bool smooth, bool file_materials, std::uint64_t texel_budget) {
     if (has_extension(path, ".ply") || has_extension(path, ".gltf") ||
         has_extension(path, ".glb")) {
-        return load_assimp(path, position, orientation, scale, material, smooth, file_materials);
+        return load_assimp(path, position, orientation, scale, material, smooth, file_materials,
+                           texel_budget);
     }
-    return load_obj(path, position, orientation, scale, material, smooth, file_materials);
+    return load_obj(path, position, orientation, scale, material, smooth, file_materials,
+                    texel_budget);
 }
 
 Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
                     const glm::vec3& orientation, const glm::vec3& scale, int material,
                     bool smooth) {
-    return load_obj(path, position, orientation, scale, material, smooth, false).parts[0].shape;
+    return load_obj(path, position, orientation, scale, material, smooth, false, max_scene_texels)
+        .parts[0]
+        .shape;
 }
 
 }  // namespace trac0r

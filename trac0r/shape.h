@@ -83,10 +83,14 @@ struct MeshParts {
 // from the file"); faces without one, and every face when
 // `file_materials` is false, take `material`. Smooth as load_obj_mesh.
 // Throws std::runtime_error naming the file (and line, or material) for
-// a file that cannot be read and a material that cannot be mapped.
+// a file that cannot be read and a material that cannot be mapped. Its
+// textures may have `texel_budget` texels in all (what the scene has room
+// for): each is refused from its image's header, before it is decoded,
+// where it would go over.
 MeshParts load_mesh_parts(const std::string& path, const glm::vec3& position,
                           const glm::vec3& orientation, const glm::vec3& scale, int material,
-                          bool smooth, bool file_materials);
+                          bool smooth, bool file_materials,
+                          std::uint64_t texel_budget = max_scene_texels);
 
 // A PLY or glTF file is read (by assimp) in a child process of its own,
 // so that a reader that crashes, hangs or corrupts memory on a malformed
