@@ -1282,6 +1282,51 @@ TEST_CASE("base-colour textures from MTL and glTF, with the file's coordinates",
                             "'missing.png': " +
                             dir.path() + "/missing.png: cannot open texture"));
     }
+    SECTION("images are counted against the scene's room before they are decoded") {
+        // A PNG's signature and header only: 16384 x 16384 texels, RGB;
+        // its data missing, it cannot be decoded.
+        const std::string huge_png = std::string("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR", 16) +
+                                     std::string("\0\0\x40\0\0\0\x40\0\x08\x02\0\0\0", 13) +
+                                     std::string("\0\0\0\0", 4);
+        const auto bytes = reinterpret_cast<const unsigned char*>(huge_png.data());
+        // Refused from its header, so never decoded (which would fail).
+        CHECK_THROWS_WITH(decode_texture("m.mtl: material 'a': map_Kd 'h.png'", "h.png", bytes,
+                                         huge_png.size(), (1u << 28) - 1),
+                          Equals("m.mtl: material 'a': map_Kd 'h.png': texture is 16384 x 16384 "
+                                 "texels, more than the scene has room for (268435455 more of "
+                                 "the 2147483648 a scene may have)"));
+        CHECK_THROWS_WITH(decode_texture("h", "h.png", bytes, huge_png.size(), 1u << 28),
+                          StartsWith("h: cannot decode texture"));
+        // An OBJ's materials, each with its own 2 x 2 image: the third
+        // goes over 11 texels.
+        std::string obj_text = "mtllib n.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\n";
+        std::string mtl_text;
+        for (int i = 0; i < 3; ++i) {
+            const std::string m = "n" + std::to_string(i);
+            obj_text += "usemtl " + m + "\nf 1/1 2/1 3/1\n";
+            mtl_text += "newmtl " + m + "\nKd 1 1 1\nmap_Kd " + m + ".png\n";
+            dir.write(m + ".png", "");
+            write_test_png(dir.path() + "/" + m + ".png");
+        }
+        dir.write("n.mtl", mtl_text);
+        const std::string n_obj = dir.write("n.obj", obj_text);
+        const auto load = [](const std::string& path, std::uint64_t texels) {
+            return load_mesh_parts(path, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f), 0,
+                                   true, true, texels);
+        };
+        CHECK_THROWS_WITH(load(n_obj, 11),
+                          Equals(dir.path() + "/n.mtl: material 'n2': map_Kd 'n2.png': texture "
+                                              "is 2 x 2 texels, more than the scene has room for "
+                                              "(3 more of the 2147483648 a scene may have)"));
+        CHECK(load(n_obj, 12).textures.size() == 3);
+        // A glTF's textures, counted in its import's child process.
+        const std::string gltf = dir.write("t.gltf", textured_triangle_gltf("t.png"));
+        CHECK_THROWS_WITH(load(gltf, 3),
+                          Equals(gltf + ": material 'logo': base colour texture 't.png': "
+                                        "texture is 2 x 2 texels, more than the scene has room "
+                                        "for (3 more of the 2147483648 a scene may have)"));
+        CHECK(load(gltf, 4).textures.at(0).texels.size() == 4);
+    }
     SECTION("vt lines and the faces' references to them are checked") {
         dir.write("m.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0 0 0\nf 1 2 3\n");
         CHECK_THAT(scene_file_error(mesh_scene("m.obj")),

@@ -370,3 +370,25 @@ TEST_CASE("without a display: one message pointing to --headless, exit 1, no cra
         CHECK(r.out.empty());
     }
 }
+
+TEST_CASE("a mesh file that crashes assimp's reader is a message and exit 1", "[cli]") {
+    // tests/fuzz/findings/assimp_gltf_segv.glb made assimp 5.2's glTF
+    // reader dereference null: the viewer died of SIGSEGV with it.
+    const std::string finding =
+        std::string(TRAC0R_SOURCE_DIR) + "/tests/fuzz/findings/assimp_gltf_segv.glb";
+    const std::string scene = "assimp_segv_scene.json";
+    {
+        std::ofstream out(scene);
+        out << R"({"materials": {"white": {"type": "diffuse", "color": [0.7, 0.7, 0.7]},
+                   "lamp": {"type": "emissive", "color": [1, 1, 1], "emittance": 5}},
+                   "shapes": [{"type": "plane", "size": [1, 1], "material": "lamp"},
+                              {"type": "mesh", "file": ")"
+            << finding << R"(", "material": "white"}]})";
+    }
+    const Run run = run_viewer(scene + " --headless --width 8 --height 6 --spp 1 --output x.png");
+    std::remove(scene.c_str());
+    CHECK(run.exit_code == 1);
+    CHECK(run.output == "trac0r_viewer: " + scene + ": /shapes/1/file: " + finding +
+                            ": the glTF reader (assimp) crashed on this file (SIGSEGV): it is "
+                            "malformed\n");
+}

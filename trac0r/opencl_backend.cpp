@@ -193,6 +193,27 @@ cl_program get_program(SharedDevice& d, const std::string& appended_source,
     return built;
 }
 
+// "12 MiB" for sizes of a MiB or more, else "N bytes".
+std::string byte_size(std::uint64_t bytes) {
+    if (bytes < (1u << 20)) {
+        return std::to_string(bytes) + " bytes";
+    }
+    char text[64];
+    std::snprintf(text, sizeof text, "%.1f MiB", static_cast<double>(bytes) / (1u << 20));
+    return text;
+}
+
+// The device's largest buffer (CL_DEVICE_MAX_MEM_ALLOC_SIZE); 0 where it
+// does not say (then nothing is checked before the driver is asked).
+std::uint64_t largest_buffer(cl_device_id device) {
+    cl_ulong largest = 0;
+    if (clGetDeviceInfo(device, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof largest, &largest,
+                        nullptr) != CL_SUCCESS) {
+        return 0;
+    }
+    return largest;
+}
+
 template <typename T>
 OpenClMem upload(cl_context context, const std::vector<T>& data) {
     // OpenCL buffers may not be empty: keep one zeroed element at least.
@@ -251,7 +272,25 @@ struct SceneBuffers {
     OpenClMem texels;
 };
 
-SceneBuffers upload_scene(cl_context context, const PackedScene& scene) {
+SceneBuffers upload_scene(cl_context context, const PackedScene& scene, std::uint64_t largest,
+                          const std::string& device) {
+    // Each checked before any is made: a scene too large for the device
+    // is one message naming its first buffer over the limit.
+    const auto check = [&](const char* name, std::size_t bytes) {
+        if (largest > 0) {
+            check_opencl_buffer_size(name, std::max<std::size_t>(bytes, 1), largest, device);
+        }
+    };
+    check("the scene's triangles", sizeof(scene.triangles[0]) * scene.triangles.size());
+    check("the scene's shapes", sizeof(scene.shapes[0]) * scene.shapes.size());
+    check("the scene's materials", sizeof(scene.materials[0]) * scene.materials.size());
+    check("the scene's BVH nodes", sizeof(scene.nodes[0]) * scene.nodes.size());
+    check("the scene's triangle packets", sizeof(scene.packets[0]) * scene.packets.size());
+    check("the scene's lights", sizeof(scene.lights[0]) * scene.lights.size());
+    check("the scene's vertex normals", sizeof(scene.normals[0]) * scene.normals.size());
+    check("the scene's texture coordinates", sizeof(scene.uvs[0]) * scene.uvs.size());
+    check("the scene's texture records", sizeof(scene.textures[0]) * scene.textures.size());
+    check("the scene's texels", sizeof(scene.texels[0]) * scene.texels.size());
     SceneBuffers buffers;
     buffers.triangles = upload(context, scene.triangles);
     buffers.shapes = upload(context, scene.shapes);
@@ -267,6 +306,15 @@ SceneBuffers upload_scene(cl_context context, const PackedScene& scene) {
 }
 
 }  // namespace
+
+void check_opencl_buffer_size(const std::string& buffer, std::uint64_t bytes,
+                              std::uint64_t largest, const std::string& device) {
+    if (bytes > largest) {
+        throw OpenClError("OpenCL: " + buffer + " need " + byte_size(bytes) +
+                          " in one buffer, more than the " + byte_size(largest) + " that device " +
+                          device + " allows in one (CL_DEVICE_MAX_MEM_ALLOC_SIZE): use --backend cpu, or a smaller scene");
+    }
+}
 
 std::shared_ptr<OpenClDeviceCache> keep_opencl_device(int device_index) {
     std::lock_guard<std::mutex> lock(shared_mutex);
@@ -389,7 +437,9 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
     // Uploaded once per scene change; a frame sends only its small arguments.
     // The old scene's buffers go first: the device never holds two scenes.
     state_->scene = SceneBuffers();
-    state_->scene = upload_scene(state_->device->context.get(), scene);
+    state_->scene = upload_scene(state_->device->context.get(), scene,
+                                 largest_buffer(state_->device->device),
+                                 state_->device->description);
     state_->shape_count = static_cast<cl_uint>(scene.shapes.size());
     state_->light_count = static_cast<cl_uint>(scene.lights.size());
 }

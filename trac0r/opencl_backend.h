@@ -5,6 +5,7 @@
 
 #include "trac0r/backend.h"
 
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -29,6 +30,13 @@ struct OpenClDeviceInfo {
 // Every device of every platform, numbered in order. Empty when there is
 // no OpenCL platform (no ICD installed).
 std::vector<OpenClDeviceInfo> list_opencl_devices();
+
+// Throws OpenClError, before the driver is asked, when a buffer of `bytes`
+// is more than `largest`, the device's largest (CL_DEVICE_MAX_MEM_ALLOC_SIZE):
+// the message names the buffer ("the scene's texels"), its size, the
+// device and its limit.
+void check_opencl_buffer_size(const std::string& buffer, std::uint64_t bytes,
+                              std::uint64_t largest, const std::string& device);
 
 // The OpenCL C source embedded at build time (kernel headers + render.cl).
 const char* opencl_kernel_source();

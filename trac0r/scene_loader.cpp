@@ -210,10 +210,7 @@ struct ShapeContext {
 // The scene's textures within max_scene_texels in all, or an error naming
 // the mesh file whose texture went over.
 void check_scene_texels(const std::vector<Texture>& textures, const std::string& path) {
-    std::uint64_t texels = 0;
-    for (const Texture& t : textures) {
-        texels += t.texels.size();
-    }
+    const std::uint64_t texels = texel_count(textures);
     if (texels > max_scene_texels) {
         throw std::runtime_error(path + ": its textures bring the scene's to " +
                                  std::to_string(texels) + " texels, over the " +
@@ -262,8 +259,11 @@ std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
     const bool file_materials = o.optional_bool("file_materials", true);
     try {
         const std::string path = resolve_path(context.base_dir, file.get<std::string>());
+        // The file's textures are counted against the scene's room before
+        // they are decoded (a small file may name many huge images).
         MeshParts mesh =
-            load_mesh_parts(path, position, orientation, scale, material, smooth, file_materials);
+            load_mesh_parts(path, position, orientation, scale, material, smooth, file_materials,
+                            max_scene_texels - texel_count(*context.textures));
         std::vector<Material>& materials = *context.materials;
         std::vector<Texture>& textures = *context.textures;
         // The file's textures that its materials use, moved into the

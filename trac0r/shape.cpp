@@ -2,6 +2,7 @@
 
 #include "trac0r/input_checks.h"
 #include "trac0r/input_file.h"
+#include "trac0r/isolated_call.h"
 #include "trac0r/obj_checker.h"
 
 #include <tiny_obj_loader.h>
@@ -18,6 +19,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstring>
 #include <functional>
 #include <map>
@@ -437,7 +439,9 @@ std::string texture_path_beside(const std::string& mtl_file, std::string name) {
 // as an index into mesh.textures, or -1 for none: an image embedded in the
 // file (a .glb's buffer, a data URI: "*N") or a file beside it.
 int assimp_texture(const aiScene& scene, const aiMaterial& m, const std::string& path,
-                   MeshParts& mesh) {
+                   MeshParts& mesh, std::uint64_t texel_budget) {
+    // What the file's textures so far leave of the scene's room.
+    const std::uint64_t room = texel_budget - texel_count(mesh.textures);
     aiString name;
     if (m.GetTexture(aiTextureType_BASE_COLOR, 0, &name) != AI_SUCCESS &&
         m.GetTexture(aiTextureType_DIFFUSE, 0, &name) != AI_SUCCESS) {
@@ -459,6 +463,8 @@ int assimp_texture(const aiScene& scene, const aiMaterial& m, const std::string&
                     throw std::runtime_error(where + ": expected each side at most " +
                                              std::to_string(max_texture_side));
                 }
+                check_texture_room(where, static_cast<int>(embedded->mWidth),
+                                   static_cast<int>(embedded->mHeight), room);
                 Texture t;
                 t.source = path + " " + file;
                 t.width = static_cast<int>(embedded->mWidth);
@@ -476,14 +482,15 @@ int assimp_texture(const aiScene& scene, const aiMaterial& m, const std::string&
             // Compressed (PNG, JPEG): mWidth bytes.
             return decode_texture(where, path + " " + file,
                                   reinterpret_cast<const unsigned char*>(embedded->pcData),
-                                  embedded->mWidth);
+                                  embedded->mWidth, room);
         });
     }
     if (!file.empty() && file[0] == '*') {
         throw std::runtime_error(where + ": the file has no embedded image of that number");
     }
     const std::string texture = texture_path_beside(path, file);
-    return texture_index(mesh, texture, [&] { return load_texture_file(where, texture); });
+    return texture_index(mesh, texture,
+                         [&] { return load_texture_file(where, texture, room); });
 }
 
 // Faces grouped into parts by a material key (first use first), with
@@ -546,7 +553,8 @@ struct PartBuilder {
 };
 
 MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm::vec3& orientation,
-                   const glm::vec3& scale, int material, bool smooth, bool read_mtl) {
+                   const glm::vec3& scale, int material, bool smooth, bool read_mtl,
+                   std::uint64_t texel_budget) {
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
@@ -654,7 +662,7 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
                 m.texture = texture_index(mesh, texture, [&] {
                     return load_texture_file(file + ": material '" + printable(m.name, 60) +
                                                  "': " + key + " '" + printable(map, 200) + "'",
-                                             texture);
+                                             texture, texel_budget - texel_count(mesh.textures));
                 });
             }
             mesh.materials.push_back(m);
@@ -688,19 +696,107 @@ void keep_only_reader(Assimp::Importer& importer, const char* name, const std::s
     }
 }
 
-// A PLY or glTF 2.0 file through assimp (its PLY or glTF 2.0 reader only,
-// by the extension): its meshes with their node transforms applied,
-// polygons as fans of triangles, points and lines left out.
-MeshParts load_assimp(const std::string& path, const glm::vec3& position,
-                      const glm::vec3& orientation, const glm::vec3& scale, int material,
-                      bool smooth, bool file_materials) {
-    // Only a regular file within the size limit (input_file.h). A .gltf
-    // may refer to other files (its buffers), which assimp opens beside
-    // it; the others are read from memory.
-    const std::string text = read_input_file(path, "mesh");
-    if (text.empty()) {
-        throw std::runtime_error(path + ": cannot read mesh: the file is empty");
+// The plain result of a PLY or glTF import, as its child process sends it
+// to the parent (in this machine's byte order: the same program reads
+// it): per part its material (an index into the materials, or -1), its
+// triangles as the file places them (before the shape's transform), their
+// vertex normals and texture coordinates where the part has them; then the
+// materials and the textures they use.
+const std::uint32_t wire_begin = 0x54304d31;  // "T0M1"
+const std::uint32_t wire_end = 0x54304d45;    // "T0ME"
+
+class WireWriter {
+  public:
+    void raw(const void* data, std::size_t size) {
+        bytes.append(static_cast<const char*>(data), size);
     }
+    void u8(std::uint8_t v) { raw(&v, sizeof v); }
+    void u32(std::uint32_t v) { raw(&v, sizeof v); }
+    void i32(std::int32_t v) { raw(&v, sizeof v); }
+    void u64(std::uint64_t v) { raw(&v, sizeof v); }
+    void f32(float v) { raw(&v, sizeof v); }
+    void vec3(const glm::vec3& v) { raw(&v[0], 3 * sizeof(float)); }
+    void vec2(const glm::vec2& v) { raw(&v[0], 2 * sizeof(float)); }
+    void text(const std::string& s) {
+        u64(s.size());
+        raw(s.data(), s.size());
+    }
+    std::string bytes;
+};
+
+// A result that does not read as WireWriter wrote it: the child's memory
+// was corrupted (by the reader) or its message cut short.
+struct WireError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+class WireReader {
+  public:
+    explicit WireReader(const std::string& bytes) : bytes_(bytes) {}
+    void raw(void* data, std::size_t size) {
+        if (size > bytes_.size() - at_) {
+            throw WireError("it ends early, at byte " + std::to_string(at_));
+        }
+        std::memcpy(data, bytes_.data() + at_, size);
+        at_ += size;
+    }
+    template <typename T>
+    T get() {
+        T v;
+        raw(&v, sizeof v);
+        return v;
+    }
+    glm::vec3 vec3(const char* what) {
+        glm::vec3 v;
+        raw(&v[0], 3 * sizeof(float));
+        if (!is_finite(v)) {
+            throw WireError(std::string("a ") + what + " that is not finite");
+        }
+        return v;
+    }
+    glm::vec2 vec2(const char* what) {
+        glm::vec2 v;
+        raw(&v[0], 2 * sizeof(float));
+        if (!std::isfinite(v.x) || !std::isfinite(v.y)) {
+            throw WireError(std::string("a ") + what + " that is not finite");
+        }
+        return v;
+    }
+    // A count of items of at least `item_bytes` each, which the rest of
+    // the message must be able to hold (so a corrupted count allocates
+    // nothing).
+    std::size_t count(std::size_t item_bytes, const char* what) {
+        const std::uint64_t n = get<std::uint64_t>();
+        if (n > (bytes_.size() - at_) / item_bytes) {
+            throw WireError(std::string("a count of ") + std::to_string(n) + " " + what +
+                            " that its " + std::to_string(bytes_.size() - at_) +
+                            " bytes left cannot hold");
+        }
+        return static_cast<std::size_t>(n);
+    }
+    std::string text(const char* what) {
+        std::string s(count(1, what), '\0');
+        raw(&s[0], s.size());
+        return s;
+    }
+    bool done() const { return at_ == bytes_.size(); }
+
+  private:
+    const std::string& bytes_;
+    std::size_t at_ = 0;
+};
+
+// "the PLY reader (assimp)", for messages.
+std::string assimp_reader_name(bool ply) {
+    return ply ? "the PLY reader (assimp)" : "the glTF reader (assimp)";
+}
+
+// The import itself, in the child process: assimp's reader of the format
+// alone, our conversion of its scene into plain parts, materials and
+// textures; everything that touches assimp's structures is here. Throws
+// std::runtime_error naming the file for what assimp or our checks refuse.
+std::string import_assimp(const std::string& path, const std::string& text, bool ply,
+                          bool smooth, bool file_materials, std::uint64_t texel_budget) {
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);
@@ -711,18 +807,8 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
     // split into fans and the nodes' transforms applied here.
     const unsigned flags = 0;
     const bool gltf = has_extension(path, ".gltf");
-    const bool ply = has_extension(path, ".ply");
     keep_only_reader(importer, ply ? "Stanford Polygon Library (PLY) Importer" : "glTF2 Importer",
                      path);
-    // assimp 5.2's PLY reader, given a header without its end_header
-    // line, or with one that does not end the line ("end_header0"),
-    // allocates or loops without end (found by tests/fuzz/fuzz_mesh):
-    // such a file is refused before it sees it.
-    if (ply && !has_ply_header_end(text)) {
-        throw std::runtime_error(path +
-                                 ": cannot read mesh: the PLY header has no end_header "
-                                 "line (a line of its own)");
-    }
     const aiScene* scene =
         gltf ? importer.ReadFile(path, flags)
              : importer.ReadFileFromMemory(text.data(), text.size(), flags,
@@ -812,40 +898,313 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
             }
         }
     }
-    return parts.finish(path, "mesh", model_matrix(position, orientation, scale), material,
-                        [&](int id, MeshParts& mesh) {
-                            if (id < 0 || static_cast<unsigned>(id) >= scene->mNumMaterials) {
-                                return -1;
-                            }
-                            const aiMaterial& m = *scene->mMaterials[id];
-                            if (is_default_material(m)) {
-                                return -1;
-                            }
-                            Material out = material_from_assimp(m, path);
-                            if (takes_texture(out.type)) {
-                                out.texture = assimp_texture(*scene, m, path, mesh);
-                            }
-                            mesh.materials.push_back(out);
-                            return static_cast<int>(mesh.materials.size()) - 1;
-                        });
+    if (parts.triangles.empty()) {
+        throw std::runtime_error(path + ": mesh has no triangles");
+    }
+    // The file's materials (and their textures) as the parts use them.
+    MeshParts files;
+    const auto material_of = [&](int id) {
+        if (id < 0 || static_cast<unsigned>(id) >= scene->mNumMaterials) {
+            return -1;
+        }
+        const aiMaterial& m = *scene->mMaterials[id];
+        if (is_default_material(m)) {
+            return -1;
+        }
+        Material out = material_from_assimp(m, path);
+        if (takes_texture(out.type)) {
+            out.texture = assimp_texture(*scene, m, path, files, texel_budget);
+        }
+        files.materials.push_back(out);
+        return static_cast<int>(files.materials.size()) - 1;
+    };
+    WireWriter w;
+    w.u32(wire_begin);
+    w.u64(parts.key.size());
+    for (std::size_t part = 0; part < parts.key.size(); ++part) {
+        w.i32(material_of(parts.key[part]));
+        w.u64(parts.triangles[part].size());
+        for (const Triangle& t : parts.triangles[part]) {
+            w.vec3(t.v0);
+            w.vec3(t.v1);
+            w.vec3(t.v2);
+        }
+        w.u8(parts.any_smooth[part] ? 1 : 0);
+        if (parts.any_smooth[part]) {
+            for (const VertexNormalTriple& n : parts.normals[part]) {
+                w.vec3(n[0]);
+                w.vec3(n[1]);
+                w.vec3(n[2]);
+            }
+        }
+        w.u8(parts.any_uv[part] ? 1 : 0);
+        if (parts.any_uv[part]) {
+            for (const TriangleUv& t : parts.uvs[part]) {
+                w.vec2(t.uv[0]);
+                w.vec2(t.uv[1]);
+                w.vec2(t.uv[2]);
+                w.u8(t.present ? 1 : 0);
+            }
+        }
+    }
+    w.u64(files.materials.size());
+    for (const Material& m : files.materials) {
+        w.text(m.name);
+        w.u32(static_cast<std::uint32_t>(m.type));
+        w.vec3(m.color);
+        w.f32(m.emittance);
+        w.f32(m.roughness);
+        w.f32(m.ior);
+        w.i32(m.texture);
+    }
+    w.u64(files.textures.size());
+    for (const Texture& t : files.textures) {
+        w.text(t.source);
+        w.i32(t.width);
+        w.i32(t.height);
+        w.u64(t.texels.size());
+        w.raw(t.texels.data(), t.texels.size() * sizeof(std::uint32_t));
+    }
+    w.u32(wire_end);
+    return std::move(w.bytes);
+}
+
+// The parts import_assimp sent, each made a shape (model, `material` for
+// the faces without the file's), checked again here: the child's memory
+// may have been corrupted by the reader without its crashing. Throws
+// WireError for what does not read as import_assimp writes it.
+MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int material) {
+    WireReader r(bytes);
+    if (r.get<std::uint32_t>() != wire_begin) {
+        throw WireError("it does not begin as one");
+    }
+    MeshParts mesh;
+    const std::size_t part_count = r.count(4 + 8 + 36 + 2, "parts");
+    if (part_count == 0) {
+        throw WireError("no parts");
+    }
+    std::vector<int> part_materials;
+    for (std::size_t part = 0; part < part_count; ++part) {
+        const int id = r.get<std::int32_t>();
+        const std::size_t n = r.count(36, "triangles");
+        if (n == 0) {
+            throw WireError("a part without triangles");
+        }
+        std::vector<Triangle> triangles;
+        triangles.reserve(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const glm::vec3 a = r.vec3("vertex");
+            const glm::vec3 b = r.vec3("vertex");
+            const glm::vec3 c = r.vec3("vertex");
+            triangles.emplace_back(a, b, c);
+        }
+        std::vector<VertexNormalTriple> normals;
+        const std::uint8_t has_normals = r.get<std::uint8_t>();
+        if (has_normals > 1) {
+            throw WireError("a part's normals neither there nor not");
+        }
+        if (has_normals == 1) {
+            normals.resize(n);
+            for (VertexNormalTriple& t : normals) {
+                for (glm::vec3& v : t) {
+                    v = r.vec3("vertex normal");
+                }
+            }
+        }
+        std::vector<TriangleUv> uvs;
+        const std::uint8_t has_uvs = r.get<std::uint8_t>();
+        if (has_uvs > 1) {
+            throw WireError("a part's texture coordinates neither there nor not");
+        }
+        if (has_uvs == 1) {
+            uvs.resize(n);
+            for (TriangleUv& t : uvs) {
+                for (glm::vec2& v : t.uv) {
+                    v = r.vec2("texture coordinate");
+                }
+                const std::uint8_t present = r.get<std::uint8_t>();
+                if (present > 1) {
+                    throw WireError("a triangle's texture coordinates neither there nor not");
+                }
+                t.present = present == 1;
+            }
+        }
+        MeshPart p;
+        p.shape = make_shape(std::move(triangles), model, material, normals, uvs);
+        p.material = id;
+        part_materials.push_back(id);
+        mesh.parts.push_back(std::move(p));
+    }
+    const std::size_t material_count = r.count(8 + 4 + 12 + 12 + 4, "materials");
+    for (std::size_t i = 0; i < material_count; ++i) {
+        Material m;
+        m.name = r.text("bytes of a material's name");
+        const std::uint32_t type = r.get<std::uint32_t>();
+        if (type != static_cast<std::uint32_t>(MaterialType::emissive) &&
+            type != static_cast<std::uint32_t>(MaterialType::diffuse) &&
+            type != static_cast<std::uint32_t>(MaterialType::glass) &&
+            type != static_cast<std::uint32_t>(MaterialType::glossy)) {
+            throw WireError("a material of unknown type " + std::to_string(type));
+        }
+        m.type = static_cast<MaterialType>(type);
+        m.color = r.vec3("colour");
+        m.emittance = r.get<float>();
+        m.roughness = r.get<float>();
+        m.ior = r.get<float>();
+        m.texture = r.get<std::int32_t>();
+        if (!(std::min({m.color.x, m.color.y, m.color.z}) >= 0.0f) || !(peak(m.color) <= 1.0f) ||
+            !(m.emittance >= 0.0f && m.emittance <= max_emitted_radiance) ||
+            !(m.roughness >= 0.0f && m.roughness <= 1.0f) ||
+            !(m.ior > 0.0f && std::isfinite(m.ior))) {
+            throw WireError("material " + std::to_string(i) + " with a value out of range");
+        }
+        if (m.texture < -1 || (m.texture >= 0 && !takes_texture(m.type))) {
+            throw WireError("material " + std::to_string(i) + " with texture " +
+                            std::to_string(m.texture));
+        }
+        mesh.materials.push_back(std::move(m));
+    }
+    for (int id : part_materials) {
+        if (id < -1 || id >= static_cast<int>(mesh.materials.size())) {
+            throw WireError("a part of material " + std::to_string(id) + " of " +
+                            std::to_string(mesh.materials.size()));
+        }
+    }
+    const std::size_t texture_count = r.count(8 + 4 + 4 + 8, "textures");
+    for (std::size_t i = 0; i < texture_count; ++i) {
+        Texture t;
+        t.source = r.text("bytes of a texture's name");
+        t.width = r.get<std::int32_t>();
+        t.height = r.get<std::int32_t>();
+        if (t.width < 1 || t.height < 1 || t.width > max_texture_side ||
+            t.height > max_texture_side) {
+            throw WireError("a texture of " + std::to_string(t.width) + " x " +
+                            std::to_string(t.height) + " texels");
+        }
+        t.texels.resize(r.count(sizeof(std::uint32_t), "texels"));
+        if (t.texels.size() != static_cast<std::size_t>(t.width) * t.height) {
+            throw WireError("a texture of " + std::to_string(t.width) + " x " +
+                            std::to_string(t.height) + " with " + std::to_string(t.texels.size()) +
+                            " texels");
+        }
+        r.raw(t.texels.data(), t.texels.size() * sizeof(std::uint32_t));
+        mesh.textures.push_back(std::move(t));
+    }
+    for (const Material& m : mesh.materials) {
+        if (m.texture >= static_cast<int>(mesh.textures.size())) {
+            throw WireError("a material of texture " + std::to_string(m.texture) + " of " +
+                            std::to_string(mesh.textures.size()));
+        }
+    }
+    if (r.get<std::uint32_t>() != wire_end || !r.done()) {
+        throw WireError("it does not end as one");
+    }
+    return mesh;
+}
+
+double mesh_import_seconds = 300.0;
+
+// A PLY or glTF 2.0 file through assimp (its PLY or glTF 2.0 reader only,
+// by the extension), in a child process of its own (isolated_call.h):
+// assimp 5.2's readers crash on some malformed files (a heap overrun in
+// the PLY reader, a null dereference in the glTF one: tests/fuzz/fuzz_mesh
+// found them), and such a crash, a hang or a corrupted result is one clear
+// error here, never the program's. Its meshes with their node transforms
+// applied, polygons as fans of triangles, points and lines left out.
+MeshParts load_assimp(const std::string& path, const glm::vec3& position,
+                      const glm::vec3& orientation, const glm::vec3& scale, int material,
+                      bool smooth, bool file_materials, std::uint64_t texel_budget) {
+    // Only a regular file within the size limit (input_file.h). A .gltf
+    // may refer to other files (its buffers), which assimp opens beside
+    // it; the others are read from memory.
+    const std::string text = read_input_file(path, "mesh");
+    if (text.empty()) {
+        throw std::runtime_error(path + ": cannot read mesh: the file is empty");
+    }
+    const bool ply = has_extension(path, ".ply");
+    // assimp 5.2's PLY reader, given a header without its end_header
+    // line, or with one that does not end the line ("end_header0"),
+    // allocates or loops without end (found by tests/fuzz/fuzz_mesh):
+    // such a file is refused before it sees it (the time limit below
+    // would stop it, later).
+    if (ply && !has_ply_header_end(text)) {
+        throw std::runtime_error(path +
+                                 ": cannot read mesh: the PLY header has no end_header "
+                                 "line (a line of its own)");
+    }
+    const std::string reader = assimp_reader_name(ply);
+    const IsolatedOutcome outcome = run_isolated(
+        [&] { return import_assimp(path, text, ply, smooth, file_materials, texel_budget); },
+        mesh_import_seconds);
+    using Kind = IsolatedOutcome::Kind;
+    switch (outcome.kind) {
+    case Kind::result:
+        break;
+    case Kind::error:
+        throw std::runtime_error(outcome.payload);
+    case Kind::out_of_memory:
+        throw std::runtime_error(path + ": " + reader + " ran out of memory on this file");
+    case Kind::exception:
+        throw std::runtime_error(path + ": " + reader + " failed on this file (" +
+                                 printable(outcome.detail, 200) + "): it is malformed");
+    case Kind::crashed:
+        throw std::runtime_error(path + ": " + reader + " crashed on this file (" +
+                                 outcome.detail + "): it is malformed");
+    case Kind::exited:
+        // A sanitizer's report in the child ends it so (exit status 1).
+        throw std::runtime_error(path + ": " + reader + " failed on this file (its process " +
+                                 "ended with " + outcome.detail + "): it is malformed");
+    case Kind::timed_out: {
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%g", mesh_import_seconds);
+        throw std::runtime_error(path + ": " + reader + " did not finish within " + seconds +
+                                 " s and was stopped: the file is malformed or too large");
+    }
+    case Kind::broken:
+        throw std::runtime_error(path + ": " + reader + " sent back a broken result (" +
+                                 outcome.detail + "): the file is malformed");
+    case Kind::not_started:
+        throw std::runtime_error(path + ": cannot read mesh: cannot start its import (" +
+                                 outcome.detail + ")");
+    }
+    try {
+        return mesh_from_wire(outcome.payload, model_matrix(position, orientation, scale),
+                              material);
+    } catch (const WireError& e) {
+        throw std::runtime_error(path + ": " + reader + " sent back a broken result (" +
+                                 e.what() + "): the file is malformed");
+    }
 }
 
 }  // namespace
 
+void set_mesh_import_time_limit(double seconds) {
+    if (!(seconds > 0.0 && seconds <= 1e6)) {
+        throw std::invalid_argument("set_mesh_import_time_limit: expected seconds in (0, 1e6]");
+    }
+    mesh_import_seconds = seconds;
+}
+
+double mesh_import_time_limit() { return mesh_import_seconds; }
+
 MeshParts load_mesh_parts(const std::string& path, const glm::vec3& position,
                           const glm::vec3& orientation, const glm::vec3& scale, int material,
-                          bool smooth, bool file_materials) {
+                          bool smooth, bool file_materials, std::uint64_t texel_budget) {
     if (has_extension(path, ".ply") || has_extension(path, ".gltf") ||
         has_extension(path, ".glb")) {
-        return load_assimp(path, position, orientation, scale, material, smooth, file_materials);
+        return load_assimp(path, position, orientation, scale, material, smooth, file_materials,
+                           texel_budget);
     }
-    return load_obj(path, position, orientation, scale, material, smooth, file_materials);
+    return load_obj(path, position, orientation, scale, material, smooth, file_materials,
+                    texel_budget);
 }
 
 Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
                     const glm::vec3& orientation, const glm::vec3& scale, int material,
                     bool smooth) {
-    return load_obj(path, position, orientation, scale, material, smooth, false).parts[0].shape;
+    return load_obj(path, position, orientation, scale, material, smooth, false, max_scene_texels)
+        .parts[0]
+        .shape;
 }
 
 }  // namespace trac0r

@@ -83,10 +83,23 @@ struct MeshParts {
 // from the file"); faces without one, and every face when
 // `file_materials` is false, take `material`. Smooth as load_obj_mesh.
 // Throws std::runtime_error naming the file (and line, or material) for
-// a file that cannot be read and a material that cannot be mapped.
+// a file that cannot be read and a material that cannot be mapped. Its
+// textures may have `texel_budget` texels in all (what the scene has room
+// for): each is refused from its image's header, before it is decoded,
+// where it would go over.
 MeshParts load_mesh_parts(const std::string& path, const glm::vec3& position,
                           const glm::vec3& orientation, const glm::vec3& scale, int material,
-                          bool smooth, bool file_materials);
+                          bool smooth, bool file_materials,
+                          std::uint64_t texel_budget = max_scene_texels);
+
+// A PLY or glTF file is read (by assimp) in a child process of its own,
+// so that a reader that crashes, hangs or corrupts memory on a malformed
+// file is one clear error naming the file, not the program's end; one
+// that runs longer than this limit (300 s unless set) is stopped. Throws
+// std::invalid_argument unless seconds is in (0, 1e6]. Not thread-safe:
+// for a program's start (the fuzzer sets less than its own time limit).
+void set_mesh_import_time_limit(double seconds);
+double mesh_import_time_limit();
 
 // An OBJ mesh (all its shapes, faces triangulated). With `smooth`, a face
 // whose three vertices have normals (vn) is shaded with them; without, or

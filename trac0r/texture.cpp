@@ -9,8 +9,27 @@
 
 namespace trac0r {
 
+std::uint64_t texel_count(const std::vector<Texture>& textures) {
+    std::uint64_t texels = 0;
+    for (const Texture& t : textures) {
+        texels += t.texels.size();
+    }
+    return texels;
+}
+
+void check_texture_room(const std::string& where, int width, int height,
+                        std::uint64_t max_texels) {
+    const std::uint64_t texels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+    if (texels > max_texels) {
+        throw std::runtime_error(where + ": texture is " + std::to_string(width) + " x " +
+                                 std::to_string(height) + " texels, more than the scene has " +
+                                 "room for (" + std::to_string(max_texels) + " more of the " +
+                                 std::to_string(max_scene_texels) + " a scene may have)");
+    }
+}
+
 Texture decode_texture(const std::string& where, const std::string& source,
-                       const unsigned char* bytes, std::size_t size) {
+                       const unsigned char* bytes, std::size_t size, std::uint64_t max_texels) {
     if (size == 0) {
         throw std::runtime_error(where + ": cannot decode texture: it is empty");
     }
@@ -34,6 +53,9 @@ Texture decode_texture(const std::string& where, const std::string& source,
                                  std::to_string(height) + ": expected each side in [1, " +
                                  std::to_string(max_texture_side) + "]");
     }
+    // Before decoding: a small file can name a huge image, and many of
+    // them would exhaust memory before the scene's total is known.
+    check_texture_room(where, width, height, max_texels);
     stbi_uc* pixels = stbi_load_from_memory(bytes, n, &width, &height, &channels, 4);
     if (pixels == nullptr) {
         throw std::runtime_error(where + ": cannot decode texture (" + stbi_failure_reason() + ")");
@@ -54,7 +76,8 @@ Texture decode_texture(const std::string& where, const std::string& source,
     return t;
 }
 
-Texture load_texture_file(const std::string& where, const std::string& path) {
+Texture load_texture_file(const std::string& where, const std::string& path,
+                          std::uint64_t max_texels) {
     std::string bytes;
     try {
         bytes = read_input_file(path, "texture");
@@ -62,7 +85,7 @@ Texture load_texture_file(const std::string& where, const std::string& path) {
         throw std::runtime_error(where + ": " + e.what());
     }
     return decode_texture(where, path, reinterpret_cast<const unsigned char*>(bytes.data()),
-                          bytes.size());
+                          bytes.size(), max_texels);
 }
 
 }  // namespace trac0r

@@ -28,11 +28,23 @@ const std::uint64_t max_scene_texels = std::uint64_t(1) << 31;
 // refused) as a texture; `where` starts each message ("mesh.mtl:
 // material 'wood': map_Kd 'wood.png'"). Throws std::runtime_error
 // "WHERE: cannot open/read texture ..." or "WHERE: cannot decode ...".
-Texture load_texture_file(const std::string& where, const std::string& path);
+// An image of more than `max_texels` texels (what the scene has room for)
+// is refused from its header, before it is decoded.
+Texture load_texture_file(const std::string& where, const std::string& path,
+                          std::uint64_t max_texels = max_scene_texels);
 
 // The same for an image file's bytes in memory (an embedded glTF image).
 Texture decode_texture(const std::string& where, const std::string& source,
-                       const unsigned char* bytes, std::size_t size);
+                       const unsigned char* bytes, std::size_t size,
+                       std::uint64_t max_texels = max_scene_texels);
+
+// The texels of these textures in all.
+std::uint64_t texel_count(const std::vector<Texture>& textures);
+
+// Throws std::runtime_error "WHERE: texture is W x H ..." when an image of
+// that size is more than the `max_texels` the scene has room for.
+void check_texture_room(const std::string& where, int width, int height,
+                        std::uint64_t max_texels);
 
 }  // namespace trac0r
 

@@ -1,0 +1,122 @@
+// run_isolated (trac0r/isolated_call.h): work in a forked child whose
+// crash, exit, hang or cut-short message becomes an outcome the parent
+// reports, and the PLY and glTF import that runs in it.
+#include <catch2/catch.hpp>
+
+#include "trac0r/isolated_call.h"
+#include "trac0r/shape.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <new>
+#include <stdexcept>
+#include <string>
+
+using trac0r::IsolatedOutcome;
+using trac0r::run_isolated;
+using Kind = IsolatedOutcome::Kind;
+
+namespace {
+int touched_by_the_child = 0;
+}  // namespace
+
+TEST_CASE("run_isolated brings back what the work returns", "[isolated]") {
+    // Several pipe buffers' worth, with every byte value.
+    std::string bytes(3u << 20, '\0');
+    for (std::size_t i = 0; i < bytes.size(); ++i) {
+        bytes[i] = static_cast<char>(i * 7 + i / 251);
+    }
+    const IsolatedOutcome out = run_isolated(
+        [&] {
+            touched_by_the_child = 1;  // the child's copy only
+            return bytes;
+        },
+        60.0);
+    REQUIRE(out.kind == Kind::result);
+    CHECK(out.payload == bytes);
+    CHECK(touched_by_the_child == 0);
+    const IsolatedOutcome empty = run_isolated([] { return std::string(); }, 60.0);
+    CHECK(empty.kind == Kind::result);
+    CHECK(empty.payload.empty());
+}
+
+TEST_CASE("run_isolated reports the work's exceptions", "[isolated]") {
+    const IsolatedOutcome error = run_isolated(
+        []() -> std::string { throw std::runtime_error("m.glb: cannot read mesh: no"); }, 60.0);
+    CHECK(error.kind == Kind::error);
+    CHECK(error.payload == "m.glb: cannot read mesh: no");
+    const IsolatedOutcome memory =
+        run_isolated([]() -> std::string { throw std::bad_alloc(); }, 60.0);
+    CHECK(memory.kind == Kind::out_of_memory);
+    const IsolatedOutcome other =
+        run_isolated([]() -> std::string { throw std::logic_error("odd"); }, 60.0);
+    CHECK(other.kind == Kind::exception);
+    CHECK(other.detail == "odd");
+}
+
+TEST_CASE("run_isolated reports a child that crashes, exits or sends nothing", "[isolated]") {
+    const IsolatedOutcome segv = run_isolated(
+        []() -> std::string {
+            raise(SIGSEGV);
+            return "not reached";
+        },
+        60.0);
+    CHECK(segv.kind == Kind::crashed);
+    CHECK(segv.detail == "SIGSEGV");
+    const IsolatedOutcome abrt = run_isolated(
+        []() -> std::string {
+            std::abort();
+        },
+        60.0);
+    CHECK(abrt.kind == Kind::crashed);
+    CHECK(abrt.detail == "SIGABRT");
+    const IsolatedOutcome exited = run_isolated(
+        []() -> std::string {
+            _exit(3);
+        },
+        60.0);
+    CHECK(exited.kind == Kind::exited);
+    CHECK(exited.detail == "exit status 3");
+    // An orderly exit without the message: cut short.
+    const IsolatedOutcome silent = run_isolated(
+        []() -> std::string {
+            _exit(0);
+        },
+        60.0);
+    CHECK(silent.kind == Kind::broken);
+    CHECK(silent.detail == "a message of 0 bytes, under its header's 9");
+}
+
+TEST_CASE("run_isolated stops a child that runs past its limit", "[isolated]") {
+    const IsolatedOutcome out = run_isolated(
+        []() -> std::string {
+            for (;;) {
+                pause();
+            }
+        },
+        0.2);
+    CHECK(out.kind == Kind::timed_out);
+}
+
+TEST_CASE("a glTF file that crashes assimp's reader is one error naming it", "[isolated][mesh]") {
+    // A null dereference inside assimp 5.2's glTF reader (found by
+    // tests/fuzz/fuzz_mesh): it took the program with it.
+    const std::string path = TRAC0R_SOURCE_DIR "/tests/fuzz/findings/assimp_gltf_segv.glb";
+    try {
+        trac0r::load_mesh_parts(path, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f), 0, true,
+                                true);
+        FAIL("the file loaded");
+    } catch (const std::runtime_error& e) {
+        CHECK(std::string(e.what()) ==
+              path + ": the glTF reader (assimp) crashed on this file (SIGSEGV): it is malformed");
+    }
+}
+
+TEST_CASE("the mesh import's time limit takes only positive seconds", "[isolated][mesh]") {
+    const double before = trac0r::mesh_import_time_limit();
+    CHECK(before == 300.0);
+    CHECK_THROWS_AS(trac0r::set_mesh_import_time_limit(0.0), std::invalid_argument);
+    CHECK_THROWS_AS(trac0r::set_mesh_import_time_limit(-1.0), std::invalid_argument);
+    CHECK(trac0r::mesh_import_time_limit() == before);
+}

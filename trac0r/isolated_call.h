@@ -1,0 +1,49 @@
+// Running work that may crash, hang or corrupt memory (a third-party
+// reader given a malformed file: assimp's) in a forked child process, so
+// that it cannot take trac0r down. The child runs the work, sends what it
+// returns through a pipe and _exits; the parent reads everything (within
+// a time limit), then reaps the child and says what became of it.
+//
+// The fork may happen while other threads run (OpenMP's pool, SDL's): the
+// child runs only the work, which must not wait for another thread (a
+// lock one held at the fork stays held in the child), and then _exits
+// without running destructors or atexit handlers. In the child, the
+// crash signals take their default action (no sanitizer's or fuzzer's
+// handler turns a crash into a report of the whole program; a sanitizer's
+// report in the child does not run the fuzzer's death callback), and the
+// child dies with its parent (Linux).
+#ifndef TRAC0R_ISOLATED_CALL_H
+#define TRAC0R_ISOLATED_CALL_H
+
+#include <functional>
+#include <string>
+
+namespace trac0r {
+
+struct IsolatedOutcome {
+    enum class Kind {
+        result,       // the work returned: `payload` is what it returned
+        error,        // it threw std::runtime_error: `payload` is its what()
+        out_of_memory,  // it threw std::bad_alloc
+        exception,    // it threw another exception: `detail` is its what()
+        crashed,      // the child died of a signal: `detail` names it ("SIGSEGV")
+        exited,       // the child exited with a status other than 0: `detail` says it
+        timed_out,    // the child ran past the limit and was killed
+        broken,       // what came through the pipe was cut short or malformed: `detail`
+        not_started,  // no pipe or no child process: `detail` says why
+    };
+    Kind kind = Kind::broken;
+    std::string payload;
+    std::string detail;
+};
+
+// Runs work() in a forked child within `time_limit_seconds` (> 0).
+IsolatedOutcome run_isolated(const std::function<std::string()>& work,
+                             double time_limit_seconds);
+
+// "SIGSEGV" for SIGSEGV, ...; "signal N" for one it does not know.
+std::string signal_name(int signal);
+
+}  // namespace trac0r
+
+#endif
