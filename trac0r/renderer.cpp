@@ -53,6 +53,18 @@ void Renderer::render_frame() {
     readback_valid_ = false;
 }
 
+bool Renderer::render_frame(const Backend::CancelCheck& cancel) {
+    if (!backend_->render_frame_cancellable(camera_record_, seed_,
+                                            first_frame_ + frame_stride_ * frame_,
+                                            scene_.render.max_depth, cancel)) {
+        restart();  // part of a frame must not stay in the mean
+        return false;
+    }
+    ++frame_;
+    readback_valid_ = false;
+    return true;
+}
+
 const std::vector<kernel::AccumPixel>& Renderer::accumulator() {
     if (!readback_valid_) {
         backend_->read_accumulator(readback_);

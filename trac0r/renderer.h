@@ -54,6 +54,13 @@ class Renderer {
     void set_camera(const Camera& camera);  // restarts accumulation
     void restart();
     void render_frame();
+    // render_frame, stopped early once `cancel` says true (asked between
+    // tiles, from the rendering threads: Backend::render_frame_cancellable).
+    // A stopped frame never counts: the accumulation restarts (frames() is
+    // 0), so the mean is always of whole frames. Cancel only a frame whose
+    // accumulation is about to be thrown away anyway (a new camera, a
+    // restart). Returns whether the frame was finished.
+    bool render_frame(const Backend::CancelCheck& cancel);
 
     // The running mean, and what the accumulator knows about it.
     Image image();
