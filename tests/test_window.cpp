@@ -226,6 +226,35 @@ key Escape
     CHECK(same_pixels(window, headless));
 }
 
+TEST_CASE("while W is held the window shows low-resolution previews of the moving view",
+          "[window]") {
+    // Before, a new camera came in during every preview (one a tick of the
+    // event loop) and each was thrown away: the old view stayed on screen
+    // until the key was released.
+    const std::string dir = empty_directory("window_moving");
+    write_file(dir + "/script.txt", R"(wait_spp 1
+key_down W
+wait 2000
+key P            # while moving
+key_up W
+wait_spp 1
+key P            # stopped: full resolution again
+key Escape
+)");
+    const ViewerRun r = run_viewer_process(
+        cornell + " --width 640 --height 480 --replay script.txt", "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 2);
+    const trac0r::Image moving = trac0r::read_pfm(shots[0].pfm);
+    const trac0r::Image stopped = trac0r::read_pfm(shots[1].pfm);
+    CHECK(r.err.find("spp, low-resolution preview)") != std::string::npos);
+    CHECK(moving.width == 160);  // a quarter of 640
+    CHECK(shots[0].spp == 1);
+    CHECK(stopped.width == 640);
+}
+
 TEST_CASE("--target-error pauses the window once the estimate reaches it", "[window]") {
     // Before, the window accepted --target-error and went on forever.
     const std::string dir = empty_directory("window_target");

@@ -39,36 +39,43 @@ RenderWorker::~RenderWorker() {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         stop_ = true;
+        cancel_full_.store(true);  // nobody will see the frame in flight
     }
     wake_.notify_all();
     thread_.join();
 }
 
 template <typename Change>
-std::uint64_t RenderWorker::request(Change change) {
+std::uint64_t RenderWorker::request(Change change, bool cancels) {
     std::uint64_t generation;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         change(pending_);
         generation = pending_.generation = ++last_generation_;
+        if (cancels) {
+            cancel_full_.store(true);
+        }
     }
     wake_.notify_all();
     return generation;
 }
 
 std::uint64_t RenderWorker::set_camera(const trac0r::Camera& camera) {
-    return request([&](Requests& r) {
-        r.camera_changed = true;
-        r.camera = camera;
-    });
+    return request(
+        [&](Requests& r) {
+            r.camera_changed = true;
+            r.camera = camera;
+        },
+        true);
 }
 
 std::uint64_t RenderWorker::restart() {
-    return request([](Requests& r) { r.restart = true; });
+    return request([](Requests& r) { r.restart = true; }, true);
 }
 
 std::uint64_t RenderWorker::switch_backend(const std::string& name) {
-    return request([&](Requests& r) { r.backend = name; });
+    // Not cancelling: the switch may fail, and the accumulation go on.
+    return request([&](Requests& r) { r.backend = name; }, false);
 }
 
 bool RenderWorker::take_frame(WorkerFrame* frame) {
@@ -91,6 +98,11 @@ std::vector<std::string> RenderWorker::take_messages() {
 std::string RenderWorker::failure() {
     std::lock_guard<std::mutex> lock(mutex_);
     return failure_;
+}
+
+std::uint64_t RenderWorker::cancelled_frames() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return cancelled_frames_;
 }
 
 void RenderWorker::tell(const std::string& message) {
@@ -145,6 +157,7 @@ void RenderWorker::run() {
                 requests = pending_;
                 pending_ = Requests();
                 pending_.generation = requests.generation;
+                cancel_full_.store(false);  // the requests so far are in hand
             }
             apply(requests);
             if (paused()) {
@@ -240,7 +253,14 @@ void RenderWorker::render_full() {
         pause_reason_.clear();
     }
     const Clock::time_point start = Clock::now();
-    full_->render_frame();
+    if (!full_->render_frame([this] { return cancel_full_.load(std::memory_order_relaxed); })) {
+        // A camera or a restart came in: the renderer has restarted, and
+        // the request in hand starts a new accumulation.
+        full_stale_ = true;
+        std::lock_guard<std::mutex> lock(mutex_);
+        ++cancelled_frames_;
+        return;
+    }
     publish(*full_, false, start);
 }
 
@@ -286,9 +306,11 @@ void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time
     frame.device = renderer.backend().device();
     {
         std::lock_guard<std::mutex> lock(mutex_);
-        if (last_generation_ != applied_generation_) {
+        if (!preview && last_generation_ != applied_generation_) {
             return;  // a request came in during the frame: it shows an old view
         }
+        // A preview is shown even so: while the camera moves, a new one
+        // comes in during every preview, and it is the newest view there is.
         frame_ = std::move(frame);
         frame_fresh_ = true;
     }

@@ -7,7 +7,10 @@
 //
 // While the camera moves (a new camera arrived during the last frame), the
 // thread renders single frames at a reduced resolution, so navigation stays
-// fluid; once it stops, accumulation restarts at full resolution.
+// fluid; once it stops, accumulation restarts at full resolution. A request
+// that throws the accumulation away (a camera, a restart) stops the full
+// frame in flight between two tiles, so the next frame starts at once; a
+// preview in flight is finished and shown (it is the newest view there is).
 #ifndef TRAC0R_VIEWER_WINDOW_WORKER_H
 #define TRAC0R_VIEWER_WINDOW_WORKER_H
 
@@ -17,6 +20,7 @@
 #include "trac0r/image_io.h"
 #include "trac0r/renderer.h"
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -76,7 +80,7 @@ class RenderWorker {
     // is published (and when it fails), to wake the window.
     RenderWorker(std::unique_ptr<trac0r::Renderer> renderer, BackendFactory make_backend,
                  const WorkerSettings& settings, std::function<void()> frame_ready);
-    ~RenderWorker();  // finishes the frame in flight, then stops
+    ~RenderWorker();  // stops the full frame in flight (a preview finishes), then the thread
     RenderWorker(const RenderWorker&) = delete;
     RenderWorker& operator=(const RenderWorker&) = delete;
 
@@ -92,6 +96,8 @@ class RenderWorker {
     std::vector<std::string> take_messages();
     // Why the thread stopped, or empty while it runs.
     std::string failure();
+    // Full frames stopped part way by a request (for the tests).
+    std::uint64_t cancelled_frames();
 
     using Clock = std::chrono::steady_clock;
 
@@ -106,8 +112,10 @@ class RenderWorker {
 
     // Changes pending_ under the lock, gives it a new generation and wakes
     // the thread: what every request does.
+    // Where `cancels`, the full frame in flight stops (its accumulation is
+    // about to be thrown away).
     template <typename Change>
-    std::uint64_t request(Change change);
+    std::uint64_t request(Change change, bool cancels);
     void run();
     bool paused() const;
     // Why the accumulation is done now (publish decides it once a frame, so
@@ -146,9 +154,13 @@ class RenderWorker {
     std::uint64_t last_generation_ = 0;
     bool stop_ = false;
     bool frame_fresh_ = false;
+    std::uint64_t cancelled_frames_ = 0;
     WorkerFrame frame_;
     std::vector<std::string> messages_;
     std::string failure_;
+    // Set by a request that throws the accumulation away, cleared when the
+    // thread takes the requests: asked between the full frame's tiles.
+    std::atomic<bool> cancel_full_{false};
 
     std::function<void()> frame_ready_;
     std::thread thread_;  // last: starts after everything above exists
