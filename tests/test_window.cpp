@@ -255,6 +255,39 @@ key Escape
     CHECK(stopped.width == 640);
 }
 
+TEST_CASE("a resized window renders at its new size, from a fresh accumulation", "[window]") {
+    // Before, the render kept its size and was scaled to the window.
+    const std::string dir = empty_directory("window_resize");
+    write_file(dir + "/script.txt", R"(wait_spp 2
+key P
+resize 320 180   # wider: the same vertical field of view, more at the sides
+wait_spp 2
+key P
+key Escape
+)");
+    const ViewerRun r = run_viewer_process(
+        cornell + " --width 200 --height 150 --spp 2 --replay script.txt", "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("rendering at 320 x 180") != std::string::npos);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 2);
+    CHECK(trac0r::read_pfm(shots[0].pfm).width == 200);
+    const trac0r::Image resized = trac0r::read_pfm(shots[1].pfm);
+    const trac0r::Rgb8Image window = trac0r::read_png(shots[1].png);
+    CHECK(resized.width == 320);
+    CHECK(resized.height == 180);
+    CHECK(window.width == 320);  // one render pixel a window pixel
+    CHECK(window.height == 180);
+    // The samples of a render at that size from the start: none of the old
+    // size's are in it.
+    const ViewerRun batch = run_viewer_process(
+        cornell + " --headless --width 320 --height 180 --spp 2 --output batch.pfm",
+        "cd " + dir + " &&");
+    REQUIRE(batch.exit_code == 0);
+    CHECK(same_pixels(resized, trac0r::read_pfm(dir + "/batch.pfm")));
+}
+
 TEST_CASE("--target-error pauses the window once the estimate reaches it", "[window]") {
     // Before, the window accepted --target-error and went on forever.
     const std::string dir = empty_directory("window_target");

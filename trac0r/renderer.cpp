@@ -34,6 +34,13 @@ void Renderer::set_camera(const Camera& camera) {
     restart();
 }
 
+void Renderer::set_size(int width, int height) {
+    scene_.render.width = width;
+    scene_.render.height = height;
+    camera_record_ = make_camera_record(scene_.camera, width, height);
+    restart();
+}
+
 void Renderer::set_frame_sequence(std::uint32_t first, std::uint32_t stride) {
     first_frame_ = first;
     frame_stride_ = stride > 0 ? stride : 1;

@@ -52,6 +52,10 @@ class Renderer {
     void set_frame_sequence(std::uint32_t first, std::uint32_t stride);
 
     void set_camera(const Camera& camera);  // restarts accumulation
+    // Renders width x height pixels from now on (the vertical field of view
+    // kept: a wider image shows more at the sides); restarts accumulation.
+    // The scene is not packed again.
+    void set_size(int width, int height);
     void restart();
     void render_frame();
     // render_frame, stopped early once `cancel` says true (asked between

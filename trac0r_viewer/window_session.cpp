@@ -22,6 +22,10 @@ namespace trac0r_viewer {
 
 namespace {
 
+// How long the window's size must stay put before the render follows it:
+// a drag of the window's edge re-renders once, at the end.
+constexpr std::uint32_t resize_debounce_ms = 200;
+
 // A text shown for a few seconds at the bottom of the window.
 struct Message {
     std::string text;
@@ -81,6 +85,8 @@ class Session {
     bool held(SDL_Keycode key) const { return held_.count(key) != 0; }
     void move(float seconds);
     void change_camera(const trac0r::Camera& camera);
+    // A new window size: once it stays put, the render follows it.
+    void follow_window_size(std::uint32_t now);
     void take_from_worker();
     long shown_spp() const;
     void draw();
@@ -116,6 +122,13 @@ class Session {
     int mouse_x_ = -1;
     int mouse_y_ = -1;
     std::vector<Message> messages_;
+    int window_width_ = 0;  // the drawable size last seen, in pixels
+    int window_height_ = 0;
+    bool resize_pending_ = false;  // the window's size changed; the render's not yet
+    std::uint32_t resize_at_ms_ = 0;
+    std::uint64_t resize_generation_ = 0;  // of the last resize request; 0: none waiting
+    int resize_width_ = 0;                 // its size
+    int resize_height_ = 0;
 };
 
 Session::Session(const Options& options, Window& window, const Font& font,
@@ -135,6 +148,9 @@ Session::Session(const Options& options, Window& window, const Font& font,
         boxes_.push_back(shape.aabb);
     }
     scene_size_ = scene_size(boxes_);
+    // A large render opens scaled down to fit the screen: only a change of
+    // this size is the user's resize.
+    window_.output_size(&window_width_, &window_height_);
     WorkerSettings settings;
     settings.seed = options.seed;
     settings.pack = pack_options(options);
@@ -156,7 +172,7 @@ int Session::run() {
     while (!quit_) {
         // Block until input or a frame arrives; tick often only while keys
         // move the camera or a replay waits for its time.
-        const bool busy = replaying_ || !held_.empty() || !messages_.empty();
+        const bool busy = replaying_ || !held_.empty() || !messages_.empty() || resize_pending_;
         SDL_Event e;
         if (SDL_WaitEventTimeout(&e, busy ? 10 : 250)) {
             handle(e);
@@ -170,6 +186,7 @@ int Session::run() {
         // A stall (a window drag, a slow draw) must not throw the camera far.
         move(std::min(0.1f, (now - last_ms) / 1000.0f));
         last_ms = now;
+        follow_window_size(now);
         take_from_worker();
         const std::string failure = worker_->failure();
         if (!failure.empty()) {
@@ -341,11 +358,47 @@ void Session::change_camera(const trac0r::Camera& camera) {
     dirty_ = dirty_ || overlay_;  // the wireframes follow at once
 }
 
+void Session::follow_window_size(std::uint32_t now) {
+    int width = 0;
+    int height = 0;
+    window_.output_size(&width, &height);
+    if (width <= 0 || height <= 0) {
+        return;  // minimised
+    }
+    if (width != window_width_ || height != window_height_) {
+        window_width_ = width;
+        window_height_ = height;
+        resize_pending_ = true;
+        resize_at_ms_ = now + resize_debounce_ms;
+        dirty_ = true;
+    }
+    if (!resize_pending_ || now < resize_at_ms_) {
+        return;
+    }
+    resize_pending_ = false;
+    // The window's pixels, one render pixel each (no smaller than a tile
+    // or two: a window squeezed to nothing still renders something).
+    const int w = std::max(16, width);
+    const int h = std::max(16, height);
+    if (w == window_.render_width() && h == window_.render_height()) {
+        return;
+    }
+    resize_width_ = w;
+    resize_height_ = h;
+    resize_generation_ = requested_generation_ = worker_->resize(w, h);
+    say("rendering at " + std::to_string(w) + " x " + std::to_string(h) + " (the window's size)");
+}
+
 void Session::take_from_worker() {
     WorkerFrame frame;
     if (worker_->take_frame(&frame)) {
         shown_ = std::move(frame);
         have_frame_ = true;
+        if (resize_generation_ != 0 && shown_.generation >= resize_generation_) {
+            // The first frame at the new size: the window maps it 1:1.
+            window_.set_render_size(resize_width_, resize_height_);
+            resize_generation_ = 0;
+        }
         window_.set_image(trac0r::tonemap_image(shown_.image, exposure_));
         if (!shown_.preview) {
             last_full_image_ = shown_.image;
@@ -359,8 +412,8 @@ void Session::take_from_worker() {
 
 // What --replay's wait_spp waits for: the newest view, at full resolution.
 long Session::shown_spp() const {
-    const bool current =
-        have_frame_ && !shown_.preview && shown_.generation == requested_generation_;
+    const bool current = have_frame_ && !shown_.preview && !resize_pending_ &&
+                         shown_.generation == requested_generation_;
     return current ? static_cast<long>(shown_.spp) : 0;
 }
 

@@ -73,6 +73,15 @@ std::uint64_t RenderWorker::restart() {
     return request([](Requests& r) { r.restart = true; }, true);
 }
 
+std::uint64_t RenderWorker::resize(int width, int height) {
+    return request(
+        [&](Requests& r) {
+            r.width = width;
+            r.height = height;
+        },
+        true);
+}
+
 std::uint64_t RenderWorker::switch_backend(const std::string& name) {
     // Not cancelling: the switch may fail, and the accumulation go on.
     return request([&](Requests& r) { r.backend = name; }, false);
@@ -186,6 +195,13 @@ void RenderWorker::apply(const Requests& requests) {
         full_stale_ = true;
     }
     if (requests.restart) {
+        full_stale_ = true;
+    }
+    if (requests.width > 0 &&
+        (requests.width != full_->width() || requests.height != full_->height())) {
+        full_->set_size(requests.width, requests.height);
+        preview_.reset();  // made again at the new size on the next move
+        preview_factor_ = preview_factor(requests.width, requests.height);
         full_stale_ = true;
     }
     if (!requests.backend.empty()) {

@@ -88,6 +88,8 @@ class RenderWorker {
     // frames that reflect it carry that number or a later one.
     std::uint64_t set_camera(const trac0r::Camera& camera);
     std::uint64_t restart();
+    // Renders width x height pixels from now on (the window's new size).
+    std::uint64_t resize(int width, int height);
     std::uint64_t switch_backend(const std::string& name);
 
     // The newest frame, when there is one not taken yet.
@@ -106,6 +108,8 @@ class RenderWorker {
         bool camera_changed = false;
         trac0r::Camera camera;
         bool restart = false;
+        int width = 0;  // > 0: a new size
+        int height = 0;
         std::string backend;
         std::uint64_t generation = 0;
     };
