@@ -34,6 +34,19 @@ const char* key_help_text() {
 )";
 }
 
+const char* key_help_short_text() {
+    return R"(W A S D     move (Shift: faster)
+Q / E       down / up
+right drag  look around
+wheel       zoom
+F1          overlay
+P           screenshot
+B           CPU <-> OpenCL
+R           restart
++ / -       exposure
+H           help   Esc quit)";
+}
+
 namespace {
 
 // --exr-layers: a comma-separated list of albedo, normal, depth, variance,

@@ -36,10 +36,17 @@ class Font {
     // the window. Lines wider than the window wrap at a space. Returns the
     // panel's height.
     int draw_panel(SDL_Renderer* renderer, const std::string& text, int x, int y) const;
+    // The size draw_panel's panel of `text` has where nothing wraps.
+    void panel_size(const std::string& text, int* width, int* height) const;
 
   private:
     TTF_Font* font_ = nullptr;
 };
+
+// The key help for a panel of at most width x height pixels: the full
+// list where it fits, else a short one, else the short one's first lines
+// and a line that says the rest is left out; empty where not even that fits.
+std::string fitting_help(const Font& font, int width, int height);
 
 // Every box as a wireframe in overlay_aabb_color, clipped at the near plane
 // and to the image (trac0r/projection.h), drawn where the image lies.

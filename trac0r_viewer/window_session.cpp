@@ -1,6 +1,7 @@
 #include "window_session.h"
 
 #include "headless.h"
+#include "messages.h"
 #include "overlay.h"
 #include "replay.h"
 #include "window.h"
@@ -26,12 +27,6 @@ namespace {
 // a drag of the window's edge re-renders once, at the end.
 constexpr std::uint32_t resize_debounce_ms = 200;
 
-// A text shown for a few seconds at the bottom of the window.
-struct Message {
-    std::string text;
-    std::uint32_t until_ms;
-};
-
 // "trac0r-20250101-120000-123": local time to the millisecond, so that
 // screenshots sort by time and two in one second do not collide.
 std::string timestamped_name() {
@@ -52,13 +47,6 @@ std::string timestamped_name() {
 std::string in_working_directory(const std::string& name) {
     char buffer[4096];
     return getcwd(buffer, sizeof buffer) ? std::string(buffer) + "/" + name : name;
-}
-
-std::string without_trailing_newline(std::string s) {
-    while (!s.empty() && s.back() == '\n') {
-        s.pop_back();
-    }
-    return s;
 }
 
 // How far the camera moves per second, and the overlay's near plane: both
@@ -92,8 +80,9 @@ class Session {
     void draw();
     OverlayFigures figures() const;
     void save_screenshot();
-    // `text` goes to stderr and, unless `shown` is given, to the window.
-    void say(const std::string& text, const std::string& shown = "");
+    // `text` goes to stderr and, unless `shown` is given, to the window,
+    // where it replaces the message of the same `kind` (MessageList).
+    void say(const std::string& text, const std::string& shown = "", const std::string& kind = "");
 
     const Options& options_;
     Window& window_;
@@ -121,7 +110,7 @@ class Session {
     bool looking_ = false;        // right button held
     int mouse_x_ = -1;
     int mouse_y_ = -1;
-    std::vector<Message> messages_;
+    MessageList messages_;
     int window_width_ = 0;  // the drawable size last seen, in pixels
     int window_height_ = 0;
     bool resize_pending_ = false;  // the window's size changed; the render's not yet
@@ -197,11 +186,7 @@ int Session::run() {
             replay_.step(window_.id(), now, shown_spp());
             replaying_ = !replay_.finished();
         }
-        const std::size_t before = messages_.size();
-        messages_.erase(std::remove_if(messages_.begin(), messages_.end(),
-                                       [&](const Message& m) { return now >= m.until_ms; }),
-                        messages_.end());
-        dirty_ = dirty_ || messages_.size() != before;
+        dirty_ = messages_.expire(now) || dirty_;
         if (dirty_ || screenshot_requested_) {
             draw();
         }
@@ -294,7 +279,7 @@ void Session::handle_key(const SDL_KeyboardEvent& key) {
         }
         char text[64];
         std::snprintf(text, sizeof text, "exposure %.3g", exposure_);
-        say(text);
+        say(text, "", "exposure");
         return;
     }
     if (key.repeat) {
@@ -386,7 +371,8 @@ void Session::follow_window_size(std::uint32_t now) {
     resize_width_ = w;
     resize_height_ = h;
     resize_generation_ = requested_generation_ = worker_->resize(w, h);
-    say("rendering at " + std::to_string(w) + " x " + std::to_string(h) + " (the window's size)");
+    say("rendering at " + std::to_string(w) + " x " + std::to_string(h) + " (the window's size)",
+        "", "resize");
 }
 
 void Session::take_from_worker() {
@@ -417,9 +403,9 @@ long Session::shown_spp() const {
     return current ? static_cast<long>(shown_.spp) : 0;
 }
 
-void Session::say(const std::string& text, const std::string& shown) {
+void Session::say(const std::string& text, const std::string& shown, const std::string& kind) {
     std::fprintf(stderr, "%s\n", text.c_str());
-    messages_.push_back({shown.empty() ? text : shown, SDL_GetTicks() + 4000});
+    messages_.add(shown.empty() ? text : shown, kind, SDL_GetTicks() + 4000);
     dirty_ = true;
 }
 
@@ -472,16 +458,18 @@ void Session::draw() {
         save_screenshot();
     }
     if (help_) {
-        font_.draw_panel(window_.renderer(),
-                         "Keys and mouse\n" + without_trailing_newline(key_help_text()), -8,
-                         panels_bottom + 8);
+        // What fits between the overlay and the bottom edge (a small
+        // window gets the short list, cut where it must be).
+        int out_w = 0;
+        int out_h = 0;
+        window_.output_size(&out_w, &out_h);
+        const std::string help = fitting_help(font_, out_w - 16, out_h - panels_bottom - 16);
+        if (!help.empty()) {
+            font_.draw_panel(window_.renderer(), help, -8, panels_bottom + 8);
+        }
     }
     if (!messages_.empty()) {
-        std::string text;
-        for (const Message& m : messages_) {
-            text += (text.empty() ? "" : "\n") + m.text;
-        }
-        font_.draw_panel(window_.renderer(), text, 8, -8);
+        font_.draw_panel(window_.renderer(), messages_.text(), 8, -8);
     }
     window_.present();
     dirty_ = false;
