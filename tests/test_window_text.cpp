@@ -68,3 +68,21 @@ TEST_CASE("messages: the newest few, one of each kind", "[window_text]") {
     CHECK(m.expire(2000));
     CHECK(m.empty());
 }
+
+TEST_CASE("the overlay says how long the accumulation ran, the integrator and the filter",
+          "[window_text]") {
+    trac0r_viewer::OverlayFigures f;
+    f.spp = 40;
+    f.accumulation_seconds = 12.34;
+    f.integrator = "naive";
+    f.filter = true;
+    const std::string on = trac0r_viewer::overlay_text(f);
+    CHECK(on.find("12.3 s") != std::string::npos);
+    CHECK(on.find("naive integrator") != std::string::npos);
+    CHECK(on.find("filter on") != std::string::npos);
+    f.integrator = "nee";
+    f.filter = false;
+    const std::string off = trac0r_viewer::overlay_text(f);
+    CHECK(off.find("nee integrator") != std::string::npos);
+    CHECK(off.find("filter off") != std::string::npos);
+}

@@ -188,6 +188,13 @@ std::string overlay_text(const OverlayFigures& f) {
                 ? format("samples  %ld spp  rel. MSE overflowed (radiance above ~1e19)\n", f.spp)
                 : format("samples  %ld spp  rel. MSE \u2248 ? (from 2 spp)\n", f.spp);
     }
+    if (f.preview_factor == 0) {
+        text += format("accum    %.1f s  %s integrator  filter %s\n", f.accumulation_seconds,
+                       f.integrator.c_str(), f.filter ? "on" : "off");
+    } else {
+        text += format("accum    restarts when the camera stops  filter %s\n",
+                       f.filter ? "on (full-resolution frames)" : "off");
+    }
     text += format("backend  %s: %s\n", f.backend.c_str(), f.device.c_str());
     text += format("scene    %zu triangles, %zu shapes, %dx%d\n", f.triangles, f.shapes, f.width,
                    f.height);

@@ -56,7 +56,10 @@ void draw_wireframes(const Window& window, const std::vector<trac0r::AABB>& boxe
 // The figures of the overlay's text.
 struct OverlayFigures {
     double frame_seconds = 0.0;
-    long pixels = 0;  // of that frame
+    double accumulation_seconds = 0.0;  // WorkerFrame::accumulation_seconds
+    std::string integrator;             // "nee", "naive" (--integrator)
+    bool filter = false;                // the display filter is on (F)
+    long pixels = 0;                    // of that frame
     long spp = 0;
     double relative_mse = 0.0;         // estimated; +inf when unknown (below 2 spp)
     long relative_mse_spp = 0;         // the samples per pixel it was estimated at

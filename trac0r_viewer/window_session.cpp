@@ -412,6 +412,8 @@ void Session::say(const std::string& text, const std::string& shown, const std::
 OverlayFigures Session::figures() const {
     OverlayFigures f;
     f.frame_seconds = shown_.frame_seconds;
+    f.accumulation_seconds = shown_.accumulation_seconds;
+    f.integrator = options_.integrator;
     f.pixels = static_cast<long>(shown_.image.width) * shown_.image.height;
     f.spp = shown_.spp;
     f.relative_mse = shown_.relative_mse;

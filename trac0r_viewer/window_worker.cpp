@@ -308,6 +308,7 @@ void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time
     frame.spp = renderer.frames();
     frame.preview = preview;
     frame.frame_seconds = seconds_since(start);
+    frame.accumulation_seconds = preview ? 0.0 : seconds_since(full_started_);
     if (!preview) {
         pause_reason_ = pause_reason_now();  // before noise_estimate, which asks paused()
         frame.paused_by = pause_reason_;

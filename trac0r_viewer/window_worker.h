@@ -45,8 +45,9 @@ constexpr double noise_estimate_cost_factor = 10.0;
 struct WorkerFrame {
     trac0r::Image image;  // linear radiance
     std::uint32_t spp = 0;
-    bool preview = false;        // reduced resolution, while the camera moves
-    double frame_seconds = 0.0;  // rendering and reading back this frame
+    bool preview = false;               // reduced resolution, while the camera moves
+    double frame_seconds = 0.0;         // rendering and reading back this frame
+    double accumulation_seconds = 0.0;  // since the accumulation (re)started; 0 for previews
     // trac0r::estimate_relative_mse of the running mean at
     // relative_mse_spp samples per pixel, refreshed as said above; +inf
     // below 2 spp and for previews.
