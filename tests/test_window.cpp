@@ -288,6 +288,55 @@ key Escape
     CHECK(same_pixels(resized, trac0r::read_pfm(dir + "/batch.pfm")));
 }
 
+TEST_CASE("F filters what the window shows, never the accumulation", "[window]") {
+    const std::string dir = empty_directory("window_filter");
+    write_file(dir + "/script.txt", R"(wait_spp 4
+key P            # 1: unfiltered
+key F
+wait_spp 4       # the frame the filter request reflects
+key P            # 2: filtered
+key F
+wait_spp 4
+key P            # 3: off again
+key Escape
+)");
+    const std::string view = cornell + " --width 200 --height 150 --spp 4";
+    const ViewerRun r = run_viewer_process(view + " --replay script.txt", "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("filter on") != std::string::npos);
+    CHECK(r.err.find("filter off") != std::string::npos);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 3);
+    std::vector<trac0r::Rgb8Image> png;
+    std::vector<trac0r::Image> pfm;
+    for (const Screenshot& s : shots) {
+        png.push_back(trac0r::read_png(s.png));
+        pfm.push_back(trac0r::read_pfm(s.pfm));
+        CHECK(s.spp == 4);
+    }
+    // The accumulation (the PFM) is the same 4 spp throughout.
+    CHECK(same_pixels(pfm[0], pfm[1]));
+    CHECK(same_pixels(pfm[0], pfm[2]));
+    CHECK(png[0].bytes != png[1].bytes);
+    CHECK(png[0].bytes == png[2].bytes);
+    // What is shown is the batch render's filtered image.
+    const ViewerRun batch = run_viewer_process(view + " --headless --filter --output batch.png",
+                                               "cd " + dir + " &&");
+    REQUIRE(batch.exit_code == 0);
+    CHECK(trac0r::read_png(dir + "/batch.png").bytes == png[1].bytes);
+
+    // --filter starts the window with it on.
+    write_file(dir + "/on.txt", "wait_spp 4\nkey P\nkey Escape\n");
+    const ViewerRun on =
+        run_viewer_process(view + " --filter --replay on.txt", "cd " + dir + " &&");
+    INFO(on.err);
+    REQUIRE(on.exit_code == 0);
+    const std::vector<Screenshot> on_shots = screenshots_said(on.err);
+    REQUIRE(on_shots.size() == 1);
+    CHECK(trac0r::read_png(on_shots[0].png).bytes == png[1].bytes);
+}
+
 TEST_CASE("--target-error pauses the window once the estimate reaches it", "[window]") {
     // Before, the window accepted --target-error and went on forever.
     const std::string dir = empty_directory("window_target");

@@ -76,6 +76,11 @@ class Session {
     // A new window size: once it stays put, the render follows it.
     void follow_window_size(std::uint32_t now);
     void take_from_worker();
+    // What the window shows of shown_: the filtered image where there is one.
+    const trac0r::Image& shown_image() const {
+        return shown_.filtered.pixels.empty() ? shown_.image : shown_.filtered;
+    }
+    void set_filter(bool on);
     long shown_spp() const;
     void draw();
     OverlayFigures figures() const;
@@ -102,6 +107,7 @@ class Session {
     trac0r::Image last_full_image_;  // for --output at the end
     float exposure_;
     bool overlay_ = false;
+    bool filter_ = false;  // the display filter (F, --filter)
     bool help_ = false;
     bool screenshot_requested_ = false;
     bool quit_ = false;
@@ -154,6 +160,18 @@ Session::Session(const Options& options, Window& window, const Font& font,
         e.type = event_type;
         SDL_PushEvent(&e);
     });
+    if (options.filter) {
+        set_filter(true);
+    }
+}
+
+void Session::set_filter(bool on) {
+    filter_ = on;
+    requested_generation_ = worker_->set_filter(on);
+    say(on ? "filter on: edge-preserving, for display only (the accumulation is untouched)"
+           : "filter off",
+        "", "filter");
+    dirty_ = true;
 }
 
 int Session::run() {
@@ -222,7 +240,7 @@ void Session::handle(const SDL_Event& e) {
     case SDL_RENDER_TARGETS_RESET:
     case SDL_RENDER_DEVICE_RESET:
         if (have_frame_) {
-            window_.set_image(trac0r::tonemap_image(shown_.image, exposure_));
+            window_.set_image(trac0r::tonemap_image(shown_image(), exposure_));
         }
         dirty_ = true;
         break;
@@ -275,7 +293,7 @@ void Session::handle_key(const SDL_KeyboardEvent& key) {
         const bool up = k == SDLK_PLUS || k == SDLK_EQUALS || k == SDLK_KP_PLUS;
         exposure_ *= up ? std::sqrt(2.0f) : 1.0f / std::sqrt(2.0f);
         if (have_frame_) {
-            window_.set_image(trac0r::tonemap_image(shown_.image, exposure_));
+            window_.set_image(trac0r::tonemap_image(shown_image(), exposure_));
         }
         char text[64];
         std::snprintf(text, sizeof text, "exposure %.3g", exposure_);
@@ -292,6 +310,9 @@ void Session::handle_key(const SDL_KeyboardEvent& key) {
     case SDLK_F1:
         overlay_ = !overlay_;
         dirty_ = true;
+        break;
+    case SDLK_f:
+        set_filter(!filter_);
         break;
     case SDLK_h:
         help_ = !help_;
@@ -385,7 +406,7 @@ void Session::take_from_worker() {
             window_.set_render_size(resize_width_, resize_height_);
             resize_generation_ = 0;
         }
-        window_.set_image(trac0r::tonemap_image(shown_.image, exposure_));
+        window_.set_image(trac0r::tonemap_image(shown_image(), exposure_));
         if (!shown_.preview) {
             last_full_image_ = shown_.image;
         }
@@ -414,6 +435,7 @@ OverlayFigures Session::figures() const {
     f.frame_seconds = shown_.frame_seconds;
     f.accumulation_seconds = shown_.accumulation_seconds;
     f.integrator = options_.integrator;
+    f.filter = filter_;
     f.pixels = static_cast<long>(shown_.image.width) * shown_.image.height;
     f.spp = shown_.spp;
     f.relative_mse = shown_.relative_mse;

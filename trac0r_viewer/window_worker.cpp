@@ -82,6 +82,10 @@ std::uint64_t RenderWorker::resize(int width, int height) {
         true);
 }
 
+std::uint64_t RenderWorker::set_filter(bool on) {
+    return request([&](Requests& r) { r.filter = on ? 1 : 0; }, false);
+}
+
 std::uint64_t RenderWorker::switch_backend(const std::string& name) {
     // Not cancelling: the switch may fail, and the accumulation go on.
     return request([&](Requests& r) { r.backend = name; }, false);
@@ -207,6 +211,9 @@ void RenderWorker::apply(const Requests& requests) {
     if (!requests.backend.empty()) {
         change_backend(requests.backend);
     }
+    if (requests.filter >= 0) {
+        filter_ = requests.filter == 1;
+    }
     applied_generation_ = requests.generation;
 }
 
@@ -266,6 +273,8 @@ void RenderWorker::render_full() {
         full_started_ = Clock::now();
         full_stale_ = false;
         last_estimate_spp_ = 0;
+        guides_.clear();  // a new view or size: made again when the filter is on
+        last_filtered_spp_ = 0;
         pause_reason_.clear();
     }
     const Clock::time_point start = Clock::now();
@@ -302,6 +311,25 @@ double RenderWorker::noise_estimate() {
     return last_estimate_;
 }
 
+trac0r::Image RenderWorker::filtered_image() {
+    const double interval = std::max(filter_interval, filter_cost_factor * last_filter_cost_);
+    const bool due =
+        last_filtered_spp_ == 0 || seconds_since(last_filtered_time_) >= interval || paused();
+    if (due && last_filtered_spp_ != full_->frames()) {
+        const Clock::time_point start = Clock::now();
+        if (guides_.empty()) {
+            guides_ = trac0r::filter_guides(
+                trac0r::render_guides(full_->packed(), full_->camera_record()));
+        }
+        last_filtered_ = trac0r::filter_image(full_->accumulator(), full_->width(), full_->height(),
+                                              guides_, T0_FILTER_PASSES);
+        last_filtered_spp_ = full_->frames();
+        last_filtered_time_ = Clock::now();
+        last_filter_cost_ = seconds_since(start);
+    }
+    return last_filtered_;
+}
+
 void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time_point start) {
     WorkerFrame frame;
     frame.image = renderer.image();
@@ -315,6 +343,9 @@ void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time
     }
     frame.relative_mse = preview ? std::numeric_limits<double>::infinity() : noise_estimate();
     frame.relative_mse_spp = preview ? 0 : last_estimate_spp_;
+    if (!preview && filter_ && full_->frames() > 0) {
+        frame.filtered = filtered_image();  // after pause_reason_: a pause filters its frame
+    }
     frame.estimate_overflowed = !preview && std::isinf(frame.relative_mse) &&
                                 full_->frames() >= 2 &&
                                 trac0r::noise_estimate_overflowed(full_->accumulator());

@@ -17,6 +17,7 @@
 #include "stop_rule.h"
 
 #include "trac0r/camera.h"
+#include "trac0r/filter.h"
 #include "trac0r/image_io.h"
 #include "trac0r/renderer.h"
 
@@ -40,10 +41,20 @@ namespace trac0r_viewer {
 // so it never takes more than a tenth of the render thread's time.
 constexpr double noise_estimate_interval = 0.5;
 constexpr double noise_estimate_cost_factor = 10.0;
+// The display filter likewise: it costs several frames, so the filtered
+// image is made again at most every filter_interval seconds, and no more
+// often than filter_cost_factor times its cost (the last one is shown in
+// between), and always for the frame a pause stops at.
+constexpr double filter_interval = 0.5;
+constexpr double filter_cost_factor = 4.0;
 
 // A finished frame: the running mean and what the overlay says about it.
 struct WorkerFrame {
     trac0r::Image image;  // linear radiance
+    // With the display filter on: image through trac0r::filter_image (the
+    // accumulation itself is never filtered), refreshed as said at
+    // filter_interval; empty when off and for previews.
+    trac0r::Image filtered;
     std::uint32_t spp = 0;
     bool preview = false;               // reduced resolution, while the camera moves
     double frame_seconds = 0.0;         // rendering and reading back this frame
@@ -92,6 +103,8 @@ class RenderWorker {
     // Renders width x height pixels from now on (the window's new size).
     std::uint64_t resize(int width, int height);
     std::uint64_t switch_backend(const std::string& name);
+    // The display filter on or off (the accumulation goes on untouched).
+    std::uint64_t set_filter(bool on);
 
     // The newest frame, when there is one not taken yet.
     bool take_frame(WorkerFrame* frame);
@@ -112,6 +125,7 @@ class RenderWorker {
         int width = 0;  // > 0: a new size
         int height = 0;
         std::string backend;
+        int filter = -1;  // -1: unchanged; 0: off; 1: on
         std::uint64_t generation = 0;
     };
 
@@ -134,6 +148,8 @@ class RenderWorker {
     void publish(trac0r::Renderer& renderer, bool preview, Clock::time_point start);
     // The noise estimate of full_'s mean, or the last one while it is recent.
     double noise_estimate();
+    // full_'s mean through the display filter, or the last one while recent.
+    trac0r::Image filtered_image();
     void tell(const std::string& message);
 
     // Owned by the thread (no lock): only run() and what it calls use them.
@@ -151,6 +167,12 @@ class RenderWorker {
     std::string pause_reason_;             // of the last full frame (pause_reason_now)
     Clock::time_point last_estimate_time_;
     double last_estimate_cost_ = 0.0;  // seconds
+    bool filter_ = false;
+    std::vector<trac0r::kernel::FilterGuide> guides_;  // of full_'s view; empty: to be made
+    trac0r::Image last_filtered_;
+    std::uint32_t last_filtered_spp_ = 0;  // 0: none since the last restart
+    Clock::time_point last_filtered_time_;
+    double last_filter_cost_ = 0.0;  // seconds
 
     // Shared with the window's thread, under mutex_.
     std::mutex mutex_;
