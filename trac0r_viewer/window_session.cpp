@@ -71,6 +71,8 @@ class Session {
     void handle(const SDL_Event& e);
     void handle_key(const SDL_KeyboardEvent& key);
     bool held(SDL_Keycode key) const { return held_.count(key) != 0; }
+    // The held movement keys' direction: x right, y up, z forward; 0: none.
+    glm::vec3 move_direction() const;
     void move(float seconds);
     void change_camera(const trac0r::Camera& camera);
     // A new window size: once it stays put, the render follows it.
@@ -341,7 +343,7 @@ void Session::handle_key(const SDL_KeyboardEvent& key) {
     }
 }
 
-void Session::move(float seconds) {
+glm::vec3 Session::move_direction() const {
     glm::vec3 direction(0.0f);  // x right, y up, z forward
     direction.z += held(SDLK_w) ? 1.0f : 0.0f;
     direction.z -= held(SDLK_s) ? 1.0f : 0.0f;
@@ -349,6 +351,11 @@ void Session::move(float seconds) {
     direction.x -= held(SDLK_a) ? 1.0f : 0.0f;
     direction.y += (held(SDLK_e) || held(SDLK_SPACE)) ? 1.0f : 0.0f;
     direction.y -= (held(SDLK_q) || held(SDLK_LCTRL) || held(SDLK_RCTRL)) ? 1.0f : 0.0f;
+    return direction;
+}
+
+void Session::move(float seconds) {
+    const glm::vec3 direction = move_direction();
     if (direction == glm::vec3(0.0f) || seconds <= 0.0f) {
         return;
     }
@@ -419,7 +426,11 @@ void Session::take_from_worker() {
 
 // What --replay's wait_spp waits for: the newest view, at full resolution.
 long Session::shown_spp() const {
+    // While a movement key is held the view moves every tick: a frame of
+    // the camera of one tick (two ticks in one millisecond move nothing)
+    // is not the view the user is heading for.
     const bool current = have_frame_ && !shown_.preview && !resize_pending_ &&
+                         move_direction() == glm::vec3(0.0f) &&
                          shown_.generation == requested_generation_;
     return current ? static_cast<long>(shown_.spp) : 0;
 }
