@@ -240,11 +240,11 @@ TEST_CASE("--filter writes the filtered image and the raw one beside it", "[filt
     const Image f = read_pfm("cli_filter.pfm");
     CHECK(f.pixels != raw.pixels);
     CHECK(std::fabs(mean_luminance(f, 0, 80) / mean_luminance(raw, 0, 80) - 1.0) < 0.01);
-    // Not in the window, and not without an output.
+    // The window filters what it shows, not its --output.
     const trac0r_test::ViewerRun window =
         trac0r_test::run_viewer_process("--filter -o cli_filter.pfm");
     CHECK(window.exit_code == 2);
-    CHECK(window.err.find("--filter: only with --headless") != std::string::npos);
+    CHECK(window.err.find("filtered --output images only with --headless") != std::string::npos);
     for (const char* f : {"cli_filter.pfm", "cli_filter.raw.pfm", "cli_plain.pfm"}) {
         std::remove(f);
     }

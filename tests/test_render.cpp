@@ -172,3 +172,27 @@ TEST_CASE("the CPU backend's denormals-as-zero mode holds in its scope and is re
     r.render_frame();
     CHECK(denormal_times_one() != 0.0f);
 }
+
+TEST_CASE("set_size renders what a renderer made at that size renders", "[render]") {
+    Scene scene = builtin_scene();
+    scene.render.width = 40;
+    scene.render.height = 30;
+    Renderer resized(scene, std::make_unique<CpuBackend>(2), 3);
+    resized.render_frame();
+    resized.set_size(56, 24);
+    CHECK(resized.frames() == 0);
+    resized.render_frame();
+    resized.render_frame();
+    scene.render.width = 56;
+    scene.render.height = 24;
+    Renderer fresh(scene, std::make_unique<CpuBackend>(2), 3);
+    fresh.render_frame();
+    fresh.render_frame();
+    CHECK(resized.width() == 56);
+    CHECK(resized.height() == 24);
+    const Image a = resized.image();
+    const Image b = fresh.image();
+    CHECK(a.width == 56);
+    CHECK(a.height == 24);
+    CHECK(a.pixels == b.pixels);
+}

@@ -281,6 +281,117 @@ key Escape
     CHECK(same_pixels(window, headless));
 }
 
+TEST_CASE("while W is held the window shows low-resolution previews of the moving view",
+          "[window]") {
+    // Before, a new camera came in during every preview (one a tick of the
+    // event loop) and each was thrown away: the old view stayed on screen
+    // until the key was released.
+    const std::string dir = empty_directory("window_moving");
+    write_file(dir + "/script.txt", R"(wait_spp 1
+key_down W
+wait 2000
+key P            # while moving
+key_up W
+wait_spp 1
+key P            # stopped: full resolution again
+key Escape
+)");
+    const ViewerRun r = run_viewer_process(
+        cornell + " --width 640 --height 480 --replay script.txt", "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 2);
+    const trac0r::Image moving = trac0r::read_pfm(shots[0].pfm);
+    const trac0r::Image stopped = trac0r::read_pfm(shots[1].pfm);
+    CHECK(r.err.find("spp, low-resolution preview)") != std::string::npos);
+    CHECK(moving.width == 160);  // a quarter of 640
+    CHECK(shots[0].spp == 1);
+    CHECK(stopped.width == 640);
+}
+
+TEST_CASE("a resized window renders at its new size, from a fresh accumulation", "[window]") {
+    // Before, the render kept its size and was scaled to the window.
+    const std::string dir = empty_directory("window_resize");
+    write_file(dir + "/script.txt", R"(wait_spp 2
+key P
+resize 320 180   # wider: the same vertical field of view, more at the sides
+wait_spp 2
+key P
+key Escape
+)");
+    const ViewerRun r = run_viewer_process(
+        cornell + " --width 200 --height 150 --spp 2 --replay script.txt", "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("rendering at 320 x 180") != std::string::npos);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 2);
+    CHECK(trac0r::read_pfm(shots[0].pfm).width == 200);
+    const trac0r::Image resized = trac0r::read_pfm(shots[1].pfm);
+    const trac0r::Rgb8Image window = trac0r::read_png(shots[1].png);
+    CHECK(resized.width == 320);
+    CHECK(resized.height == 180);
+    CHECK(window.width == 320);  // one render pixel a window pixel
+    CHECK(window.height == 180);
+    // The samples of a render at that size from the start: none of the old
+    // size's are in it.
+    const ViewerRun batch = run_viewer_process(
+        cornell + " --headless --width 320 --height 180 --spp 2 --output batch.pfm",
+        "cd " + dir + " &&");
+    REQUIRE(batch.exit_code == 0);
+    CHECK(same_pixels(resized, trac0r::read_pfm(dir + "/batch.pfm")));
+}
+
+TEST_CASE("F filters what the window shows, never the accumulation", "[window]") {
+    const std::string dir = empty_directory("window_filter");
+    write_file(dir + "/script.txt", R"(wait_spp 4
+key P            # 1: unfiltered
+key F
+wait_spp 4       # the frame the filter request reflects
+key P            # 2: filtered
+key F
+wait_spp 4
+key P            # 3: off again
+key Escape
+)");
+    const std::string view = cornell + " --width 200 --height 150 --spp 4";
+    const ViewerRun r = run_viewer_process(view + " --replay script.txt", "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("filter on") != std::string::npos);
+    CHECK(r.err.find("filter off") != std::string::npos);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 3);
+    std::vector<trac0r::Rgb8Image> png;
+    std::vector<trac0r::Image> pfm;
+    for (const Screenshot& s : shots) {
+        png.push_back(trac0r::read_png(s.png));
+        pfm.push_back(trac0r::read_pfm(s.pfm));
+        CHECK(s.spp == 4);
+    }
+    // The accumulation (the PFM) is the same 4 spp throughout.
+    CHECK(same_pixels(pfm[0], pfm[1]));
+    CHECK(same_pixels(pfm[0], pfm[2]));
+    CHECK(png[0].bytes != png[1].bytes);
+    CHECK(png[0].bytes == png[2].bytes);
+    // What is shown is the batch render's filtered image.
+    const ViewerRun batch = run_viewer_process(view + " --headless --filter --output batch.png",
+                                               "cd " + dir + " &&");
+    REQUIRE(batch.exit_code == 0);
+    CHECK(trac0r::read_png(dir + "/batch.png").bytes == png[1].bytes);
+
+    // --filter starts the window with it on.
+    write_file(dir + "/on.txt", "wait_spp 4\nkey P\nkey Escape\n");
+    const ViewerRun on =
+        run_viewer_process(view + " --filter --replay on.txt", "cd " + dir + " &&");
+    INFO(on.err);
+    REQUIRE(on.exit_code == 0);
+    const std::vector<Screenshot> on_shots = screenshots_said(on.err);
+    REQUIRE(on_shots.size() == 1);
+    CHECK(trac0r::read_png(on_shots[0].png).bytes == png[1].bytes);
+}
+
 TEST_CASE("--target-error pauses the window once the estimate reaches it", "[window]") {
     // Before, the window accepted --target-error and went on forever.
     const std::string dir = empty_directory("window_target");

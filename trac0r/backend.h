@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,6 +29,22 @@ class Backend {
     // One sample per pixel, accumulated.
     virtual void render_frame(const kernel::CameraRecord& camera, std::uint64_t seed,
                               std::uint32_t frame, int max_depth) = 0;
+    // render_frame that asks `cancel` between pieces of the frame (tiles on
+    // the CPU, chunks on OpenCL), from any of its threads, and stops early
+    // once it says true. Returns false when it stopped: the accumulator then
+    // holds part of the frame, and must be reset before it is used again
+    // (Renderer::render_frame does). An empty `cancel`: render_frame. The
+    // default asks once, before the whole frame.
+    using CancelCheck = std::function<bool()>;
+    virtual bool render_frame_cancellable(const kernel::CameraRecord& camera, std::uint64_t seed,
+                                          std::uint32_t frame, int max_depth,
+                                          const CancelCheck& cancel) {
+        if (cancel && cancel()) {
+            return false;
+        }
+        render_frame(camera, seed, frame, max_depth);
+        return true;
+    }
     virtual void read_accumulator(std::vector<kernel::AccumPixel>& out) = 0;
 
   protected:

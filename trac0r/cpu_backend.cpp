@@ -4,6 +4,7 @@
 
 #include <omp.h>
 
+#include <atomic>
 #include <cstdint>
 #if defined(__SSE__)
 #include <xmmintrin.h>
@@ -43,6 +44,12 @@ void CpuBackend::reset(int width, int height) {
 
 void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t seed,
                               std::uint32_t frame, int max_depth) {
+    render_frame_cancellable(camera, seed, frame, max_depth, CancelCheck());
+}
+
+bool CpuBackend::render_frame_cancellable(const kernel::CameraRecord& camera, std::uint64_t seed,
+                                          std::uint32_t frame, int max_depth,
+                                          const CancelCheck& cancel) {
     const kernel::SceneView view = scene_.view();
     const kernel::CameraRecord scaled = scaled_camera(camera, scene_.scale);
     const long pixel_count = static_cast<long>(accum_.size());
@@ -54,16 +61,25 @@ void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t 
     const std::uint32_t width = camera.size.x;
     const std::uint32_t height = static_cast<std::uint32_t>(pixel_count / width);
     const long tile_count = kernel::tile_count(width, height);
+    // Asked before each tile; once it says stop, the remaining tiles are
+    // skipped (an OpenMP loop cannot be left early), each at the cost of a
+    // load.
+    std::atomic<bool> cancelled(false);
 #pragma omp parallel num_threads(threads_)
     {
         const DenormalsAreZero denormals;  // in every thread of the team
 #pragma omp for schedule(dynamic, 1)
         for (long t = 0; t < tile_count; ++t) {
+            if (cancel && (cancelled.load(std::memory_order_relaxed) || cancel())) {
+                cancelled.store(true, std::memory_order_relaxed);
+                continue;
+            }
             const kernel::TileRect rect =
                 kernel::tile_rect(static_cast<std::uint32_t>(t), width, height);
             kernel::render_tile(&view, scaled, accum, seed, frame, max_depth, rect, width);
         }
     }
+    return !cancelled.load();
 }
 
 void CpuBackend::read_accumulator(std::vector<kernel::AccumPixel>& out) { out = accum_; }

@@ -36,6 +36,9 @@ class CpuBackend : public Backend {
     void reset(int width, int height) override;
     void render_frame(const kernel::CameraRecord& camera, std::uint64_t seed, std::uint32_t frame,
                       int max_depth) override;
+    bool render_frame_cancellable(const kernel::CameraRecord& camera, std::uint64_t seed,
+                                  std::uint32_t frame, int max_depth,
+                                  const CancelCheck& cancel) override;
     void read_accumulator(std::vector<kernel::AccumPixel>& out) override;
 
   private:

@@ -474,6 +474,12 @@ void OpenClBackend::reset(int width, int height) {
 
 void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t seed,
                                  std::uint32_t frame, int max_depth) {
+    render_frame_cancellable(camera, seed, frame, max_depth, CancelCheck());
+}
+
+bool OpenClBackend::render_frame_cancellable(const kernel::CameraRecord& camera, std::uint64_t seed,
+                                             std::uint32_t frame, int max_depth,
+                                             const CancelCheck& cancel) {
     cl_kernel k = state_->kernel.get();
     const cl_ulong seed_arg = seed;
     const cl_uint frame_arg = frame;
@@ -507,12 +513,51 @@ void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64
         // A multiple of 64, which a driver choosing the groups can split evenly.
         global = (state_->pixels + 63) / 64 * 64;
     }
-    check(clEnqueueNDRangeKernel(state_->device->queue.get(), k, 1, nullptr, &global, local, 0,
-                                 nullptr, nullptr),
-          "clEnqueueNDRangeKernel(render_frame)");
+    cl_command_queue queue = state_->device->queue.get();
+    // Parts of whole tiles (64 work-items each, both ways), launched with a
+    // global offset; without a `cancel`, the frame in one launch.
+    const std::size_t groups = global / 64;
+    const std::size_t chunks = cancel ? std::min<std::size_t>(opencl_cancel_chunks, groups) : 1;
+    const auto launch = [&](std::size_t c, OpenClEvent* done) {
+        const std::size_t first = groups * c / chunks * 64;
+        const std::size_t size = groups * (c + 1) / chunks * 64 - first;
+        cl_event event = nullptr;
+        check(clEnqueueNDRangeKernel(queue, k, 1, &first, &size, local, 0, nullptr,
+                                     done ? &event : nullptr),
+              "clEnqueueNDRangeKernel(render_frame)");
+        if (done) {
+            done->reset(event);
+        }
+    };
+    if (cancel && cancel()) {
+        return false;
+    }
+    bool finished = true;
+    if (chunks <= 1) {
+        launch(0, nullptr);
+    } else {
+        // One part queued ahead of the one waited for, so the device never
+        // waits for the host between them.
+        OpenClEvent waited;
+        launch(0, &waited);
+        for (std::size_t c = 0; c < chunks; ++c) {
+            OpenClEvent next;
+            if (c + 1 < chunks) {
+                launch(c + 1, &next);
+            }
+            cl_event e = waited.get();
+            check(clWaitForEvents(1, &e), "clWaitForEvents(render_frame)");
+            if (c + 1 < chunks && cancel()) {
+                finished = false;
+                break;
+            }
+            waited = std::move(next);
+        }
+    }
     // A frame is done when render_frame returns, so timings are honest and
     // the queue never runs far ahead of the viewer.
-    check(clFinish(state_->device->queue.get()), "clFinish");
+    check(clFinish(queue), "clFinish");
+    return finished;
 }
 
 void OpenClBackend::read_accumulator(std::vector<kernel::AccumPixel>& out) {

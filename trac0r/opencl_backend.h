@@ -53,6 +53,9 @@ struct OpenClDeviceCache;
 // no such device.
 std::shared_ptr<OpenClDeviceCache> keep_opencl_device(int device_index);
 
+// How many launches a cancellable OpenCL frame is split into.
+constexpr int opencl_cancel_chunks = 8;
+
 class OpenClBackend : public Backend {
   public:
     // Opens device `device_index` (see list_opencl_devices), or shares it
@@ -66,6 +69,12 @@ class OpenClBackend : public Backend {
     void reset(int width, int height) override;
     void render_frame(const kernel::CameraRecord& camera, std::uint64_t seed, std::uint32_t frame,
                       int max_depth) override;
+    // In up to opencl_cancel_chunks launches of a part of the image each,
+    // the next queued before the last is waited for; `cancel` is asked
+    // between them.
+    bool render_frame_cancellable(const kernel::CameraRecord& camera, std::uint64_t seed,
+                                  std::uint32_t frame, int max_depth,
+                                  const CancelCheck& cancel) override;
     void read_accumulator(std::vector<kernel::AccumPixel>& out) override;
 
     // Seconds the last set_scene spent building its program (0 if cached).

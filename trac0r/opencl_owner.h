@@ -52,6 +52,7 @@ using OpenClKernel = OpenClOwner<cl_kernel, clReleaseKernel>;
 using OpenClProgram = OpenClOwner<cl_program, clReleaseProgram>;
 using OpenClCommandQueue = OpenClOwner<cl_command_queue, clReleaseCommandQueue>;
 using OpenClContext = OpenClOwner<cl_context, clReleaseContext>;
+using OpenClEvent = OpenClOwner<cl_event, clReleaseEvent>;
 
 }  // namespace trac0r
 

@@ -34,6 +34,13 @@ void Renderer::set_camera(const Camera& camera) {
     restart();
 }
 
+void Renderer::set_size(int width, int height) {
+    scene_.render.width = width;
+    scene_.render.height = height;
+    camera_record_ = make_camera_record(scene_.camera, width, height);
+    restart();
+}
+
 void Renderer::set_frame_sequence(std::uint32_t first, std::uint32_t stride) {
     first_frame_ = first;
     frame_stride_ = stride > 0 ? stride : 1;
@@ -51,6 +58,18 @@ void Renderer::render_frame() {
                            scene_.render.max_depth);
     ++frame_;
     readback_valid_ = false;
+}
+
+bool Renderer::render_frame(const Backend::CancelCheck& cancel) {
+    if (!backend_->render_frame_cancellable(camera_record_, seed_,
+                                            first_frame_ + frame_stride_ * frame_,
+                                            scene_.render.max_depth, cancel)) {
+        restart();  // part of a frame must not stay in the mean
+        return false;
+    }
+    ++frame_;
+    readback_valid_ = false;
+    return true;
 }
 
 const std::vector<kernel::AccumPixel>& Renderer::accumulator() {

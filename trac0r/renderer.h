@@ -52,8 +52,19 @@ class Renderer {
     void set_frame_sequence(std::uint32_t first, std::uint32_t stride);
 
     void set_camera(const Camera& camera);  // restarts accumulation
+    // Renders width x height pixels from now on (the vertical field of view
+    // kept: a wider image shows more at the sides); restarts accumulation.
+    // The scene is not packed again.
+    void set_size(int width, int height);
     void restart();
     void render_frame();
+    // render_frame, stopped early once `cancel` says true (asked between
+    // tiles, from the rendering threads: Backend::render_frame_cancellable).
+    // A stopped frame never counts: the accumulation restarts (frames() is
+    // 0), so the mean is always of whole frames. Cancel only a frame whose
+    // accumulation is about to be thrown away anyway (a new camera, a
+    // restart). Returns whether the frame was finished.
+    bool render_frame(const Backend::CancelCheck& cancel);
 
     // The running mean, and what the accumulator knows about it.
     Image image();

@@ -29,9 +29,25 @@ const char* key_help_text() {
   B                  switch backend, CPU <-> OpenCL
   R                  restart accumulation
   + / -              exposure up / down
+  F                  display filter on / off (edge-preserving; the accumulation
+                     is untouched)
   H                  this help
   Esc                quit
 )";
+}
+
+const char* key_help_short_text() {
+    return R"(W A S D     move (Shift: faster)
+Q / E       down / up
+right drag  look around
+wheel       zoom
+F1          overlay
+F           filter on / off
+P           screenshot
+B           CPU <-> OpenCL
+R           restart
++ / -       exposure
+H           help   Esc quit)";
 }
 
 namespace {
@@ -128,7 +144,7 @@ void define_options(trac0r_cli::CommandLine& cl, Options& o) {
     cl.flag("--filter", &o.filter,
             "with --headless, each --output FILE.EXT holds the image after the "
             "edge-preserving filter (docs/filter.md) and FILE.raw.EXT beside it the "
-            "unfiltered accumulation");
+            "unfiltered accumulation; in the window, it starts with the display filter on (F)");
     cl.flag("--headless", &o.headless,
             "no window; with --output a batch render with a progress bar on stderr (default "
             "--spp 64 when neither --seconds nor --target-error is given)");

@@ -66,6 +66,8 @@ std::string help_text(const std::string& usage, const std::string& description,
                       const std::string& footer);
 // The window's keys and mouse, one per line: in --help and behind H.
 const char* key_help_text();
+// The same, shorter, for small windows.
+const char* key_help_short_text();
 
 }  // namespace trac0r_viewer
 

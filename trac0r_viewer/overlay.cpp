@@ -1,5 +1,7 @@
 #include "overlay.h"
 
+#include "options.h"
+
 #include "trac0r/projection.h"
 
 #include <algorithm>
@@ -47,6 +49,60 @@ Font::Font(const std::string& path, int point_size) {
 Font::~Font() {
     TTF_CloseFont(font_);
     TTF_Quit();
+}
+
+void Font::panel_size(const std::string& text, int* width, int* height) const {
+    const int margin = 4;  // as draw_panel's
+    int widest = 0;
+    int lines = 0;
+    for (std::size_t start = 0; start <= text.size(); ++lines) {
+        const std::size_t end = std::min(text.find('\n', start), text.size());
+        int w = 0;
+        int h = 0;
+        if (TTF_SizeUTF8(font_, text.substr(start, end - start).c_str(), &w, &h) == 0) {
+            widest = std::max(widest, w);
+        }
+        start = end + 1;
+    }
+    *width = widest + 2 * margin;
+    *height = lines * TTF_FontLineSkip(font_) + 2 * margin;
+}
+
+std::string fitting_help(const Font& font, int width, int height) {
+    const auto fits = [&](const std::string& text) {
+        int w = 0;
+        int h = 0;
+        font.panel_size(text, &w, &h);
+        return w <= width && h <= height;
+    };
+    const std::string full = "Keys and mouse\n" + std::string(key_help_text());
+    const std::string all = full.substr(0, full.find_last_not_of('\n') + 1);
+    if (fits(all)) {
+        return all;
+    }
+    std::vector<std::string> lines{"Keys and mouse"};
+    const std::string short_text = key_help_short_text();
+    for (std::size_t start = 0; start < short_text.size();) {
+        const std::size_t end = std::min(short_text.find('\n', start), short_text.size());
+        lines.push_back(short_text.substr(start, end - start));
+        start = end + 1;
+    }
+    const auto joined = [&](std::size_t n, bool cut) {
+        std::string text;
+        for (std::size_t i = 0; i < n; ++i) {
+            text += (i ? "\n" : "") + lines[i];
+        }
+        return cut ? text + "\n... (a larger window shows all)" : text;
+    };
+    if (fits(joined(lines.size(), false))) {
+        return joined(lines.size(), false);
+    }
+    for (std::size_t n = lines.size() - 1; n >= 2; --n) {
+        if (fits(joined(n, true))) {
+            return joined(n, true);
+        }
+    }
+    return "";
 }
 
 int Font::draw_panel(SDL_Renderer* renderer, const std::string& text, int x, int y) const {
@@ -131,6 +187,13 @@ std::string overlay_text(const OverlayFigures& f) {
             f.estimate_overflowed
                 ? format("samples  %ld spp  rel. MSE overflowed (radiance above ~1e19)\n", f.spp)
                 : format("samples  %ld spp  rel. MSE \u2248 ? (from 2 spp)\n", f.spp);
+    }
+    if (f.preview_factor == 0) {
+        text += format("accum    %.1f s  %s integrator  filter %s\n", f.accumulation_seconds,
+                       f.integrator.c_str(), f.filter ? "on" : "off");
+    } else {
+        text += format("accum    restarts when the camera stops  filter %s\n",
+                       f.filter ? "on (full-resolution frames)" : "off");
     }
     text += format("backend  %s: %s\n", f.backend.c_str(), f.device.c_str());
     text += format("scene    %zu triangles, %zu shapes, %dx%d\n", f.triangles, f.shapes, f.width,

@@ -36,10 +36,17 @@ class Font {
     // the window. Lines wider than the window wrap at a space. Returns the
     // panel's height.
     int draw_panel(SDL_Renderer* renderer, const std::string& text, int x, int y) const;
+    // The size draw_panel's panel of `text` has where nothing wraps.
+    void panel_size(const std::string& text, int* width, int* height) const;
 
   private:
     TTF_Font* font_ = nullptr;
 };
+
+// The key help for a panel of at most width x height pixels: the full
+// list where it fits, else a short one, else the short one's first lines
+// and a line that says the rest is left out; empty where not even that fits.
+std::string fitting_help(const Font& font, int width, int height);
 
 // Every box as a wireframe in overlay_aabb_color, clipped at the near plane
 // and to the image (trac0r/projection.h), drawn where the image lies.
@@ -49,7 +56,10 @@ void draw_wireframes(const Window& window, const std::vector<trac0r::AABB>& boxe
 // The figures of the overlay's text.
 struct OverlayFigures {
     double frame_seconds = 0.0;
-    long pixels = 0;  // of that frame
+    double accumulation_seconds = 0.0;  // WorkerFrame::accumulation_seconds
+    std::string integrator;             // "nee", "naive" (--integrator)
+    bool filter = false;                // the display filter is on (F)
+    long pixels = 0;                    // of that frame
     long spp = 0;
     double relative_mse = 0.0;         // estimated; +inf when unknown (below 2 spp)
     long relative_mse_spp = 0;         // the samples per pixel it was estimated at

@@ -108,6 +108,18 @@ std::vector<ReplayCommand> parse_line(const LineParser& p, const std::string& co
         c.type = Type::mouse_move;
         c.x = static_cast<int>(p.integer(x, -100000, 100000));
         c.y = static_cast<int>(p.integer(y, -100000, 100000));
+    } else if (command == "resize") {
+        std::istringstream in(argument);
+        std::string w;
+        std::string h;
+        std::string rest;
+        if (!(in >> w >> h) || (in >> rest)) {
+            p.fail("resize: expected two integers W H");
+        }
+        c.type = Type::resize;
+        c.x = static_cast<int>(p.integer(w, 16, 16384));
+        c.y = static_cast<int>(p.integer(h, 16, 16384));
+        c.timeout_ms = *timeout_ms;
     } else if (command == "mouse_down" || command == "mouse_up") {
         c.type = command == "mouse_down" ? Type::mouse_down : Type::mouse_up;
         c.value = p.button(argument);
@@ -117,7 +129,7 @@ std::vector<ReplayCommand> parse_line(const LineParser& p, const std::string& co
     } else {
         p.fail("unknown command '" + command +
                "' (expected wait, wait_spp, wait_timeout, key, key_down, key_up, mouse_move, "
-               "mouse_down, mouse_up or wheel)");
+               "mouse_down, mouse_up, wheel or resize)");
     }
     return {c};
 }
@@ -206,6 +218,24 @@ void ReplayPlayer::step(std::uint32_t window_id, std::uint32_t now_ms, long show
     if (awaiting_marker_) {
         return;  // the window has not handled the last batch yet
     }
+    if (resizing_) {
+        int w = 0;
+        int h = 0;
+        SDL_GetWindowSize(SDL_GetWindowFromID(window_id), &w, &h);
+        if (w != resizing_->x || h != resizing_->y) {
+            if (now_ms - wait_started_ms_ >= static_cast<std::uint32_t>(resizing_->timeout_ms)) {
+                throw ReplayError(
+                    origin_ + ":" + std::to_string(resizing_->line) + ": resize " +
+                    std::to_string(resizing_->x) + " " + std::to_string(resizing_->y) +
+                    ": the window is still " + std::to_string(w) + " x " + std::to_string(h) +
+                    " after " + std::to_string(resizing_->timeout_ms / 1000) + " s (wait_timeout)");
+            }
+            return;
+        }
+        resizing_ = nullptr;
+        push_marker(window_id);  // the window sees the new size before what follows
+        return;
+    }
     int pushed = 0;
     while (next_ < commands_.size()) {
         const ReplayCommand& c = commands_[next_];
@@ -240,6 +270,12 @@ void ReplayPlayer::step(std::uint32_t window_id, std::uint32_t now_ms, long show
         } else {
             push(window_id, c);
             ++pushed;
+            if (c.type == Type::resize) {
+                resizing_ = &c;
+                wait_started_ms_ = now_ms;
+                ++next_;
+                return;
+            }
         }
         ++next_;
     }
@@ -344,6 +380,10 @@ void ReplayPlayer::push(std::uint32_t window_id, const ReplayCommand& c) {
         e.wheel.y = static_cast<std::int32_t>(c.value);
         e.wheel.direction = SDL_MOUSEWHEEL_NORMAL;
         break;
+    case Type::resize:
+        // Not an event: the window system answers with its own.
+        SDL_SetWindowSize(SDL_GetWindowFromID(window_id), c.x, c.y);
+        return;
     case Type::wait:
     case Type::wait_spp:
         return;

@@ -14,6 +14,10 @@
 //   mouse_down BUTTON    left, middle or right, at the pointer
 //   mouse_up BUTTON
 //   wheel N              scroll N notches (positive: away from the user)
+//   resize W H           resize the window to W x H (as a user dragging
+//                        its edge; the render follows, see docs/viewer.md),
+//                        and wait until the window has that size (at most
+//                        the wait_timeout)
 //   wait_timeout S       later wait_spp commands fail after S seconds
 //                        (default 60): the script stops with an error
 //                        naming the line, instead of waiting for ever
@@ -38,10 +42,20 @@ class ReplayError : public std::runtime_error {
 };
 
 struct ReplayCommand {
-    enum class Type { wait, wait_spp, key_down, key_up, mouse_move, mouse_down, mouse_up, wheel };
+    enum class Type {
+        wait,
+        wait_spp,
+        key_down,
+        key_up,
+        mouse_move,
+        mouse_down,
+        mouse_up,
+        wheel,
+        resize
+    };
     Type type = Type::wait;
     long value = 0;  // milliseconds, samples per pixel, SDL key code, SDL button or notches
-    int x = 0;       // mouse_move
+    int x = 0;       // mouse_move; resize: the width and height
     int y = 0;
     int line = 0;                 // in the script, for messages
     long timeout_ms = 60 * 1000;  // wait_spp: how long it may wait
@@ -93,11 +107,12 @@ class ReplayPlayer {
     std::uint32_t wait_started_ms_ = 0;
     int mouse_x_ = 0;
     int mouse_y_ = 0;
-    std::uint32_t mouse_buttons_ = 0;  // SDL_BUTTON masks
-    std::uint16_t modifiers_ = 0;      // KMOD_* of the held keys
-    std::vector<SDL_Keycode> held_;    // keys pressed and not released, for messages
-    std::uint32_t marker_type_ = 0;    // an SDL user event type, registered on first use
-    bool awaiting_marker_ = false;     // pushed events the window has not handled yet
+    std::uint32_t mouse_buttons_ = 0;          // SDL_BUTTON masks
+    std::uint16_t modifiers_ = 0;              // KMOD_* of the held keys
+    std::vector<SDL_Keycode> held_;            // keys pressed and not released, for messages
+    std::uint32_t marker_type_ = 0;            // an SDL user event type, registered on first use
+    bool awaiting_marker_ = false;             // pushed events the window has not handled yet
+    const ReplayCommand* resizing_ = nullptr;  // a resize the window has not reached yet
 };
 
 }  // namespace trac0r_viewer

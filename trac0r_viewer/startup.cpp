@@ -74,11 +74,12 @@ void check_options(const Options& o, bool writes_outputs) {
         throw UsageError("--exr-half: sets how .exr outputs are stored; no --output is a .exr");
     }
     if (o.filter) {
-        if (!o.headless) {
+        if (!o.headless && !o.outputs.empty()) {
             throw UsageError(
-                "--filter: only with --headless for now (the window shows the unfiltered image)");
+                "--filter: in the window it filters what is shown (F toggles it); filtered "
+                "--output images only with --headless");
         }
-        if (o.outputs.empty()) {
+        if (o.headless && o.outputs.empty()) {
             throw UsageError("--filter: filters the --output images; no --output is given");
         }
     }

@@ -33,6 +33,15 @@ class Window {
     SDL_Renderer* renderer() const { return renderer_; }
     int render_width() const { return render_width_; }
     int render_height() const { return render_height_; }
+    // The size of the render from now on (the window's, after a resize).
+    void set_render_size(int width, int height) {
+        render_width_ = width;
+        render_height_ = height;
+    }
+    // The drawable area in pixels.
+    void output_size(int* width, int* height) const {
+        SDL_GetRendererOutputSize(renderer_, width, height);
+    }
     void hide() { SDL_HideWindow(window_); }
 
     // The image to draw from now on (its size may change).

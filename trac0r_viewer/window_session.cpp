@@ -1,6 +1,7 @@
 #include "window_session.h"
 
 #include "headless.h"
+#include "messages.h"
 #include "overlay.h"
 #include "replay.h"
 #include "window.h"
@@ -22,11 +23,9 @@ namespace trac0r_viewer {
 
 namespace {
 
-// A text shown for a few seconds at the bottom of the window.
-struct Message {
-    std::string text;
-    std::uint32_t until_ms;
-};
+// How long the window's size must stay put before the render follows it:
+// a drag of the window's edge re-renders once, at the end.
+constexpr std::uint32_t resize_debounce_ms = 200;
 
 // "trac0r-20250101-120000-123": local time to the millisecond, so that
 // screenshots sort by time and two in one second do not collide.
@@ -48,13 +47,6 @@ std::string timestamped_name() {
 std::string in_working_directory(const std::string& name) {
     char buffer[4096];
     return getcwd(buffer, sizeof buffer) ? std::string(buffer) + "/" + name : name;
-}
-
-std::string without_trailing_newline(std::string s) {
-    while (!s.empty() && s.back() == '\n') {
-        s.pop_back();
-    }
-    return s;
 }
 
 // How far the camera moves per second, and the overlay's near plane: both
@@ -79,15 +71,25 @@ class Session {
     void handle(const SDL_Event& e);
     void handle_key(const SDL_KeyboardEvent& key);
     bool held(SDL_Keycode key) const { return held_.count(key) != 0; }
+    // The held movement keys' direction: x right, y up, z forward; 0: none.
+    glm::vec3 move_direction() const;
     void move(float seconds);
     void change_camera(const trac0r::Camera& camera);
+    // A new window size: once it stays put, the render follows it.
+    void follow_window_size(std::uint32_t now);
     void take_from_worker();
+    // What the window shows of shown_: the filtered image where there is one.
+    const trac0r::Image& shown_image() const {
+        return shown_.filtered.pixels.empty() ? shown_.image : shown_.filtered;
+    }
+    void set_filter(bool on);
     long shown_spp() const;
     void draw();
     OverlayFigures figures() const;
     void save_screenshot();
-    // `text` goes to stderr and, unless `shown` is given, to the window.
-    void say(const std::string& text, const std::string& shown = "");
+    // `text` goes to stderr and, unless `shown` is given, to the window,
+    // where it replaces the message of the same `kind` (MessageList).
+    void say(const std::string& text, const std::string& shown = "", const std::string& kind = "");
 
     const Options& options_;
     Window& window_;
@@ -107,6 +109,7 @@ class Session {
     trac0r::Image last_full_image_;  // for --output at the end
     float exposure_;
     bool overlay_ = false;
+    bool filter_ = false;  // the display filter (F, --filter)
     bool help_ = false;
     bool screenshot_requested_ = false;
     bool quit_ = false;
@@ -115,7 +118,14 @@ class Session {
     bool looking_ = false;        // right button held
     int mouse_x_ = -1;
     int mouse_y_ = -1;
-    std::vector<Message> messages_;
+    MessageList messages_;
+    int window_width_ = 0;  // the drawable size last seen, in pixels
+    int window_height_ = 0;
+    bool resize_pending_ = false;  // the window's size changed; the render's not yet
+    std::uint32_t resize_at_ms_ = 0;
+    std::uint64_t resize_generation_ = 0;  // of the last resize request; 0: none waiting
+    int resize_width_ = 0;                 // its size
+    int resize_height_ = 0;
 };
 
 Session::Session(const Options& options, Window& window, const Font& font,
@@ -135,6 +145,9 @@ Session::Session(const Options& options, Window& window, const Font& font,
         boxes_.push_back(shape.aabb);
     }
     scene_size_ = scene_size(boxes_);
+    // A large render opens scaled down to fit the screen: only a change of
+    // this size is the user's resize.
+    window_.output_size(&window_width_, &window_height_);
     WorkerSettings settings;
     settings.seed = options.seed;
     settings.pack = pack_options(options);
@@ -149,6 +162,18 @@ Session::Session(const Options& options, Window& window, const Font& font,
         e.type = event_type;
         SDL_PushEvent(&e);
     });
+    if (options.filter) {
+        set_filter(true);
+    }
+}
+
+void Session::set_filter(bool on) {
+    filter_ = on;
+    requested_generation_ = worker_->set_filter(on);
+    say(on ? "filter on: edge-preserving, for display only (the accumulation is untouched)"
+           : "filter off",
+        "", "filter");
+    dirty_ = true;
 }
 
 int Session::run() {
@@ -156,7 +181,7 @@ int Session::run() {
     while (!quit_) {
         // Block until input or a frame arrives; tick often only while keys
         // move the camera or a replay waits for its time.
-        const bool busy = replaying_ || !held_.empty() || !messages_.empty();
+        const bool busy = replaying_ || !held_.empty() || !messages_.empty() || resize_pending_;
         SDL_Event e;
         if (SDL_WaitEventTimeout(&e, busy ? 10 : 250)) {
             handle(e);
@@ -170,6 +195,7 @@ int Session::run() {
         // A stall (a window drag, a slow draw) must not throw the camera far.
         move(std::min(0.1f, (now - last_ms) / 1000.0f));
         last_ms = now;
+        follow_window_size(now);
         take_from_worker();
         const std::string failure = worker_->failure();
         if (!failure.empty()) {
@@ -180,11 +206,7 @@ int Session::run() {
             replay_.step(window_.id(), now, shown_spp());
             replaying_ = !replay_.finished();
         }
-        const std::size_t before = messages_.size();
-        messages_.erase(std::remove_if(messages_.begin(), messages_.end(),
-                                       [&](const Message& m) { return now >= m.until_ms; }),
-                        messages_.end());
-        dirty_ = dirty_ || messages_.size() != before;
+        dirty_ = messages_.expire(now) || dirty_;
         if (dirty_ || screenshot_requested_) {
             draw();
         }
@@ -220,7 +242,7 @@ void Session::handle(const SDL_Event& e) {
     case SDL_RENDER_TARGETS_RESET:
     case SDL_RENDER_DEVICE_RESET:
         if (have_frame_) {
-            window_.set_image(trac0r::tonemap_image(shown_.image, exposure_));
+            window_.set_image(trac0r::tonemap_image(shown_image(), exposure_));
         }
         dirty_ = true;
         break;
@@ -273,11 +295,11 @@ void Session::handle_key(const SDL_KeyboardEvent& key) {
         const bool up = k == SDLK_PLUS || k == SDLK_EQUALS || k == SDLK_KP_PLUS;
         exposure_ *= up ? std::sqrt(2.0f) : 1.0f / std::sqrt(2.0f);
         if (have_frame_) {
-            window_.set_image(trac0r::tonemap_image(shown_.image, exposure_));
+            window_.set_image(trac0r::tonemap_image(shown_image(), exposure_));
         }
         char text[64];
         std::snprintf(text, sizeof text, "exposure %.3g", exposure_);
-        say(text);
+        say(text, "", "exposure");
         return;
     }
     if (key.repeat) {
@@ -290,6 +312,9 @@ void Session::handle_key(const SDL_KeyboardEvent& key) {
     case SDLK_F1:
         overlay_ = !overlay_;
         dirty_ = true;
+        break;
+    case SDLK_f:
+        set_filter(!filter_);
         break;
     case SDLK_h:
         help_ = !help_;
@@ -318,7 +343,7 @@ void Session::handle_key(const SDL_KeyboardEvent& key) {
     }
 }
 
-void Session::move(float seconds) {
+glm::vec3 Session::move_direction() const {
     glm::vec3 direction(0.0f);  // x right, y up, z forward
     direction.z += held(SDLK_w) ? 1.0f : 0.0f;
     direction.z -= held(SDLK_s) ? 1.0f : 0.0f;
@@ -326,6 +351,11 @@ void Session::move(float seconds) {
     direction.x -= held(SDLK_a) ? 1.0f : 0.0f;
     direction.y += (held(SDLK_e) || held(SDLK_SPACE)) ? 1.0f : 0.0f;
     direction.y -= (held(SDLK_q) || held(SDLK_LCTRL) || held(SDLK_RCTRL)) ? 1.0f : 0.0f;
+    return direction;
+}
+
+void Session::move(float seconds) {
+    const glm::vec3 direction = move_direction();
     if (direction == glm::vec3(0.0f) || seconds <= 0.0f) {
         return;
     }
@@ -341,12 +371,49 @@ void Session::change_camera(const trac0r::Camera& camera) {
     dirty_ = dirty_ || overlay_;  // the wireframes follow at once
 }
 
+void Session::follow_window_size(std::uint32_t now) {
+    int width = 0;
+    int height = 0;
+    window_.output_size(&width, &height);
+    if (width <= 0 || height <= 0) {
+        return;  // minimised
+    }
+    if (width != window_width_ || height != window_height_) {
+        window_width_ = width;
+        window_height_ = height;
+        resize_pending_ = true;
+        resize_at_ms_ = now + resize_debounce_ms;
+        dirty_ = true;
+    }
+    if (!resize_pending_ || now < resize_at_ms_) {
+        return;
+    }
+    resize_pending_ = false;
+    // The window's pixels, one render pixel each (no smaller than a tile
+    // or two: a window squeezed to nothing still renders something).
+    const int w = std::max(16, width);
+    const int h = std::max(16, height);
+    if (w == window_.render_width() && h == window_.render_height()) {
+        return;
+    }
+    resize_width_ = w;
+    resize_height_ = h;
+    resize_generation_ = requested_generation_ = worker_->resize(w, h);
+    say("rendering at " + std::to_string(w) + " x " + std::to_string(h) + " (the window's size)",
+        "", "resize");
+}
+
 void Session::take_from_worker() {
     WorkerFrame frame;
     if (worker_->take_frame(&frame)) {
         shown_ = std::move(frame);
         have_frame_ = true;
-        window_.set_image(trac0r::tonemap_image(shown_.image, exposure_));
+        if (resize_generation_ != 0 && shown_.generation >= resize_generation_) {
+            // The first frame at the new size: the window maps it 1:1.
+            window_.set_render_size(resize_width_, resize_height_);
+            resize_generation_ = 0;
+        }
+        window_.set_image(trac0r::tonemap_image(shown_image(), exposure_));
         if (!shown_.preview) {
             last_full_image_ = shown_.accumulation;
         }
@@ -359,20 +426,27 @@ void Session::take_from_worker() {
 
 // What --replay's wait_spp waits for: the newest view, at full resolution.
 long Session::shown_spp() const {
-    const bool current =
-        have_frame_ && !shown_.preview && shown_.generation == requested_generation_;
+    // While a movement key is held the view moves every tick: a frame of
+    // the camera of one tick (two ticks in one millisecond move nothing)
+    // is not the view the user is heading for.
+    const bool current = have_frame_ && !shown_.preview && !resize_pending_ &&
+                         move_direction() == glm::vec3(0.0f) &&
+                         shown_.generation == requested_generation_;
     return current ? static_cast<long>(shown_.spp) : 0;
 }
 
-void Session::say(const std::string& text, const std::string& shown) {
+void Session::say(const std::string& text, const std::string& shown, const std::string& kind) {
     std::fprintf(stderr, "%s\n", text.c_str());
-    messages_.push_back({shown.empty() ? text : shown, SDL_GetTicks() + 4000});
+    messages_.add(shown.empty() ? text : shown, kind, SDL_GetTicks() + 4000);
     dirty_ = true;
 }
 
 OverlayFigures Session::figures() const {
     OverlayFigures f;
     f.frame_seconds = shown_.frame_seconds;
+    f.accumulation_seconds = shown_.accumulation_seconds;
+    f.integrator = options_.integrator;
+    f.filter = filter_;
     f.pixels = static_cast<long>(shown_.image.width) * shown_.image.height;
     f.spp = shown_.spp;
     f.relative_mse = shown_.relative_mse;
@@ -419,16 +493,18 @@ void Session::draw() {
         save_screenshot();
     }
     if (help_) {
-        font_.draw_panel(window_.renderer(),
-                         "Keys and mouse\n" + without_trailing_newline(key_help_text()), -8,
-                         panels_bottom + 8);
+        // What fits between the overlay and the bottom edge (a small
+        // window gets the short list, cut where it must be).
+        int out_w = 0;
+        int out_h = 0;
+        window_.output_size(&out_w, &out_h);
+        const std::string help = fitting_help(font_, out_w - 16, out_h - panels_bottom - 16);
+        if (!help.empty()) {
+            font_.draw_panel(window_.renderer(), help, -8, panels_bottom + 8);
+        }
     }
     if (!messages_.empty()) {
-        std::string text;
-        for (const Message& m : messages_) {
-            text += (text.empty() ? "" : "\n") + m.text;
-        }
-        font_.draw_panel(window_.renderer(), text, 8, -8);
+        font_.draw_panel(window_.renderer(), messages_.text(), 8, -8);
     }
     window_.present();
     dirty_ = false;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <limits>
 
@@ -39,36 +40,56 @@ RenderWorker::~RenderWorker() {
     {
         std::lock_guard<std::mutex> lock(mutex_);
         stop_ = true;
+        cancel_full_.store(true);  // nobody will see the frame in flight
     }
     wake_.notify_all();
     thread_.join();
 }
 
 template <typename Change>
-std::uint64_t RenderWorker::request(Change change) {
+std::uint64_t RenderWorker::request(Change change, bool cancels) {
     std::uint64_t generation;
     {
         std::lock_guard<std::mutex> lock(mutex_);
         change(pending_);
         generation = pending_.generation = ++last_generation_;
+        if (cancels) {
+            cancel_full_.store(true);
+        }
     }
     wake_.notify_all();
     return generation;
 }
 
 std::uint64_t RenderWorker::set_camera(const trac0r::Camera& camera) {
-    return request([&](Requests& r) {
-        r.camera_changed = true;
-        r.camera = camera;
-    });
+    return request(
+        [&](Requests& r) {
+            r.camera_changed = true;
+            r.camera = camera;
+        },
+        true);
 }
 
 std::uint64_t RenderWorker::restart() {
-    return request([](Requests& r) { r.restart = true; });
+    return request([](Requests& r) { r.restart = true; }, true);
+}
+
+std::uint64_t RenderWorker::resize(int width, int height) {
+    return request(
+        [&](Requests& r) {
+            r.width = width;
+            r.height = height;
+        },
+        true);
+}
+
+std::uint64_t RenderWorker::set_filter(bool on) {
+    return request([&](Requests& r) { r.filter = on ? 1 : 0; }, false);
 }
 
 std::uint64_t RenderWorker::switch_backend(const std::string& name) {
-    return request([&](Requests& r) { r.backend = name; });
+    // Not cancelling: the switch may fail, and the accumulation go on.
+    return request([&](Requests& r) { r.backend = name; }, false);
 }
 
 bool RenderWorker::take_frame(WorkerFrame* frame) {
@@ -91,6 +112,11 @@ std::vector<std::string> RenderWorker::take_messages() {
 std::string RenderWorker::failure() {
     std::lock_guard<std::mutex> lock(mutex_);
     return failure_;
+}
+
+std::uint64_t RenderWorker::cancelled_frames() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return cancelled_frames_;
 }
 
 void RenderWorker::tell(const std::string& message) {
@@ -145,6 +171,7 @@ void RenderWorker::run() {
                 requests = pending_;
                 pending_ = Requests();
                 pending_.generation = requests.generation;
+                cancel_full_.store(false);  // the requests so far are in hand
             }
             apply(requests);
             if (paused()) {
@@ -177,8 +204,18 @@ void RenderWorker::apply(const Requests& requests) {
         full_stale_ = true;
         drop_history_ = true;
     }
+    if (requests.width > 0 &&
+        (requests.width != full_->width() || requests.height != full_->height())) {
+        full_->set_size(requests.width, requests.height);
+        preview_.reset();  // made again at the new size on the next move
+        preview_factor_ = preview_factor(requests.width, requests.height);
+        full_stale_ = true;
+    }
     if (!requests.backend.empty()) {
         change_backend(requests.backend);
+    }
+    if (requests.filter >= 0) {
+        filter_ = requests.filter == 1;
     }
     applied_generation_ = requests.generation;
 }
@@ -198,9 +235,7 @@ void RenderWorker::change_backend(const std::string& name) {
         preview_.reset();  // made again on the new backend when needed
         full_stale_ = true;
         drop_history_ = true;
-        history_ = trac0r::TemporalFrame();
-        history_is_accumulation_ = false;
-        full_guides_ = trac0r::GuideImages();
+        guide_images_ = trac0r::GuideImages();
         tell("backend: " + name + " (" + full_->backend().device() + ")");
     } catch (const std::exception& e) {
         tell("cannot switch to " + name + ": " + e.what() + "; staying on " + current);
@@ -239,64 +274,76 @@ void RenderWorker::render_preview() {
     preview_->set_frame_sequence(preview_frames_++, 1);
     preview_->render_frame();
     settle_history();
-    if (drop_history_) {
-        history_ = trac0r::TemporalFrame();
-        drop_history_ = false;
-    }
-    const trac0r::GuideImages guides =
-        trac0r::render_guides(preview_->packed(), preview_->camera_record());
-    history_ =
-        trac0r::temporal_blend(history_, preview_->image(), static_cast<float>(preview_->frames()),
-                               preview_->camera_record(), guides);
+    history_ = trac0r::temporal_blend(
+        history_, preview_->image(), static_cast<float>(preview_->frames()),
+        preview_->camera_record(),
+        trac0r::render_guides(preview_->packed(), preview_->camera_record()));
     publish(*preview_, true, start, history_.image());
 }
 
-const trac0r::GuideImages& RenderWorker::full_guides() {
-    if (full_guides_.width == 0) {
-        full_guides_ = trac0r::render_guides(full_->packed(), full_->camera_record());
+const trac0r::GuideImages& RenderWorker::guides_of(const trac0r::kernel::CameraRecord& camera) {
+    if (guide_images_.width == 0 || std::memcmp(&camera, &guide_camera_, sizeof camera) != 0) {
+        guide_images_ = trac0r::render_guides(full_->packed(), camera);
+        guide_camera_ = camera;
     }
-    return full_guides_;
+    return guide_images_;
 }
 
 void RenderWorker::settle_history() {
-    if (history_is_accumulation_) {
-        history_ = trac0r::temporal_blend(trac0r::TemporalFrame(), full_->image(),
-                                          static_cast<float>(full_->frames()),
-                                          full_->camera_record(), full_guides());
-        history_is_accumulation_ = false;
+    if (drop_history_) {
+        history_ = trac0r::TemporalFrame();
+        history_is_shown_full_ = false;
+        drop_history_ = false;
+    } else if (history_is_shown_full_) {
+        history_ = trac0r::temporal_blend(trac0r::TemporalFrame(), shown_full_,
+                                          static_cast<float>(shown_full_spp_), shown_full_camera_,
+                                          guides_of(shown_full_camera_));
+        history_is_shown_full_ = false;
     }
 }
 
 void RenderWorker::render_full() {
     if (full_stale_) {
         // What was shown last (the moves' frames, or the old view's
-        // accumulation) is carried into the new accumulation's first frames.
+        // accumulation) is carried into the new accumulation's first
+        // frames; history_ stays what is shown until one of them is.
         settle_history();
-        carried_ = drop_history_ ? trac0r::TemporalFrame() : std::move(history_);
-        history_ = trac0r::TemporalFrame();
-        drop_history_ = false;
+        carried_ = history_;
         full_->set_camera(camera_);  // restarts accumulation
-        full_guides_ = trac0r::GuideImages();
         full_started_ = Clock::now();
         full_stale_ = false;
         last_estimate_spp_ = 0;
+        guides_.clear();  // a new view or size: made again when the filter is on
+        last_filtered_spp_ = 0;
         pause_reason_.clear();
     }
     const Clock::time_point start = Clock::now();
-    full_->render_frame();
+    if (!full_->render_frame([this] { return cancel_full_.load(std::memory_order_relaxed); })) {
+        // A camera or a restart came in: the renderer has restarted, and
+        // the request in hand starts a new accumulation.
+        full_stale_ = true;
+        std::lock_guard<std::mutex> lock(mutex_);
+        ++cancelled_frames_;
+        return;
+    }
     trac0r::Image shown = full_->image();
     if (!carried_.empty() && full_->frames() >= carried_history_frames) {
         carried_ = trac0r::TemporalFrame();
     }
     if (carried_.empty()) {
-        history_is_accumulation_ = true;
+        // The next move starts from this frame, made into history_ only
+        // then: most full frames are followed by another.
+        history_is_shown_full_ = true;
     } else {
-        history_ = trac0r::temporal_blend(carried_, shown, static_cast<float>(full_->frames()),
-                                          full_->camera_record(), full_guides());
-        history_is_accumulation_ = false;
+        history_ =
+            trac0r::temporal_blend(carried_, shown, static_cast<float>(full_->frames()),
+                                   full_->camera_record(), guides_of(full_->camera_record()));
+        history_is_shown_full_ = false;
         shown = history_.image();
     }
     shown_full_ = shown;
+    shown_full_spp_ = full_->frames();
+    shown_full_camera_ = full_->camera_record();
     publish(*full_, false, start, shown);
 }
 
@@ -322,6 +369,24 @@ double RenderWorker::noise_estimate() {
     return last_estimate_;
 }
 
+trac0r::Image RenderWorker::filtered_image() {
+    const double interval = std::max(filter_interval, filter_cost_factor * last_filter_cost_);
+    const bool due =
+        last_filtered_spp_ == 0 || seconds_since(last_filtered_time_) >= interval || paused();
+    if (due && last_filtered_spp_ != full_->frames()) {
+        const Clock::time_point start = Clock::now();
+        if (guides_.empty()) {
+            guides_ = trac0r::filter_guides(guides_of(full_->camera_record()));
+        }
+        last_filtered_ = trac0r::filter_image(full_->accumulator(), full_->width(), full_->height(),
+                                              guides_, T0_FILTER_PASSES);
+        last_filtered_spp_ = full_->frames();
+        last_filtered_time_ = Clock::now();
+        last_filter_cost_ = seconds_since(start);
+    }
+    return last_filtered_;
+}
+
 void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time_point start,
                            const trac0r::Image& shown) {
     WorkerFrame frame;
@@ -332,12 +397,16 @@ void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time
     frame.spp = renderer.frames();
     frame.preview = preview;
     frame.frame_seconds = seconds_since(start);
+    frame.accumulation_seconds = preview ? 0.0 : seconds_since(full_started_);
     if (!preview) {
         pause_reason_ = pause_reason_now();  // before noise_estimate, which asks paused()
         frame.paused_by = pause_reason_;
     }
     frame.relative_mse = preview ? std::numeric_limits<double>::infinity() : noise_estimate();
     frame.relative_mse_spp = preview ? 0 : last_estimate_spp_;
+    if (!preview && filter_ && full_->frames() > 0) {
+        frame.filtered = filtered_image();  // after pause_reason_: a pause filters its frame
+    }
     frame.estimate_overflowed = !preview && std::isinf(frame.relative_mse) &&
                                 full_->frames() >= 2 &&
                                 trac0r::noise_estimate_overflowed(full_->accumulator());
@@ -346,15 +415,11 @@ void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time
     frame.device = renderer.backend().device();
     {
         std::lock_guard<std::mutex> lock(mutex_);
-        // A request came in during the frame: a full frame shows an old
-        // view and is dropped. A preview is shown all the same: while a key
-        // is held the camera changes every few milliseconds, faster than a
-        // preview renders, and dropping each would show nothing until the
-        // key is let go. It is a frame behind the input, and its generation
-        // says so (--replay's wait_spp does not count it).
-        if (last_generation_ != applied_generation_ && !preview) {
-            return;
+        if (!preview && last_generation_ != applied_generation_) {
+            return;  // a request came in during the frame: it shows an old view
         }
+        // A preview is shown even so: while the camera moves, a new one
+        // comes in during every preview, and it is the newest view there is.
         frame_ = std::move(frame);
         frame_fresh_ = true;
     }

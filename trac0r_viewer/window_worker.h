@@ -7,8 +7,12 @@
 //
 // While the camera moves (a new camera arrived during the last frame), the
 // thread renders single frames at a reduced resolution, so navigation stays
-// fluid; once it stops, accumulation restarts at full resolution. Each
-// frame shown is blended with the one before it, reprojected into its
+// fluid; once it stops, accumulation restarts at full resolution. A request
+// that throws the accumulation away (a camera, a restart) stops the full
+// frame in flight between two tiles, so the next frame starts at once; a
+// preview in flight is finished and shown (it is the newest view there is).
+//
+// Each frame shown is blended with the one before it, reprojected into its
 // view (trac0r/temporal.h): while moving, the image keeps what the last
 // view saw and starts again only where something came into sight; after a
 // stop, what the moves left fades out over the first full frames. The
@@ -19,11 +23,13 @@
 #include "stop_rule.h"
 
 #include "trac0r/camera.h"
-#include "trac0r/image_io.h"
+#include "trac0r/filter.h"
 #include "trac0r/guides.h"
+#include "trac0r/image_io.h"
 #include "trac0r/renderer.h"
 #include "trac0r/temporal.h"
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
@@ -43,14 +49,25 @@ namespace trac0r_viewer {
 // so it never takes more than a tenth of the render thread's time.
 constexpr double noise_estimate_interval = 0.5;
 constexpr double noise_estimate_cost_factor = 10.0;
+// The display filter likewise: it costs several frames, so the filtered
+// image is made again at most every filter_interval seconds, and no more
+// often than filter_cost_factor times its cost (the last one is shown in
+// between), and always for the frame a pause stops at.
+constexpr double filter_interval = 0.5;
+constexpr double filter_cost_factor = 4.0;
 
 // A finished frame: the running mean and what the overlay says about it.
 struct WorkerFrame {
-    trac0r::Image image;         // linear radiance, as shown (temporal reuse blended in)
+    trac0r::Image image;         // linear radiance, as shown: temporal reuse blended in
     trac0r::Image accumulation;  // the running mean itself; empty for previews
+    // With the display filter on: the accumulation through trac0r::filter_image (the
+    // accumulation itself is never filtered), refreshed as said at
+    // filter_interval; empty when off and for previews.
+    trac0r::Image filtered;
     std::uint32_t spp = 0;
-    bool preview = false;        // reduced resolution, while the camera moves
-    double frame_seconds = 0.0;  // rendering and reading back this frame
+    bool preview = false;               // reduced resolution, while the camera moves
+    double frame_seconds = 0.0;         // rendering and reading back this frame
+    double accumulation_seconds = 0.0;  // since the accumulation (re)started; 0 for previews
     // trac0r::estimate_relative_mse of the running mean at
     // relative_mse_spp samples per pixel, refreshed as said above; +inf
     // below 2 spp and for previews.
@@ -84,7 +101,7 @@ class RenderWorker {
     // is published (and when it fails), to wake the window.
     RenderWorker(std::unique_ptr<trac0r::Renderer> renderer, BackendFactory make_backend,
                  const WorkerSettings& settings, std::function<void()> frame_ready);
-    ~RenderWorker();  // finishes the frame in flight, then stops
+    ~RenderWorker();  // stops the full frame in flight (a preview finishes), then the thread
     RenderWorker(const RenderWorker&) = delete;
     RenderWorker& operator=(const RenderWorker&) = delete;
 
@@ -92,7 +109,11 @@ class RenderWorker {
     // frames that reflect it carry that number or a later one.
     std::uint64_t set_camera(const trac0r::Camera& camera);
     std::uint64_t restart();
+    // Renders width x height pixels from now on (the window's new size).
+    std::uint64_t resize(int width, int height);
     std::uint64_t switch_backend(const std::string& name);
+    // The display filter on or off (the accumulation goes on untouched).
+    std::uint64_t set_filter(bool on);
 
     // The newest frame, when there is one not taken yet.
     bool take_frame(WorkerFrame* frame);
@@ -100,6 +121,8 @@ class RenderWorker {
     std::vector<std::string> take_messages();
     // Why the thread stopped, or empty while it runs.
     std::string failure();
+    // Full frames stopped part way by a request (for the tests).
+    std::uint64_t cancelled_frames();
 
     using Clock = std::chrono::steady_clock;
 
@@ -108,14 +131,19 @@ class RenderWorker {
         bool camera_changed = false;
         trac0r::Camera camera;
         bool restart = false;
+        int width = 0;  // > 0: a new size
+        int height = 0;
         std::string backend;
+        int filter = -1;  // -1: unchanged; 0: off; 1: on
         std::uint64_t generation = 0;
     };
 
     // Changes pending_ under the lock, gives it a new generation and wakes
     // the thread: what every request does.
+    // Where `cancels`, the full frame in flight stops (its accumulation is
+    // about to be thrown away).
     template <typename Change>
-    std::uint64_t request(Change change);
+    std::uint64_t request(Change change, bool cancels);
     void run();
     bool paused() const;
     // Why the accumulation is done now (publish decides it once a frame, so
@@ -125,9 +153,9 @@ class RenderWorker {
     void change_backend(const std::string& name);
     void render_preview();
     void render_full();
-    // The guides of full_'s view, made once per view.
-    const trac0r::GuideImages& full_guides();
-    // Makes history_ from full_'s accumulation where that is what was shown
+    // The guides of `camera`'s view of full_'s scene, made once per view.
+    const trac0r::GuideImages& guides_of(const trac0r::kernel::CameraRecord& camera);
+    // history_ from the last full frame shown, where that is what was shown
     // last.
     void settle_history();
     // Publishes `shown` (and, for a full frame, the running mean);
@@ -136,13 +164,14 @@ class RenderWorker {
                  const trac0r::Image& shown);
     // The noise estimate of full_'s mean, or the last one while it is recent.
     double noise_estimate();
+    // full_'s mean through the display filter, or the last one while recent.
+    trac0r::Image filtered_image();
     void tell(const std::string& message);
 
     // Owned by the thread (no lock): only run() and what it calls use them.
     std::unique_ptr<trac0r::Renderer> full_;
     std::unique_ptr<trac0r::Renderer> preview_;  // made on the first move
     int preview_factor_;                         // 1: no preview
-    std::uint32_t preview_frames_ = 0;           // previews rendered: each its own samples
     BackendFactory make_backend_;
     WorkerSettings settings_;
     trac0r::Camera camera_;
@@ -154,16 +183,28 @@ class RenderWorker {
     std::string pause_reason_;             // of the last full frame (pause_reason_now)
     Clock::time_point last_estimate_time_;
     double last_estimate_cost_ = 0.0;  // seconds
+    bool filter_ = false;
+    std::vector<trac0r::kernel::FilterGuide> guides_;  // of full_'s view; empty: to be made
+    trac0r::Image last_filtered_;
+    std::uint32_t last_filtered_spp_ = 0;  // 0: none since the last restart
+    Clock::time_point last_filtered_time_;
+    double last_filter_cost_ = 0.0;  // seconds
+    // The guides of one view (render_guides), for the filter and temporal
+    // reuse: made again only for another view, size or backend.
+    trac0r::GuideImages guide_images_;
+    trac0r::kernel::CameraRecord guide_camera_{};
     // Temporal reuse: the frame on display with its guides (empty: none,
-    // or see history_is_accumulation_); what the moves left, blended into
-    // the full frames after a stop; full_'s guides (empty until needed);
-    // the last full frame as shown.
+    // or the last full frame shown, made from shown_full_ when needed);
+    // what the moves left, blended into the full frames after a stop; the
+    // last full frame as shown, with its samples and camera.
     trac0r::TemporalFrame history_;
-    bool history_is_accumulation_ = false;  // history_ is full_'s running mean: made when needed
-    bool drop_history_ = false;             // a restart or backend switch: start from nothing
+    bool history_is_shown_full_ = false;
+    bool drop_history_ = false;  // a restart or backend switch: start from nothing
     trac0r::TemporalFrame carried_;
-    trac0r::GuideImages full_guides_;
     trac0r::Image shown_full_;
+    std::uint32_t shown_full_spp_ = 0;
+    trac0r::kernel::CameraRecord shown_full_camera_{};
+    std::uint32_t preview_frames_ = 0;  // previews rendered: each its own samples
 
     // Shared with the window's thread, under mutex_.
     std::mutex mutex_;
@@ -172,9 +213,13 @@ class RenderWorker {
     std::uint64_t last_generation_ = 0;
     bool stop_ = false;
     bool frame_fresh_ = false;
+    std::uint64_t cancelled_frames_ = 0;
     WorkerFrame frame_;
     std::vector<std::string> messages_;
     std::string failure_;
+    // Set by a request that throws the accumulation away, cleared when the
+    // thread takes the requests: asked between the full frame's tiles.
+    std::atomic<bool> cancel_full_{false};
 
     std::function<void()> frame_ready_;
     std::thread thread_;  // last: starts after everything above exists

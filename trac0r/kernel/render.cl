@@ -37,7 +37,10 @@ SceneView scene_view(__global const TriangleRecord* triangles, __global const Sh
 // tile_pixel makes the work-item's pixel's generator and camera ray, and
 // whether the pixel is in the image (the last tiles may be cut off).
 int tile_pixel(const SceneView* scene, CameraRecord camera, ulong seed, uint frame, PixelSample* s, uint* pixel) {
-    const TileRect tile = tile_rect((uint)get_group_id(0), camera.size.x, camera.size.y);
+    // The global id, not the group's: a frame may be launched in parts
+    // (a global offset of whole tiles).
+    const TileRect tile =
+        tile_rect((uint)(get_global_id(0) / (T0_TILE * T0_TILE)), camera.size.x, camera.size.y);
     const uint item = (uint)get_local_id(0);
     const uint x = tile.x0 + item % T0_TILE;
     const uint y = tile.y0 + item / T0_TILE;
