@@ -9,11 +9,36 @@
 namespace trac0r {
 
 std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides) {
+    const int width = guides.width;
+    const int height = guides.height;
     std::vector<kernel::FilterGuide> out(guides.albedo.size());
     for (std::size_t i = 0; i < out.size(); ++i) {
-        const float depth = guides.depth[i];
-        out[i].albedo = glm::vec4(guides.albedo[i], std::isfinite(depth) ? depth : T0_NO_HIT);
-        out[i].normal = glm::vec4(guides.normal[i], guides.emitter[i] != 0 ? 1.0f : 0.0f);
+        const int x = static_cast<int>(i % static_cast<std::size_t>(width));
+        const int y = static_cast<int>(i / static_cast<std::size_t>(width));
+        const glm::vec4 e = guides.emission.empty() ? glm::vec4(0.0f) : guides.emission[i];
+        // The surface the pixel shows: its centre's, or where the centre
+        // is on a lamp whose edge runs through the pixel, the surface
+        // beside the lamp, which goes on under the edge: a 4-neighbour's
+        // that is no lamp.
+        std::size_t s = i;
+        if (guides.emitter[i] != 0 && e.w < 1.0f) {
+            const int nx[4] = {x - 1, x + 1, x, x};
+            const int ny[4] = {y, y, y - 1, y + 1};
+            for (int k = 0; k < 4 && s == i; ++k) {
+                const std::size_t q = static_cast<std::size_t>(ny[k]) * width + nx[k];
+                if (nx[k] >= 0 && nx[k] < width && ny[k] >= 0 && ny[k] < height &&
+                    guides.emitter[q] == 0 && std::isfinite(guides.depth[q])) {
+                    s = q;
+                }
+            }
+        }
+        // A pixel (almost) all lamp is kept as it is; where an edge runs
+        // through it, the lamps' part is set apart from the surface's.
+        const bool kept = guides.emitter[s] != 0 || e.w > 0.95f;
+        const float depth = guides.depth[s];
+        out[i].albedo = glm::vec4(guides.albedo[s], std::isfinite(depth) ? depth : T0_NO_HIT);
+        out[i].normal = glm::vec4(guides.normal[s], kept ? 1.0f : 0.0f);
+        out[i].emission = kept ? glm::vec4(0.0f) : e;
     }
     return out;
 }

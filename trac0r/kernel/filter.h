@@ -34,10 +34,15 @@ typedef struct T0_ALIGN16 FilterPixel {
 } FilterPixel;
 
 // What the edge-stopping functions read of a pixel: the camera ray's first
-// non-specular surface.
+// non-specular surface, and the lamps that part of the pixel sees.
 typedef struct T0_ALIGN16 FilterGuide {
     float4 albedo;  // xyz: albedo (zero: nothing; no demodulation), w: depth (T0_NO_HIT: none)
-    float4 normal;  // xyz: unit normal facing the camera (zero: none), w: 1 on a pure emitter
+    float4 normal;  // xyz: unit normal facing the camera (zero: none), w: 1: kept as it is (a
+                    // pure emitter, or a pixel almost all lamp)
+    // Where a lamp's edge runs through the pixel: xyz the lamps' radiance
+    // averaged over the pixel, w the share of the pixel they cover (the
+    // rest is the surface above); zero elsewhere.
+    float4 emission;
 } FilterGuide;
 
 // c^128 (the normal's edge-stopping power), by squaring: the same on
@@ -51,7 +56,7 @@ T0_INLINE float pow128(float c) {
 
 #ifndef __OPENCL_VERSION__
 T0_STATIC_ASSERT_SIZE(FilterPixel, 16);
-T0_STATIC_ASSERT_SIZE(FilterGuide, 32);
+T0_STATIC_ASSERT_SIZE(FilterGuide, 48);
 #endif
 
 // A channel's albedo as a divisor: tiny and zero ones are not divided by.
@@ -63,24 +68,36 @@ T0_INLINE float3 demodulation(FilterGuide g) {
                        demodulation_divisor(g.albedo.z));
 }
 
-// The first pass's input for one pixel: its accumulated mean over the
-// albedo, and the variance of that mean's luminance (the per-sample
-// variance over the samples, likewise demodulated by the albedo's
-// luminance).
+// The share of a pixel that the surface covers (the rest: lamps whose
+// edge runs through it; their light is no noise, and is not filtered).
+T0_INLINE float surface_share(FilterGuide g) {
+    return g.normal.w > 0.0f ? 1.0f : 1.0f - g.emission.w;
+}
+
+T0_INLINE float3 lamp_part(FilterGuide g) {
+    return g.normal.w > 0.0f ? float3_splat(0.0f) : xyz(g.emission);
+}
+
+// The first pass's input for one pixel: the lighting of its surface, i.e.
+// its accumulated mean less the lamps' part over the albedo times the
+// surface's share, and the variance of that lighting's luminance (the
+// per-sample variance over the samples, likewise scaled).
 T0_INLINE FilterPixel filter_input(AccumPixel px, FilterGuide g) {
-    const float3 colour = accumulated_mean(px);
-    const float3 d = demodulation(g);
+    const float3 colour = accumulated_mean(px) - lamp_part(g);
+    const float share = surface_share(g);
+    const float3 d = demodulation(g) * share;
     const float n = px.moments.z;
-    const float dl = demodulation_divisor(luminance(d));
+    const float dl = demodulation_divisor(luminance(demodulation(g))) * share;
     const float variance = n > 1.0f ? px.moments.y / (n - 1.0f) / n / (dl * dl) : 1e30f;
     FilterPixel out;
     out.value = make_float4(colour.x / d.x, colour.y / d.y, colour.z / d.z, variance);
     return out;
 }
 
-// The filtered pixel's colour: its lighting times the albedo again.
+// The filtered pixel's colour: its lighting times the albedo and the
+// surface's share again, plus the lamps' part.
 T0_INLINE float3 filter_output(FilterPixel p, FilterGuide g) {
-    return xyz(p.value) * demodulation(g);
+    return xyz(p.value) * (demodulation(g) * surface_share(g)) + lamp_part(g);
 }
 
 // The depth's change per pixel at (x, y): on each axis the smaller of the
@@ -163,7 +180,9 @@ T0_INLINE FilterPixel atrous_pixel(T0_GLOBAL const FilterPixel* in,
                 T0_FILTER_SIGMA_LUMINANCE * sqrt(fmax(fmax(centre.value.w, p.value.w), 0.0f)) +
                 1e-6f;
             const float w_l = exp(-fabs(l - luminance(xyz(p.value))) / sigma_l);
-            const float w = h * w_n * w_z * w_l;
+            // A pixel partly lamp saw its surface with that share of its
+            // samples: its lighting counts as much.
+            const float w = h * w_n * w_z * w_l * surface_share(gq);
             // A tap whose weight or value is not finite is left out, so one
             // bad pixel does not spoil its neighbours.
             if (!(w >= 0.0f) || !is_finite_f(p.value.x + p.value.y + p.value.z + p.value.w)) {
