@@ -54,13 +54,25 @@ Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width
     for (std::size_t i = 0; i < pixels; ++i) {
         a[i] = kernel::filter_input(accumulator[i], guides[i]);
     }
+    std::vector<kernel::FilterTap> taps(pixels);
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            taps[static_cast<std::size_t>(y) * width + x] =
+                kernel::filter_tap(guides.data(), width, height, x, y);
+        }
+    }
     std::vector<kernel::FilterPixel> b(pixels);
+    std::vector<kernel::FilterNoise> noise(pixels);
     for (int pass = 0; pass < passes; ++pass) {
+        for (std::size_t i = 0; i < pixels; ++i) {
+            noise[i] = kernel::filter_noise(a[i]);
+        }
 #pragma omp parallel for schedule(static)
         for (int y = 0; y < height; ++y) {
             for (int x = 0; x < width; ++x) {
-                b[static_cast<std::size_t>(y) * width + x] =
-                    kernel::atrous_pixel(a.data(), guides.data(), width, height, x, y, pass);
+                b[static_cast<std::size_t>(y) * width + x] = kernel::atrous_pixel(
+                    a.data(), taps.data(), noise.data(), width, height, x, y, pass);
             }
         }
         std::swap(a, b);
