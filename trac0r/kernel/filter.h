@@ -181,11 +181,20 @@ typedef struct T0_ALIGN16 FilterNoise {
 T0_STATIC_ASSERT_SIZE(FilterNoise, 16);
 #endif
 
+// A pixel's luminance, and 1 / (T0_FILTER_SIGMA_LUMINANCE standard
+// deviations) for its variance: FilterNoise's x and y, as scalars.
+T0_INLINE float noise_luminance(float r, float g, float b) {
+    return 0.2126f * r + 0.7152f * g + 0.0722f * b;
+}
+
+T0_INLINE float by_noise_of(float variance) {
+    return 1.0f / (T0_FILTER_SIGMA_LUMINANCE * sqrt(fmax(variance, 0.0f)) + 1e-6f);
+}
+
 T0_INLINE FilterNoise filter_noise(FilterPixel p) {
     FilterNoise out;
-    out.value = make_float4(
-        luminance(xyz(p.value)),
-        1.0f / (T0_FILTER_SIGMA_LUMINANCE * sqrt(fmax(p.value.w, 0.0f)) + 1e-6f), 0.0f, 0.0f);
+    out.value = make_float4(noise_luminance(p.value.x, p.value.y, p.value.z),
+                            by_noise_of(p.value.w), 0.0f, 0.0f);
     return out;
 }
 
@@ -225,14 +234,16 @@ T0_INLINE float tap_weight(float cnx, float cny, float cnz, float cnw, float c_d
 // variance of that mean. A pixel kept as it is stays so; so does one whose
 // taps' weights sum to zero (the centre weighs its surface share, > 0,
 // unless its own values are not finite).
+T0_INLINE int atrous_keeps(float kept, float total) { return (kept > 0.0f) | !(total > 0.0f); }
+
 T0_INLINE FilterPixel atrous_result(FilterPixel centre, FilterTap c, float3 sum, float variance,
                                     float total) {
-    if (c.params.w > 0.0f || !(total > 0.0f)) {
+    if (atrous_keeps(c.params.w, total)) {
         return centre;
     }
     FilterPixel out;
-    const float3 mean = sum / total;
-    out.value = make_float4(mean.x, mean.y, mean.z, variance / (total * total));
+    out.value =
+        make_float4(sum.x / total, sum.y / total, sum.z / total, variance / (total * total));
     return out;
 }
 
