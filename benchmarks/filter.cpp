@@ -3,8 +3,9 @@
 // 1-spp frames and filter runs over a --spp accumulation alternate (frame,
 // filter, frame, filter, ...), so that the machine's load falls on both
 // alike; prints the medians and their ratio (issue 31's target: at most
-// 0.15). With --reference, also the errors of the filtered --spp image, the
-// raw one and the raw --compare-spp one, over --seeds renders.
+// 0.15), for the filter in new buffers and in buffers kept between calls. With --reference, also
+// the errors of the filtered --spp image, the raw one and the raw --compare-spp one, over --seeds
+// renders.
 //
 //   build/benchmarks/bench_filter [SCENE.json] [options]
 //
@@ -88,28 +89,44 @@ void timing(const Scene& scene, const Options& o) {
         filter_guides(render_guides(r->packed(), r->camera_record()));
     const std::vector<kernel::AccumPixel> accum = r->accumulator();
     filter_image(accum, o.width, o.height, guides, o.passes);  // warm-up
-    std::vector<double> frame_wall, frame_cpu, filter_wall, filter_cpu;
+    FilterWorkspace workspace;
+    filter_image(accum, o.width, o.height, guides, o.passes, workspace);
+    // Per round: a frame, the filter in new buffers (as --filter runs it
+    // once), the filter in buffers kept from the last round (as a display
+    // filtering every frame would).
+    std::vector<double> wall[3], cpu[3];
     for (int i = 0; i < o.rounds; ++i) {
-        Clock::time_point start = Clock::now();
-        double cpu = trac0r_bench::process_cpu_seconds();
-        r->render_frame();
-        frame_wall.push_back(seconds_since(start));
-        frame_cpu.push_back(trac0r_bench::process_cpu_seconds() - cpu);
-        start = Clock::now();
-        cpu = trac0r_bench::process_cpu_seconds();
-        const Image filtered = filter_image(accum, o.width, o.height, guides, o.passes);
-        filter_wall.push_back(seconds_since(start));
-        filter_cpu.push_back(trac0r_bench::process_cpu_seconds() - cpu);
+        for (int k = 0; k < 3; ++k) {
+            const Clock::time_point start = Clock::now();
+            const double cpu_start = trac0r_bench::process_cpu_seconds();
+            if (k == 0) {
+                r->render_frame();
+            } else if (k == 1) {
+                filter_image(accum, o.width, o.height, guides, o.passes);
+            } else {
+                filter_image(accum, o.width, o.height, guides, o.passes, workspace);
+            }
+            wall[k].push_back(seconds_since(start));
+            cpu[k].push_back(trac0r_bench::process_cpu_seconds() - cpu_start);
+        }
     }
     using trac0r_bench::median;
     std::printf("%d x %d, CPU backend, %d threads; medians of %d alternated rounds\n\n", o.width,
                 o.height, omp_get_max_threads(), o.rounds);
-    std::printf("| | 1-spp frame | filter (%d passes) | filter / frame |\n", o.passes);
-    std::printf("| --- | ---: | ---: | ---: |\n");
-    std::printf("| wall clock | %.4f s | %.4f s | %.3f |\n", median(frame_wall),
-                median(filter_wall), median(filter_wall) / median(frame_wall));
-    std::printf("| CPU time | %.4f s | %.4f s | %.3f |\n", median(frame_cpu), median(filter_cpu),
-                median(filter_cpu) / median(frame_cpu));
+    std::printf(
+        "| | 1-spp frame | filter (%d passes), new buffers | filter, buffers kept | new / frame "
+        "| kept / frame |\n",
+        o.passes);
+    std::printf("| --- | ---: | ---: | ---: | ---: | ---: |\n");
+    const char* names[2] = {"wall clock", "CPU time"};
+    std::vector<double>* figures[2] = {wall, cpu};
+    for (int m = 0; m < 2; ++m) {
+        const double frame = median(figures[m][0]);
+        const double fresh = median(figures[m][1]);
+        const double kept = median(figures[m][2]);
+        std::printf("| %s | %.4f s | %.4f s | %.4f s | %.3f | %.3f |\n", names[m], frame, fresh,
+                    kept, fresh / frame, kept / frame);
+    }
     std::fflush(stdout);
 }
 

@@ -124,6 +124,12 @@ TEST_CASE("the filter smooths noise and keeps a shadow's edge", "[filter]") {
     // Energy: the image mean kept within 1 %.
     const double raw_mean = mean_luminance(raw, 0, width);
     CHECK(std::fabs(mean_luminance(filtered, 0, width) / raw_mean - 1.0) < 0.01);
+    // A workspace kept between calls gives the same image, every time.
+    FilterWorkspace workspace;
+    for (int i = 0; i < 2; ++i) {
+        CHECK(filter_image(accum, width, height, guides, T0_FILTER_PASSES, workspace).pixels ==
+              filtered.pixels);
+    }
     // No passes: the image as it is.
     const Image none = filter_image(accum, width, height, guides, 0);
     CHECK(none.pixels == raw.pixels);

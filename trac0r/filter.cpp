@@ -17,13 +17,20 @@ namespace {
 // guides as the passes read them (kernel::FilterTap), and a pass's image
 // and its noise (kernel::FilterPixel, kernel::FilterNoise).
 struct TapPlanes {
-    explicit TapPlanes(std::size_t n)
-        : nx(n), ny(n), nz(n), nw(n), depth(n), by_depth(n), share(n), kept(n) {}
+    void resize(std::size_t n) {
+        for (std::vector<float>* v : {&nx, &ny, &nz, &nw, &depth, &by_depth, &share, &kept}) {
+            v->resize(n);
+        }
+    }
     std::vector<float> nx, ny, nz, nw, depth, by_depth, share, kept;
 };
 
 struct PixelPlanes {
-    explicit PixelPlanes(std::size_t n) : r(n), g(n), b(n), variance(n), l(n), by_noise(n) {}
+    void resize(std::size_t n) {
+        for (std::vector<float>* v : {&r, &g, &b, &variance, &l, &by_noise}) {
+            v->resize(n);
+        }
+    }
     std::vector<float> r, g, b, variance, l, by_noise;
     kernel::FilterPixel pixel(std::size_t i) const {
         kernel::FilterPixel p;
@@ -96,10 +103,11 @@ inline void atrous_at(const TapPlanes& t, const PixelPlanes& in, std::ptrdiff_t 
 // Row y of pass `pass`: its inner pixels (all their taps in the image's
 // columns) in a vectorized loop, AVX2 where the CPU has it (the function
 // is compiled twice), the few at its ends one by one.
-__attribute__((target_clones("avx2", "default"))) void atrous_row(const TapPlanes& t,
-                                                                  const PixelPlanes& in, int width,
-                                                                  int height, int y, int pass,
-                                                                  PixelPlanes* out) {
+__attribute__((target_clones("avx512f", "avx2", "default"))) void atrous_row(const TapPlanes& t,
+                                                                             const PixelPlanes& in,
+                                                                             int width, int height,
+                                                                             int y, int pass,
+                                                                             PixelPlanes* out) {
     const int step = 1 << pass;
     TapPlaces at;
     for (int k = 0; k < 3; ++k) {
@@ -166,14 +174,36 @@ std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides) {
     return out;
 }
 
+struct FilterWorkspace::Buffers {
+    TapPlanes taps;
+    PixelPlanes a;
+    PixelPlanes b;
+};
+
+FilterWorkspace::FilterWorkspace() : buffers_(new Buffers()) {}
+FilterWorkspace::~FilterWorkspace() = default;
+
 Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height,
                    const std::vector<kernel::FilterGuide>& guides, int passes) {
+    FilterWorkspace workspace;
+    return filter_image(accumulator, width, height, guides, passes, workspace);
+}
+
+Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height,
+                   const std::vector<kernel::FilterGuide>& guides, int passes,
+                   FilterWorkspace& workspace) {
     const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     if (accumulator.size() != pixels || guides.size() != pixels) {
         throw std::invalid_argument("filter_image: the accumulator and the guides must have " +
                                     std::to_string(pixels) + " pixels");
     }
-    PixelPlanes a(pixels);
+    FilterWorkspace::Buffers& buffers = workspace.buffers();
+    PixelPlanes& a = buffers.a;
+    PixelPlanes& b = buffers.b;
+    TapPlanes& taps = buffers.taps;
+    a.resize(pixels);
+    b.resize(pixels);
+    taps.resize(pixels);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < pixels; ++i) {
         const kernel::FilterPixel p = kernel::filter_input(accumulator[i], guides[i]);
@@ -185,7 +215,6 @@ Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width
         a.l[i] = n.value.x;
         a.by_noise[i] = n.value.y;
     }
-    TapPlanes taps(pixels);
 #pragma omp parallel for schedule(dynamic, 16)
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
@@ -201,7 +230,6 @@ Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width
             taps.kept[i] = t.params.w;
         }
     }
-    PixelPlanes b(pixels);
     for (int pass = 0; pass < passes; ++pass) {
 #pragma omp parallel for schedule(dynamic, 16)
         for (int y = 0; y < height; ++y) {
