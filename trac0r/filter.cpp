@@ -96,7 +96,7 @@ inline void atrous_at(const TapPlanes& t, const PixelPlanes& in, std::ptrdiff_t 
     out->g[i] = ng;
     out->b[i] = nb;
     out->variance[i] = nv;
-    out->l[i] = kernel::noise_luminance(nr, ng, nb);
+    out->l[i] = kernel::luminance_rgb(nr, ng, nb);
     out->by_noise[i] = kernel::by_noise_of(nv);
 }
 

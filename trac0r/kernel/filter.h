@@ -181,20 +181,16 @@ typedef struct T0_ALIGN16 FilterNoise {
 T0_STATIC_ASSERT_SIZE(FilterNoise, 16);
 #endif
 
-// A pixel's luminance, and 1 / (T0_FILTER_SIGMA_LUMINANCE standard
-// deviations) for its variance: FilterNoise's x and y, as scalars.
-T0_INLINE float noise_luminance(float r, float g, float b) {
-    return 0.2126f * r + 0.7152f * g + 0.0722f * b;
-}
-
+// 1 / (T0_FILTER_SIGMA_LUMINANCE standard deviations) for a variance:
+// FilterNoise's y, as a scalar (its x is luminance_rgb).
 T0_INLINE float by_noise_of(float variance) {
     return 1.0f / (T0_FILTER_SIGMA_LUMINANCE * sqrt(fmax(variance, 0.0f)) + 1e-6f);
 }
 
 T0_INLINE FilterNoise filter_noise(FilterPixel p) {
     FilterNoise out;
-    out.value = make_float4(noise_luminance(p.value.x, p.value.y, p.value.z),
-                            by_noise_of(p.value.w), 0.0f, 0.0f);
+    out.value = make_float4(luminance_rgb(p.value.x, p.value.y, p.value.z), by_noise_of(p.value.w),
+                            0.0f, 0.0f);
     return out;
 }
 
