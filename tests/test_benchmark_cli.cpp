@@ -119,6 +119,28 @@ TEST_CASE("bench_accel_crossover: --help, and bad flags named", "[benchmark_cli]
                   2);
 }
 
+TEST_CASE("bench_filter: --help, bad flags and references refused before timing",
+          "[benchmark_cli]") {
+    check_help("bench_filter",
+               {"--rounds N", "--reference FILE", "--seeds N", "default 800 x 600"});
+    check_refused("bench_filter",
+                  {{"--rounds 0", "--rounds: expected an integer in [1, 10000], got '0'"},
+                   {"--spp 1", "--spp: expected an integer in [2, 65536], got '1'"},
+                   {"--passes 17", "--passes: expected an integer in [0, 16]"},
+                   {"--size 800", "--size: expected two values, W H"},
+                   {"a.json b.json", "b.json: only one scene file"},
+                   {"--bogus", "--bogus: unknown option"}},
+                  2);
+    // The reference is read, and its size checked, before the first frame.
+    const std::string in = write_test_pfm("bench_cli_filter_ref.pfm");
+    check_refused("bench_filter",
+                  {{"--size 16 16 --reference no_such_ref.pfm", "no_such_ref.pfm"},
+                   {"--size 16 16 --reference " + in,
+                    "--reference bench_cli_filter_ref.pfm: is 4 x 3, the render 16 x 16"}},
+                  1);
+    std::remove(in.c_str());
+}
+
 #ifdef TRAC0R_HAVE_OPENCL
 // Only the command line: every case stops before an OpenCL device is opened.
 TEST_CASE("bench_backends: --help, bad flags named, default scenes missing", "[benchmark_cli]") {
@@ -171,7 +193,7 @@ TEST_CASE("bench_ray_order: sizes too small to time and scenes with no triangles
 TEST_CASE("the benchmark programs: --version, --flag=value, generated --help", "[benchmark_cli]") {
     for (const char* program :
          {"tonemap", "bench_accel_crossover", "bench_complexity", "bench_convergence",
-          "bench_ray_order", "bench_scene_load", "bench_temporal"}) {
+          "bench_ray_order", "bench_scene_load", "bench_temporal", "bench_filter"}) {
         CAPTURE(program);
         const ViewerRun r = run_benchmark(program, "--version");
         CAPTURE(r.err);

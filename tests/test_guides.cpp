@@ -142,3 +142,34 @@ TEST_CASE("a pixel's variance layer is the variance of its mean", "[guides]") {
     CHECK(std::isinf(v[1]));
     CHECK(std::isinf(v[2]));
 }
+
+TEST_CASE("along a lamp's edge, the share of each pixel that sees the lamp", "[guides]") {
+    Scene scene =
+        facing_planes(diffuse("white", glm::vec3(0.5f)), diffuse("green", glm::vec3(1.0f)));
+    Material lamp;
+    lamp.name = "lamp";
+    lamp.type = MaterialType::emissive;
+    lamp.color = glm::vec3(1.0f, 0.5f, 0.25f);
+    lamp.emittance = 8.0f;
+    scene.materials.push_back(lamp);
+    // A lamp facing the camera at z = 1.9 over the left of the view, its
+    // right edge a quarter into pixel column 8 (column 8 starts at x = 0;
+    // a pixel is 2 z tan(30 deg) 16/12 / 16 wide at depth z).
+    const float pixel = 2.0f * 1.9f * std::tan(glm::radians(30.0f)) * (16.0f / 12.0f) / 16.0f;
+    scene.shapes.push_back(make_plane(glm::vec3(0.25f * pixel - 50.0f, 0.0f, 1.9f),
+                                      glm::vec3(-half_pi, 0.0f, 0.0f), glm::vec2(100.0f), 2));
+    const GuideImages g = guides_of(scene);
+    const glm::vec3 radiance = lamp.color * lamp.emittance;
+    for (int y = 0; y < 12; ++y) {
+        CAPTURE(y);
+        for (int x = 0; x < 16; ++x) {
+            CAPTURE(x);
+            const glm::vec4 e = g.emission[static_cast<std::size_t>(y) * 16 + x];
+            // All lamp left of the edge, a quarter on it, none right of it.
+            const float share = x < 8 ? 1.0f : (x == 8 ? 0.25f : 0.0f);
+            CHECK(std::fabs(e.w - share) < 0.01f);
+            CHECK(near(glm::vec3(e), radiance * e.w, 1e-4f));
+            CHECK((g.emitter[static_cast<std::size_t>(y) * 16 + x] != 0) == (x < 8));
+        }
+    }
+}

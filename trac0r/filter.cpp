@@ -2,41 +2,244 @@
 
 #include "trac0r/kernel/filter.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 #include <utility>
 
 namespace trac0r {
 
+namespace {
+
+// The CPU's passes keep their per-pixel values in planes, one float a
+// pixel each, which the compiler loads for neighbouring pixels at once: the
+// guides as the passes read them (kernel::FilterTap), and a pass's image
+// and its noise (kernel::FilterPixel, kernel::FilterNoise).
+struct TapPlanes {
+    void resize(std::size_t n) {
+        for (std::vector<float>* v : {&nx, &ny, &nz, &nw, &depth, &by_depth, &share, &kept}) {
+            v->resize(n);
+        }
+    }
+    std::vector<float> nx, ny, nz, nw, depth, by_depth, share, kept;
+};
+
+struct PixelPlanes {
+    void resize(std::size_t n) {
+        for (std::vector<float>* v : {&r, &g, &b, &variance, &l, &by_noise}) {
+            v->resize(n);
+        }
+    }
+    std::vector<float> r, g, b, variance, l, by_noise;
+    kernel::FilterPixel pixel(std::size_t i) const {
+        kernel::FilterPixel p;
+        p.value = glm::vec4(r[i], g[i], b[i], variance[i]);
+        return p;
+    }
+};
+
+// Where a pixel's taps are: per row of taps (above, on, below) the offset
+// of that row from the pixel's and whether it is inside the image (1) or
+// not (0, weight zero); likewise per column.
+struct TapPlaces {
+    std::ptrdiff_t row[3];
+    float row_inside[3];
+    std::ptrdiff_t column[3];
+    float column_inside[3];
+};
+
+// Pixel i of a pass, as kernel::atrous_pixel makes it, written as scalar
+// code with no branches, so that the compiler vectorizes a loop of it over
+// a row: the same tap_weight, atrous_keeps and sums in the same order, so
+// the same result. Taps outside the image read a pixel inside and weigh
+// zero.
+inline void atrous_at(const TapPlanes& t, const PixelPlanes& in, std::ptrdiff_t i,
+                      const TapPlaces& at, float by_depth, PixelPlanes* out) {
+    const float* const r = in.r.data();
+    const float* const g = in.g.data();
+    const float* const b = in.b.data();
+    const float* const variance = in.variance.data();
+    const float* const l = in.l.data();
+    const float* const by_noise = in.by_noise.data();
+    const float cnx = t.nx[i], cny = t.ny[i], cnz = t.nz[i], cnw = t.nw[i];
+    const float cdepth = t.depth[i];
+    const float cl = l[i];
+    const float cby_noise = by_noise[i];
+    float sr = 0.0f, sg = 0.0f, sb = 0.0f, sv = 0.0f, total = 0.0f;
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) {
+#pragma GCC unroll 3
+        for (int j = 0; j < 3; ++j) {
+            const std::ptrdiff_t q = i + at.row[k] + at.column[j];
+            const float w =
+                at.row_inside[k] * at.column_inside[j] *
+                kernel::tap_weight(cnx, cny, cnz, cnw, cdepth, cl, cby_noise, by_depth, t.nx[q],
+                                   t.ny[q], t.nz[q], t.nw[q], t.depth[q], t.share[q], l[q],
+                                   by_noise[q], r[q] + g[q] + b[q] + variance[q],
+                                   kernel::wavelet_weight(j - 1, k - 1),
+                                   kernel::tap_reach(j - 1, k - 1));
+            const bool use = w > 0.0f;
+            sr += use ? r[q] * w : 0.0f;
+            sg += use ? g[q] * w : 0.0f;
+            sb += use ? b[q] * w : 0.0f;
+            sv += use ? w * w * variance[q] : 0.0f;
+            total += use ? w : 0.0f;
+        }
+    }
+    const bool keep = kernel::atrous_keeps(t.kept[i], total);
+    const float nr = keep ? r[i] : sr / total;
+    const float ng = keep ? g[i] : sg / total;
+    const float nb = keep ? b[i] : sb / total;
+    const float nv = keep ? variance[i] : sv / (total * total);
+    out->r[i] = nr;
+    out->g[i] = ng;
+    out->b[i] = nb;
+    out->variance[i] = nv;
+    out->l[i] = kernel::luminance_rgb(nr, ng, nb);
+    out->by_noise[i] = kernel::by_noise_of(nv);
+}
+
+// x86-64: the row's loop compiled for AVX-512, AVX2 and the baseline,
+// chosen at run time (GCC's and Clang's function multiversioning); other
+// targets compile it once.
+#if defined(__x86_64__)
+#define T0_ROW_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
+#else
+#define T0_ROW_CLONES
+#endif
+
+// Row y of pass `pass`: its inner pixels (all their taps in the image's
+// columns) in a vectorized loop, AVX2 where the CPU has it, the few at its
+// ends one by one.
+T0_ROW_CLONES void atrous_row(const TapPlanes& t, const PixelPlanes& in, int width, int height,
+                              int y, int pass, PixelPlanes* out) {
+    const int step = 1 << pass;
+    TapPlaces at;
+    for (int k = 0; k < 3; ++k) {
+        const int qy = y + (k - 1) * step;
+        at.row_inside[k] = qy >= 0 && qy < height ? 1.0f : 0.0f;
+        at.row[k] = static_cast<std::ptrdiff_t>(qy >= 0 && qy < height ? qy - y : 0) * width;
+        at.column[k] = (k - 1) * step;
+        at.column_inside[k] = 1.0f;
+    }
+    const std::ptrdiff_t start = static_cast<std::ptrdiff_t>(y) * width;
+    const int x0 = std::min(step, width);
+    const int x1 = std::max(x0, width - step);
+    const float* const by_depth = t.by_depth.data();
+    const float steps = static_cast<float>(step);
+#pragma omp simd
+    for (int x = x0; x < x1; ++x) {
+        atrous_at(t, in, start + x, at, by_depth[start + x] / steps, out);
+    }
+    for (int x = 0; x < width; x = x + 1 == x0 ? x1 : x + 1) {
+        TapPlaces edge = at;
+        for (int j = 0; j < 3; ++j) {
+            const int qx = x + (j - 1) * step;
+            edge.column_inside[j] = qx >= 0 && qx < width ? 1.0f : 0.0f;
+            edge.column[j] = qx >= 0 && qx < width ? (j - 1) * step : 0;
+        }
+        atrous_at(t, in, start + x, edge, by_depth[start + x] / steps, out);
+    }
+}
+
+}  // namespace
+
 std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides) {
+    const int width = guides.width;
+    const int height = guides.height;
     std::vector<kernel::FilterGuide> out(guides.albedo.size());
     for (std::size_t i = 0; i < out.size(); ++i) {
-        const float depth = guides.depth[i];
-        out[i].albedo = glm::vec4(guides.albedo[i], std::isfinite(depth) ? depth : T0_NO_HIT);
-        out[i].normal = glm::vec4(guides.normal[i], guides.emitter[i] != 0 ? 1.0f : 0.0f);
+        const int x = static_cast<int>(i % static_cast<std::size_t>(width));
+        const int y = static_cast<int>(i / static_cast<std::size_t>(width));
+        const glm::vec4 e = guides.emission.empty() ? glm::vec4(0.0f) : guides.emission[i];
+        // The surface the pixel shows: its centre's, or where the centre
+        // is on a lamp whose edge runs through the pixel, the surface
+        // beside the lamp, which goes on under the edge: a 4-neighbour's
+        // that is no lamp.
+        std::size_t s = i;
+        if (guides.emitter[i] != 0 && e.w < 1.0f) {
+            const int nx[4] = {x - 1, x + 1, x, x};
+            const int ny[4] = {y, y, y - 1, y + 1};
+            for (int k = 0; k < 4 && s == i; ++k) {
+                const std::size_t q = static_cast<std::size_t>(ny[k]) * width + nx[k];
+                if (nx[k] >= 0 && nx[k] < width && ny[k] >= 0 && ny[k] < height &&
+                    guides.emitter[q] == 0 && std::isfinite(guides.depth[q])) {
+                    s = q;
+                }
+            }
+        }
+        // A pixel (almost) all lamp is kept as it is; where an edge runs
+        // through it, the lamps' part is set apart from the surface's.
+        const bool kept = guides.emitter[s] != 0 || e.w > 0.95f;
+        const float depth = guides.depth[s];
+        out[i].albedo = glm::vec4(guides.albedo[s], std::isfinite(depth) ? depth : T0_NO_HIT);
+        out[i].normal = glm::vec4(guides.normal[s], kept ? 1.0f : 0.0f);
+        out[i].emission = kept ? glm::vec4(0.0f) : e;
     }
     return out;
 }
 
+struct FilterWorkspace::Buffers {
+    TapPlanes taps;
+    PixelPlanes a;
+    PixelPlanes b;
+};
+
+FilterWorkspace::FilterWorkspace() : buffers_(new Buffers()) {}
+FilterWorkspace::~FilterWorkspace() = default;
+
 Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height,
                    const std::vector<kernel::FilterGuide>& guides, int passes) {
+    FilterWorkspace workspace;
+    return filter_image(accumulator, width, height, guides, passes, workspace);
+}
+
+Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height,
+                   const std::vector<kernel::FilterGuide>& guides, int passes,
+                   FilterWorkspace& workspace) {
     const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     if (accumulator.size() != pixels || guides.size() != pixels) {
         throw std::invalid_argument("filter_image: the accumulator and the guides must have " +
                                     std::to_string(pixels) + " pixels");
     }
-    std::vector<kernel::FilterPixel> a(pixels);
-    for (std::size_t i = 0; i < pixels; ++i) {
-        a[i] = kernel::filter_input(accumulator[i], guides[i]);
-    }
-    std::vector<kernel::FilterPixel> b(pixels);
-    for (int pass = 0; pass < passes; ++pass) {
+    FilterWorkspace::Buffers& buffers = workspace.buffers();
+    PixelPlanes& a = buffers.a;
+    PixelPlanes& b = buffers.b;
+    TapPlanes& taps = buffers.taps;
+    a.resize(pixels);
+    b.resize(pixels);
+    taps.resize(pixels);
 #pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < pixels; ++i) {
+        const kernel::FilterPixel p = kernel::filter_input(accumulator[i], guides[i]);
+        const kernel::FilterNoise n = kernel::filter_noise(p);
+        a.r[i] = p.value.x;
+        a.g[i] = p.value.y;
+        a.b[i] = p.value.z;
+        a.variance[i] = p.value.w;
+        a.l[i] = n.value.x;
+        a.by_noise[i] = n.value.y;
+    }
+#pragma omp parallel for schedule(dynamic, 16)
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const kernel::FilterTap t = kernel::filter_tap(guides.data(), width, height, x, y);
+            const std::size_t i = static_cast<std::size_t>(y) * width + x;
+            taps.nx[i] = t.normal.x;
+            taps.ny[i] = t.normal.y;
+            taps.nz[i] = t.normal.z;
+            taps.nw[i] = t.normal.w;
+            taps.depth[i] = t.params.x;
+            taps.by_depth[i] = t.params.y;
+            taps.share[i] = t.params.z;
+            taps.kept[i] = t.params.w;
+        }
+    }
+    for (int pass = 0; pass < passes; ++pass) {
+#pragma omp parallel for schedule(dynamic, 16)
         for (int y = 0; y < height; ++y) {
-            for (int x = 0; x < width; ++x) {
-                b[static_cast<std::size_t>(y) * width + x] =
-                    kernel::atrous_pixel(a.data(), guides.data(), width, height, x, y, pass);
-            }
+            atrous_row(taps, a, width, height, y, pass, &b);
         }
         std::swap(a, b);
     }
@@ -44,8 +247,9 @@ Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width
     out.width = width;
     out.height = height;
     out.pixels.resize(pixels);
+#pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < pixels; ++i) {
-        out.pixels[i] = kernel::filter_output(a[i], guides[i]);
+        out.pixels[i] = kernel::filter_output(a.pixel(i), guides[i]);
     }
     return out;
 }

@@ -8,6 +8,7 @@
 #include "trac0r/image_io.h"
 #include "trac0r/kernel/filter.h"
 
+#include <memory>
 #include <vector>
 
 namespace trac0r {
@@ -16,9 +17,29 @@ namespace trac0r {
 // surface's albedo, depth and normal (render_guides), as FilterGuide.
 std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides);
 
+// The CPU filter's working buffers (some 80 bytes a pixel), kept between
+// the filter_image calls that are given it: a caller that filters every
+// frame (a window) then allocates, and the system zeroes, no memory a call.
+class FilterWorkspace {
+  public:
+    FilterWorkspace();
+    ~FilterWorkspace();
+    FilterWorkspace(const FilterWorkspace&) = delete;
+    FilterWorkspace& operator=(const FilterWorkspace&) = delete;
+    struct Buffers;
+    Buffers& buffers() { return *buffers_; }
+
+  private:
+    std::unique_ptr<Buffers> buffers_;
+};
+
 // The accumulated image filtered: `passes` a-trous passes (0: the image
-// as it is; default T0_FILTER_PASSES) with the guides. Throws
-// std::invalid_argument for guides of another size than the accumulator.
+// as it is; default T0_FILTER_PASSES) with the guides, in the buffers of
+// `workspace` (the second form: new ones). Throws std::invalid_argument
+// for guides of another size than the accumulator.
+Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height,
+                   const std::vector<kernel::FilterGuide>& guides, int passes,
+                   FilterWorkspace& workspace);
 Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height,
                    const std::vector<kernel::FilterGuide>& guides, int passes);
 

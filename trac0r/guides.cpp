@@ -2,6 +2,7 @@
 
 #include "trac0r/kernel/guides.h"
 
+#include <algorithm>
 #include <limits>
 #include <utility>
 
@@ -16,6 +17,7 @@ GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord&
     g.normal.resize(pixels);
     g.depth.resize(pixels);
     g.emitter.resize(pixels);
+    g.emission.resize(pixels);
     const kernel::SceneView view = packed.view();
     const kernel::CameraRecord scaled = scaled_camera(camera, packed.scale);
     const int height = g.height;
@@ -23,14 +25,42 @@ GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord&
 #pragma omp parallel for schedule(dynamic, 4)
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
-            const kernel::GuidePixel p = kernel::pixel_guides(
-                &view, scaled, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y));
+            glm::vec3 emitted;
+            const kernel::GuidePixel p =
+                kernel::guide_ray(&view, scaled, static_cast<std::uint32_t>(x),
+                                  static_cast<std::uint32_t>(y), 0.5f, 0.5f, &emitted);
             const std::size_t i = static_cast<std::size_t>(y) * width + x;
+            g.emission[i] = glm::vec4(emitted, p.normal.w > 0.0f ? 1.0f : 0.0f);
             g.albedo[i] = glm::vec3(p.albedo);
             g.normal[i] = glm::vec3(p.normal);
             g.emitter[i] = p.normal.w > 0.0f ? 1 : 0;
             g.depth[i] = p.albedo.w >= T0_NO_HIT ? std::numeric_limits<float>::infinity()
                                                  : p.albedo.w / packed.scale;
+        }
+    }
+    // Along a lamp's edge, the share of each pixel that sees it.
+    std::vector<unsigned char> edge(pixels, 0);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            int emitters = 0;
+            int others = 0;
+            for (int qy = std::max(y - 1, 0); qy <= std::min(y + 1, height - 1); ++qy) {
+                for (int qx = std::max(x - 1, 0); qx <= std::min(x + 1, width - 1); ++qx) {
+                    (g.emitter[static_cast<std::size_t>(qy) * width + qx] ? emitters : others)++;
+                }
+            }
+            edge[static_cast<std::size_t>(y) * width + x] = emitters > 0 && others > 0;
+        }
+    }
+#pragma omp parallel for schedule(dynamic, 4)
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * width + x;
+            if (edge[i]) {
+                g.emission[i] =
+                    kernel::pixel_emission(&view, scaled, static_cast<std::uint32_t>(x),
+                                           static_cast<std::uint32_t>(y), T0_GUIDE_EMISSION_RAYS);
+            }
         }
     }
     return g;

@@ -23,6 +23,13 @@ struct GuideImages {
     std::vector<glm::vec3> normal;       // unit, in world space, facing the camera; zero: nothing
     std::vector<float> depth;            // along the camera's forward axis; +inf: nothing
     std::vector<unsigned char> emitter;  // 1 where the surface is a pure emitter (a lamp)
+    // xyz: the mean radiance over the pixel of the pure emitters its rays
+    // meet first, w: the share of the pixel that meets one (a box filter,
+    // as the render's samples). Where the centre rays of a pixel and its
+    // eight neighbours do not all agree on emitter or not (a lamp's edge
+    // runs through), from T0_GUIDE_EMISSION_RAYS rays over the pixel
+    // (kernel::pixel_emission); elsewhere from the centre ray.
+    std::vector<glm::vec4> emission;
 };
 
 // One ray through each pixel's centre of `camera` (as the Renderer holds it:

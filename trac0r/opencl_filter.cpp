@@ -61,6 +61,8 @@ Image opencl_filter_image(int device_index, const std::vector<kernel::AccumPixel
     // The filter reads no scene: any feature mask's program has it.
     cl_program program = embedded_opencl_program(cl, "", opencl_build_options(0u));
     OpenClKernel begin = kernel_of(program, "filter_begin");
+    OpenClKernel taps_kernel = kernel_of(program, "filter_taps");
+    OpenClKernel noise_kernel = kernel_of(program, "filter_noise_pass");
     OpenClKernel pass_kernel = kernel_of(program, "filter_pass");
     OpenClKernel end = kernel_of(program, "filter_end");
     OpenClMem accum = buffer(cl.context, CL_MEM_READ_ONLY, sizeof(kernel::AccumPixel) * pixels,
@@ -71,13 +73,21 @@ Image opencl_filter_image(int device_index, const std::vector<kernel::AccumPixel
         buffer(cl.context, CL_MEM_READ_WRITE, sizeof(kernel::FilterPixel) * pixels, nullptr);
     OpenClMem b =
         buffer(cl.context, CL_MEM_READ_WRITE, sizeof(kernel::FilterPixel) * pixels, nullptr);
+    OpenClMem taps =
+        buffer(cl.context, CL_MEM_READ_WRITE, sizeof(kernel::FilterTap) * pixels, nullptr);
+    OpenClMem noise =
+        buffer(cl.context, CL_MEM_READ_WRITE, sizeof(kernel::FilterNoise) * pixels, nullptr);
     OpenClMem colour = buffer(cl.context, CL_MEM_WRITE_ONLY, sizeof(cl_float4) * pixels, nullptr);
     const cl_uint count = static_cast<cl_uint>(pixels);
     set_args(begin.get(), 0, accum.get(), guide.get(), a.get(), count);
     run(cl, begin.get(), pixels);
+    set_args(taps_kernel.get(), 0, guide.get(), taps.get(), cl_int(width), cl_int(height));
+    run(cl, taps_kernel.get(), pixels);
     for (cl_int pass = 0; pass < passes; ++pass) {
-        set_args(pass_kernel.get(), 0, a.get(), guide.get(), b.get(), cl_int(width), cl_int(height),
-                 pass);
+        set_args(noise_kernel.get(), 0, a.get(), noise.get(), count);
+        run(cl, noise_kernel.get(), pixels);
+        set_args(pass_kernel.get(), 0, a.get(), taps.get(), noise.get(), b.get(), cl_int(width),
+                 cl_int(height), pass);
         run(cl, pass_kernel.get(), pixels);
         std::swap(a, b);
     }

@@ -8,7 +8,13 @@
 
 T0_NAMESPACE_BEGIN
 
-T0_INLINE float luminance(float3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+// Rec. 709 luminance; luminance_rgb takes the channels one by one (the
+// filter's vectorized CPU loop).
+T0_INLINE float luminance_rgb(float r, float g, float b) {
+    return 0.2126f * r + 0.7152f * g + 0.0722f * b;
+}
+
+T0_INLINE float luminance(float3 c) { return luminance_rgb(c.x, c.y, c.z); }
 
 T0_INLINE int is_finite3(float3 c) {
     return is_finite_f(c.x) && is_finite_f(c.y) && is_finite_f(c.z);

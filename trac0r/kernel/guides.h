@@ -23,11 +23,16 @@ typedef struct T0_ALIGN16 GuidePixel {
                     // w: 1 where the surface is a pure emitter
 } GuidePixel;
 
-T0_INLINE GuidePixel pixel_guides(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y) {
+// The guides of the ray through (x + jx, y + jy); *emitted: the radiance it
+// meets where it ends on a pure emitter (times the tint of the glass on the
+// way), else zero.
+T0_INLINE GuidePixel guide_ray(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y,
+                               float jx, float jy, float3* emitted) {
     GuidePixel g;
     g.albedo = make_float4(0.0f, 0.0f, 0.0f, T0_NO_HIT);
     g.normal = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
-    Ray ray = camera_ray(camera, (float)x, (float)y, 0.5f, 0.5f);
+    *emitted = float3_splat(0.0f);
+    Ray ray = camera_ray(camera, (float)x, (float)y, jx, jy);
     float3 tint = float3_splat(1.0f);
     for (int bounce = 0; bounce <= T0_GUIDE_MAX_BOUNCES; ++bounce) {
         const Hit hit = intersect_scene(scene, &ray);
@@ -59,6 +64,9 @@ T0_INLINE GuidePixel pixel_guides(const SceneView* scene, CameraRecord camera, t
             g.albedo = make_float4(a.x, a.y, a.z, g.albedo.w);
             g.normal = make_float4(facing_normal.x, facing_normal.y, facing_normal.z,
                                    type == T0_MATERIAL_EMISSIVE ? 1.0f : 0.0f);
+            if (type == T0_MATERIAL_EMISSIVE) {
+                *emitted = tint * material_emission(m);
+            }
             return g;
         }
         // On through the mirror or the glass: glass refracts (its choice
@@ -79,6 +87,42 @@ T0_INLINE GuidePixel pixel_guides(const SceneView* scene, CameraRecord camera, t
             make_ray(offset_ray_origin(position, side, hit_magnitude(tri, position)), s.direction);
     }
     return g;
+}
+
+// The guides of the ray through pixel (x, y)'s centre.
+T0_INLINE GuidePixel pixel_guides(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y) {
+    float3 emitted;
+    return guide_ray(scene, camera, x, y, 0.5f, 0.5f, &emitted);
+}
+
+// Rays per pixel of pixel_emission: enough that a lamp's edge across a
+// pixel is placed to about 1 % of it (the raw render's box filter sees the
+// exact share).
+#define T0_GUIDE_EMISSION_RAYS 256
+
+// Over pixel (x, y), as its samples see it (a box filter): xyz the mean
+// radiance of the pure emitters that its rays meet first (through mirrors
+// and glass), w the share of the pixel that meets one. From `rays` rays
+// spread over the pixel by the R2 sequence (Roberts 2018), whose points
+// place an edge of any slope evenly.
+T0_INLINE float4 pixel_emission(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y,
+                                int rays) {
+    float3 sum = float3_splat(0.0f);
+    int hits = 0;
+    for (int i = 0; i < rays; ++i) {
+        const float fi = (float)i;
+        const float jx = 0.5f + fi * 0.7548776662f;
+        const float jy = 0.5f + fi * 0.5698402910f;
+        float3 emitted;
+        const GuidePixel g =
+            guide_ray(scene, camera, x, y, jx - floor(jx), jy - floor(jy), &emitted);
+        if (g.normal.w > 0.0f) {
+            sum += emitted;
+            ++hits;
+        }
+    }
+    const float3 mean = sum / (float)rays;
+    return make_float4(mean.x, mean.y, mean.z, (float)hits / (float)rays);
 }
 
 T0_NAMESPACE_END

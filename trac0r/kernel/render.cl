@@ -135,7 +135,8 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
 }
 
 // The edge-preserving filter (filter.h), a pixel a work-item: the first
-// pass's input from the accumulator, one a-trous pass, and the colour.
+// pass's input from the accumulator, the guides as the passes read them,
+// one a-trous pass, and the colour.
 __kernel void filter_begin(__global const AccumPixel* accum, __global const FilterGuide* guides,
                            __global FilterPixel* out, uint pixels) {
     const uint i = (uint)get_global_id(0);
@@ -144,11 +145,28 @@ __kernel void filter_begin(__global const AccumPixel* accum, __global const Filt
     }
 }
 
-__kernel void filter_pass(__global const FilterPixel* in, __global const FilterGuide* guides,
-                          __global FilterPixel* out, int width, int height, int pass) {
+__kernel void filter_taps(__global const FilterGuide* guides, __global FilterTap* taps, int width,
+                          int height) {
     const int i = (int)get_global_id(0);
     if (i < width * height) {
-        out[i] = atrous_pixel(in, guides, width, height, i % width, i / width, pass);
+        taps[i] = filter_tap(guides, width, height, i % width, i / width);
+    }
+}
+
+__kernel void filter_noise_pass(__global const FilterPixel* in, __global FilterNoise* noise,
+                                uint pixels) {
+    const uint i = (uint)get_global_id(0);
+    if (i < pixels) {
+        noise[i] = filter_noise(in[i]);
+    }
+}
+
+__kernel void filter_pass(__global const FilterPixel* in, __global const FilterTap* taps,
+                          __global const FilterNoise* noise, __global FilterPixel* out, int width,
+                          int height, int pass) {
+    const int i = (int)get_global_id(0);
+    if (i < width * height) {
+        out[i] = atrous_pixel(in, taps, noise, width, height, i % width, i / width, pass);
     }
 }
 
