@@ -13,6 +13,7 @@
 #define TRAC0R_KERNEL_TEMPORAL_H
 
 #include "compat.h"
+#include "filter.h"
 #include "ray.h"
 #include "trace.h"
 #include "types.h"
@@ -44,16 +45,9 @@ T0_STATIC_ASSERT_SIZE(TemporalGuide, 16);
 #endif
 
 // How much the depth of history pixel (x, y) changes to a neighbour: on
-// each axis the smaller of the one-sided changes to neighbours that hit
-// something (at a silhouette the flat side counts, not the jump), the
-// larger over the two axes.
-T0_INLINE float temporal_axis_slope(float z, float before, float after) {
-    const float a = before < T0_NO_HIT ? fabs(z - before) : T0_NO_HIT;
-    const float b = after < T0_NO_HIT ? fabs(after - z) : T0_NO_HIT;
-    const float slope = fmin(a, b);
-    return slope < T0_NO_HIT ? slope : 0.0f;
-}
-
+// each axis the smaller of the one-sided changes (the filter's axis_slope:
+// at a silhouette the flat side counts, not the jump), the larger over the
+// two axes.
 T0_INLINE float temporal_depth_slope(T0_GLOBAL const TemporalGuide* guides, int width, int height,
                                      int x, int y) {
     const int i = y * width + x;
@@ -62,7 +56,7 @@ T0_INLINE float temporal_depth_slope(T0_GLOBAL const TemporalGuide* guides, int 
     const float right = x + 1 < width ? guides[i + 1].normal_depth.w : T0_NO_HIT;
     const float up = y > 0 ? guides[i - width].normal_depth.w : T0_NO_HIT;
     const float down = y + 1 < height ? guides[i + width].normal_depth.w : T0_NO_HIT;
-    return fmax(temporal_axis_slope(z, left, right), temporal_axis_slope(z, up, down));
+    return fmax(axis_slope(z, left, right), axis_slope(z, up, down));
 }
 
 // Whether history pixel (x, y) saw the surface that pixel `here` sees at
