@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -75,6 +76,11 @@ void prepare_child() {
     sigset_t none;
     sigemptyset(&none);
     sigprocmask(SIG_SETMASK, &none, nullptr);
+    // A crash leaves no core file the size of trac0r behind.
+    struct rlimit no_core;
+    no_core.rlim_cur = 0;
+    no_core.rlim_max = 0;
+    setrlimit(RLIMIT_CORE, &no_core);
 #ifdef __linux__
     prctl(PR_SET_PDEATHSIG, SIGKILL);
 #endif
@@ -112,8 +118,8 @@ void prepare_child() {
     for (int i = 0; i < 8; ++i) {
         header[1 + i] = static_cast<char>((size >> (8 * i)) & 0xffu);
     }
-    const bool sent = write_all(fd, header, sizeof header) &&
-                      write_all(fd, payload.data(), payload.size());
+    const bool sent =
+        write_all(fd, header, sizeof header) && write_all(fd, payload.data(), payload.size());
     _exit(sent ? 0 : 1);
 }
 
@@ -121,26 +127,40 @@ void prepare_child() {
 
 std::string signal_name(int signal) {
     switch (signal) {
-    case SIGSEGV: return "SIGSEGV";
-    case SIGBUS: return "SIGBUS";
-    case SIGILL: return "SIGILL";
-    case SIGFPE: return "SIGFPE";
-    case SIGABRT: return "SIGABRT";
-    case SIGTRAP: return "SIGTRAP";
-    case SIGSYS: return "SIGSYS";
-    case SIGKILL: return "SIGKILL";
-    case SIGTERM: return "SIGTERM";
-    case SIGINT: return "SIGINT";
-    case SIGHUP: return "SIGHUP";
-    case SIGPIPE: return "SIGPIPE";
-    case SIGXCPU: return "SIGXCPU";
-    case SIGXFSZ: return "SIGXFSZ";
-    default: return "signal " + std::to_string(signal);
+    case SIGSEGV:
+        return "SIGSEGV";
+    case SIGBUS:
+        return "SIGBUS";
+    case SIGILL:
+        return "SIGILL";
+    case SIGFPE:
+        return "SIGFPE";
+    case SIGABRT:
+        return "SIGABRT";
+    case SIGTRAP:
+        return "SIGTRAP";
+    case SIGSYS:
+        return "SIGSYS";
+    case SIGKILL:
+        return "SIGKILL";
+    case SIGTERM:
+        return "SIGTERM";
+    case SIGINT:
+        return "SIGINT";
+    case SIGHUP:
+        return "SIGHUP";
+    case SIGPIPE:
+        return "SIGPIPE";
+    case SIGXCPU:
+        return "SIGXCPU";
+    case SIGXFSZ:
+        return "SIGXFSZ";
+    default:
+        return "signal " + std::to_string(signal);
     }
 }
 
-IsolatedOutcome run_isolated(const std::function<std::string()>& work,
-                             double time_limit_seconds) {
+IsolatedOutcome run_isolated(const std::function<std::string()>& work, double time_limit_seconds) {
     IsolatedOutcome out;
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) {
@@ -168,44 +188,53 @@ IsolatedOutcome run_isolated(const std::function<std::string()>& work,
                           std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                               std::chrono::duration<double>(time_limit_seconds));
     std::string data;
-    std::string buffer(1u << 20, '\0');
     bool timed_out = false;
+    bool out_of_memory = false;  // the parent could not hold what the child sent
     std::string read_error;
-    for (;;) {
-        const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                              deadline - std::chrono::steady_clock::now())
-                              .count();
-        if (left <= 0) {
-            timed_out = true;
-            break;
-        }
-        pollfd p;
-        p.fd = fds[0];
-        p.events = POLLIN;
-        p.revents = 0;
-        const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, INT_MAX)));
-        if (ready < 0) {
-            if (errno == EINTR) {
-                continue;
+    // Nothing may throw past here before the child is reaped: a result too
+    // large to hold ends the reading, and the child is killed.
+    try {
+        std::string buffer(1u << 20, '\0');
+        for (;;) {
+            const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                                  deadline - std::chrono::steady_clock::now())
+                                  .count();
+            if (left <= 0) {
+                timed_out = true;
+                break;
             }
-            read_error = std::string("poll: ") + std::strerror(errno);
-            break;
-        }
-        if (ready == 0) {
-            continue;  // the deadline decides
-        }
-        const ssize_t n = ::read(fds[0], &buffer[0], buffer.size());
-        if (n < 0) {
-            if (errno == EINTR || errno == EAGAIN) {
-                continue;
+            pollfd p;
+            p.fd = fds[0];
+            p.events = POLLIN;
+            p.revents = 0;
+            const int ready = ::poll(&p, 1, static_cast<int>(std::min<long long>(left, INT_MAX)));
+            if (ready < 0) {
+                if (errno == EINTR) {
+                    continue;
+                }
+                read_error = std::string("poll: ") + std::strerror(errno);
+                break;
             }
-            read_error = std::string("read: ") + std::strerror(errno);
-            break;
+            if (ready == 0) {
+                continue;  // the deadline decides
+            }
+            const ssize_t n = ::read(fds[0], &buffer[0], buffer.size());
+            if (n < 0) {
+                if (errno == EINTR || errno == EAGAIN) {
+                    continue;
+                }
+                read_error = std::string("read: ") + std::strerror(errno);
+                break;
+            }
+            if (n == 0) {
+                break;  // end of file: the child closed the pipe or died
+            }
+            data.append(buffer.data(), static_cast<std::size_t>(n));
         }
-        if (n == 0) {
-            break;  // end of file: the child closed the pipe or died
-        }
-        data.append(buffer.data(), static_cast<std::size_t>(n));
+    } catch (const std::bad_alloc&) {
+        out_of_memory = true;
+        read_error = "out of memory";
+        data = std::string();
     }
     ::close(fds[0]);
     if (timed_out || !read_error.empty()) {
@@ -218,6 +247,10 @@ IsolatedOutcome run_isolated(const std::function<std::string()>& work,
     } while (reaped < 0 && errno == EINTR);
     if (timed_out) {
         out.kind = IsolatedOutcome::Kind::timed_out;
+        return out;
+    }
+    if (out_of_memory) {
+        out.kind = IsolatedOutcome::Kind::out_of_memory;
         return out;
     }
     if (!read_error.empty()) {

@@ -7,7 +7,9 @@
 // The fork may happen while other threads run (OpenMP's pool, SDL's): the
 // child runs only the work, which must not wait for another thread (a
 // lock one held at the fork stays held in the child), and then _exits
-// without running destructors or atexit handlers. In the child, the
+// without running destructors or atexit handlers. So the work must not
+// use OpenMP either: the child's copy of its thread pool has no threads,
+// and a parallel region would wait for them until the time limit. In the child, the
 // crash signals take their default action (no sanitizer's or fuzzer's
 // handler turns a crash into a report of the whole program; a sanitizer's
 // report in the child does not run the fuzzer's death callback), and the
