@@ -219,6 +219,31 @@ key Escape
     CHECK(moving_sum > 0.7 * single_sum);
 }
 
+TEST_CASE("a pause shows the accumulation itself, without what the moves left", "[window]") {
+    const std::string dir = empty_directory("window_pause_after_move");
+    // --spp 8 pauses within the 64 frames that blend in the moves' history.
+    write_file(dir + "/script.txt", R"(wait_spp 4
+key_down D
+wait 300
+key_up D
+wait_spp 8
+key P
+key Escape
+)");
+    const ViewerRun r = run_viewer_process(
+        cornell + " --width 160 --height 120 --spp 8 --replay script.txt", "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 1);
+    CHECK(shots[0].spp == 8);
+    // The window (PNG) shows exactly the running mean (PFM), tone-mapped.
+    const trac0r::Rgb8Image shown = trac0r::read_png(shots[0].png);
+    const trac0r::Rgb8Image mean = trac0r::tonemap_image(trac0r::read_pfm(shots[0].pfm), 1.0f);
+    CHECK(shown.width == mean.width);
+    CHECK(shown.bytes == mean.bytes);
+}
+
 TEST_CASE("right-drag looks around, the wheel zooms, R restarts, B says what it did", "[window]") {
     const std::string dir = empty_directory("window_look");
     write_file(dir + "/script.txt", R"(wait_spp 3

@@ -397,11 +397,24 @@ void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time
     frame.spp = renderer.frames();
     frame.preview = preview;
     frame.frame_seconds = seconds_since(start);
-    frame.accumulation_seconds = preview ? 0.0 : seconds_since(full_started_);
     if (!preview) {
+        // The clock stops with the accumulation: a paused window shown
+        // again (F, a backend switch that failed) says how long it ran.
+        if (pause_reason_.empty()) {
+            accumulation_seconds_ = seconds_since(full_started_);
+        }
         pause_reason_ = pause_reason_now();  // before noise_estimate, which asks paused()
         frame.paused_by = pause_reason_;
+        if (!pause_reason_.empty() && !carried_.empty()) {
+            // Paused before what the moves left has faded out: the image
+            // it stays on is the accumulation itself.
+            carried_ = trac0r::TemporalFrame();
+            history_is_shown_full_ = true;
+            shown_full_ = frame.accumulation;
+            frame.image = frame.accumulation;
+        }
     }
+    frame.accumulation_seconds = preview ? 0.0 : accumulation_seconds_;
     frame.relative_mse = preview ? std::numeric_limits<double>::infinity() : noise_estimate();
     frame.relative_mse_spp = preview ? 0 : last_estimate_spp_;
     if (!preview && filter_ && full_->frames() > 0) {

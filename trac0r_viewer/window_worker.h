@@ -181,6 +181,7 @@ class RenderWorker {
     double last_estimate_ = 0.0;
     std::uint32_t last_estimate_spp_ = 0;  // 0: none since the last restart
     std::string pause_reason_;             // of the last full frame (pause_reason_now)
+    double accumulation_seconds_ = 0.0;    // how long it ran, until a pause
     Clock::time_point last_estimate_time_;
     double last_estimate_cost_ = 0.0;  // seconds
     bool filter_ = false;
