@@ -78,9 +78,10 @@ class Session {
     // A new window size: once it stays put, the render follows it.
     void follow_window_size(std::uint32_t now);
     void take_from_worker();
-    // What the window shows of shown_: the filtered image where there is one.
+    // What the window shows of shown_: the filtered image where there is
+    // one and the filter is on (F off shows the unfiltered one at once).
     const trac0r::Image& shown_image() const {
-        return shown_.filtered.pixels.empty() ? shown_.image : shown_.filtered;
+        return filter_ && !shown_.filtered.pixels.empty() ? shown_.filtered : shown_.image;
     }
     void set_filter(bool on);
     long shown_spp() const;
@@ -169,6 +170,9 @@ Session::Session(const Options& options, Window& window, const Font& font,
 
 void Session::set_filter(bool on) {
     filter_ = on;
+    if (have_frame_) {
+        window_.set_image(trac0r::tonemap_image(shown_image(), exposure_));
+    }
     requested_generation_ = worker_->set_filter(on);
     say(on ? "filter on: edge-preserving, for display only (the accumulation is untouched)"
            : "filter off",
@@ -393,7 +397,11 @@ void Session::follow_window_size(std::uint32_t now) {
     // or two: a window squeezed to nothing still renders something).
     const int w = std::max(16, width);
     const int h = std::max(16, height);
-    if (w == window_.render_width() && h == window_.render_height()) {
+    // Against the size last asked for: a window dragged back to its
+    // render's size while another size is still on its way must ask again.
+    const bool waiting = resize_generation_ != 0;
+    if (w == (waiting ? resize_width_ : window_.render_width()) &&
+        h == (waiting ? resize_height_ : window_.render_height())) {
         return;
     }
     resize_width_ = w;
@@ -474,7 +482,7 @@ OverlayFigures Session::figures() const {
             std::min(shown_.image.width - 1, static_cast<int>(x * shown_.image.width / f.width));
         const int iy =
             std::min(shown_.image.height - 1, static_cast<int>(y * shown_.image.height / f.height));
-        f.mouse_radiance = shown_.image.at(ix, iy);
+        f.mouse_radiance = shown_image().at(ix, iy);
     }
     return f;
 }
