@@ -85,8 +85,9 @@ T0_INLINE int temporal_tap_matches(TemporalGuide here, T0_GLOBAL const TemporalG
 // the previous frame (`previous`, its pixels and guides) bilinearly at the
 // place where this pixel's first hit was, over the taps that saw the same
 // surface. `offset` is camera.position - previous.position (taken by the
-// caller once, in double where positions are large). w is 0 where there is
-// no history: a disocclusion, a point outside or behind the previous view.
+// caller once: every point is then relative to the previous camera). w is
+// 0 where there is no history: a disocclusion, a point outside or behind
+// the previous view.
 T0_INLINE float4 reproject_history(CameraRecord camera, CameraRecord previous, float3 offset,
                                    T0_GLOBAL const TemporalPixel* history,
                                    T0_GLOBAL const TemporalGuide* history_guides,
@@ -136,7 +137,9 @@ T0_INLINE float4 reproject_history(CameraRecord camera, CameraRecord previous, f
             }
             const int q = ty * (int)previous.size.x + tx;
             const TemporalPixel h = history[q];
-            if (!(h.value.w > 0.0f) ||
+            // A tap that is not finite is left out: it would spread to its
+            // neighbours every frame.
+            if (!(h.value.w > 0.0f) || !is_finite_f(h.value.x + h.value.y + h.value.z) ||
                 !temporal_tap_matches(here, history_guides, (int)previous.size.x,
                                       (int)previous.size.y, tx, ty, depth)) {
                 continue;
