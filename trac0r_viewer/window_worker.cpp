@@ -379,7 +379,7 @@ trac0r::Image RenderWorker::filtered_image() {
             guides_ = trac0r::filter_guides(guides_of(full_->camera_record()));
         }
         last_filtered_ = trac0r::filter_image(full_->accumulator(), full_->width(), full_->height(),
-                                              guides_, T0_FILTER_PASSES);
+                                              guides_, T0_FILTER_PASSES, filter_workspace_);
         last_filtered_spp_ = full_->frames();
         last_filtered_time_ = Clock::now();
         last_filter_cost_ = seconds_since(start);

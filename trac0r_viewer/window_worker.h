@@ -189,7 +189,8 @@ class RenderWorker {
     trac0r::Image last_filtered_;
     std::uint32_t last_filtered_spp_ = 0;  // 0: none since the last restart
     Clock::time_point last_filtered_time_;
-    double last_filter_cost_ = 0.0;  // seconds
+    double last_filter_cost_ = 0.0;             // seconds
+    trac0r::FilterWorkspace filter_workspace_;  // its buffers, kept between refreshes
     // The guides of one view (render_guides), for the filter and temporal
     // reuse: made again only for another view, size or backend.
     trac0r::GuideImages guide_images_;
