@@ -340,7 +340,8 @@ std::string write_image_file(const Options& o, const std::string& name, const Im
     if (o.images_dir.empty()) {
         return "";
     }
-    const std::string path = o.images_dir + "/" + scene_stem(o) + "-" + name + ".pfm";
+    const std::string path = o.images_dir + "/" + scene_stem(o) + "-" + std::to_string(o.width) +
+                             "x" + std::to_string(o.height) + "-" + name + ".pfm";
     write_pfm(path, image);
     return path;
 }

@@ -400,7 +400,7 @@ TEST_CASE("bench_frame_budget: budgets that do not fit say so, and its mistakes 
     for (const char* name : {"reference", "raw-2spp", "filtered-2spp"}) {
         CAPTURE(name);
         const trac0r::Image image =
-            trac0r::read_pfm(std::string("bench_cli_fb_images/builtin-") + name + ".pfm");
+            trac0r::read_pfm(std::string("bench_cli_fb_images/builtin-32x24-") + name + ".pfm");
         CHECK(image.width == 32);
         CHECK(image.height == 24);
     }
