@@ -9,7 +9,14 @@ and --csv, from the directory this script runs in, so that the images'
 paths resolve), adds SSIM against the reference, and writes:
 
 - OUT.csv: every row of the inputs with an `ssim` column, without the
-  images' paths;
+  images' paths, and `detail_rmse` and `flat_rmse`: the RMSE of the
+  sRGB values a screen shows (as for SSIM) on the tenth of the pixels where
+  the reference changes most steeply (its sRGB luminance, smoothed by a
+  Gaussian of sigma 1 against its own noise, through a Sobel filter:
+  edges, shadow boundaries, highlights), and on the rest: what a filter's
+  blur costs shows in the first; `white_share`: the share of the squared
+  error behind the RMSE that lies in pixels a screen shows white (the
+  reference above 1 in a channel: lamps and their rims);
 - OUT.png: one column of panels per scene, one row per metric (RMSE,
   relative MSE, 1 - SSIM), the error against the frame budget, one line per
   mode (raw, filtered, temporal); a budget a mode does not fit is left out.
@@ -42,6 +49,7 @@ import matplotlib.ticker  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from skimage.filters import gaussian, sobel  # noqa: E402
 from skimage.metrics import structural_similarity  # noqa: E402
 
 MODES = [("raw", "C0", "o"), ("filtered", "C1", "s"), ("temporal", "C2", "^")]
@@ -58,6 +66,31 @@ def ssim(image, reference):
     return float(structural_similarity(to_srgb(image), to_srgb(reference), channel_axis=2,
                                        data_range=1.0, gaussian_weights=True, sigma=1.5,
                                        use_sample_covariance=False))
+
+
+def detail_mask(reference, share=0.1):
+    """The `share` of pixels where the reference as shown (its sRGB luminance,
+    smoothed by a Gaussian of sigma 1 against its own noise) changes most
+    steeply (Sobel): edges, shadow boundaries, texture, highlights."""
+    shown = to_srgb(reference)
+    lum = 0.2126 * shown[..., 0] + 0.7152 * shown[..., 1] + 0.0722 * shown[..., 2]
+    gradient = sobel(gaussian(lum, sigma=1.0))
+    return gradient >= np.quantile(gradient, 1.0 - share)
+
+
+def shown_rmse(image, reference, mask):
+    """RMSE of the sRGB values a screen shows, over the pixels of mask."""
+    d = to_srgb(image)[mask] - to_srgb(reference)[mask]
+    return float(np.sqrt(np.mean(d * d)))
+
+
+def white_share(image, reference):
+    """The share of the squared error (linear RGB, as the RMSE) that lies in
+    pixels a screen shows white: where the reference exceeds 1 in a channel
+    (the lamps and what borders them)."""
+    d = np.sum((image.astype(np.float64) - reference.astype(np.float64)) ** 2, axis=2)
+    total = float(np.sum(d))
+    return float(np.sum(d[reference.max(axis=2) > 1.0])) / total if total > 0.0 else 0.0
 
 
 def resolve(path, csv_path):
@@ -93,6 +126,10 @@ def read_rows(paths):
                         reference = read_pfm(resolve(row["reference"], path))
                         row["ssim"] = ssim(image, reference)
                         row["dssim"] = 1.0 - row["ssim"]
+                        mask = detail_mask(reference)
+                        row["detail_rmse"] = shown_rmse(image, reference, mask)
+                        row["flat_rmse"] = shown_rmse(image, reference, ~mask)
+                        row["white_share"] = white_share(image, reference)
                         images[(row["scene"], row["budget_ms"], row["mode"], row["spp"])] = image
                         images[(row["scene"], "reference")] = reference
                     rows.append(row)
@@ -105,8 +142,9 @@ def read_rows(paths):
 
 def write_csv(rows, path):
     fields = ["scene", "width", "height", "budget_ms", "mode", "spp", "frames", "used_ms",
-              "fits", "rmse", "relative_mse", "psnr", "ssim", "reused", "spp_ms", "filter_ms",
-              "temporal_ms", "reference_spp", "reference_rel_mse"]
+              "fits", "rmse", "relative_mse", "psnr", "ssim", "detail_rmse", "flat_rmse",
+              "white_share", "reused", "spp_ms", "filter_ms", "temporal_ms", "reference_spp",
+              "reference_rel_mse"]
     with open(path, "w", newline="") as f:
         out = csv.writer(f)
         out.writerow(fields)
@@ -118,7 +156,7 @@ def write_csv(rows, path):
                     v = 1 if v else 0
                 elif k == "budget_ms":
                     v = "" if v is None else "%g" % v
-                elif k == "ssim":
+                elif k in ("ssim", "detail_rmse", "flat_rmse", "white_share"):
                     v = "%.4f" % v if v != "" else ""
                 values.append(v)
             out.writerow(values)
