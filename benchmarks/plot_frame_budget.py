@@ -228,7 +228,7 @@ def plot_images(rows, images, scene, budget, path):
     # (the objects of the Cornell scenes).
     cw, ch = w // 4, h // 4
     x0, y0 = (w - cw) // 2, (h - ch) // 2 + h // 8
-    fig, axes = plt.subplots(2, len(panels), figsize=(3.2 * len(panels), 5.2), dpi=100,
+    fig, axes = plt.subplots(2, len(panels), figsize=(3.2 * len(panels), 5.2), dpi=80,
                              squeeze=False)
     for i, (title, image) in enumerate(panels):
         shown = to_srgb(image)
