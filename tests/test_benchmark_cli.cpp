@@ -191,9 +191,9 @@ TEST_CASE("bench_ray_order: sizes too small to time and scenes with no triangles
 }
 
 TEST_CASE("the benchmark programs: --version, --flag=value, generated --help", "[benchmark_cli]") {
-    for (const char* program :
-         {"tonemap", "bench_accel_crossover", "bench_complexity", "bench_convergence",
-          "bench_ray_order", "bench_scene_load", "bench_temporal", "bench_filter"}) {
+    for (const char* program : {"tonemap", "bench_accel_crossover", "bench_complexity",
+                                "bench_convergence", "bench_ray_order", "bench_scene_load",
+                                "bench_temporal", "bench_filter", "bench_frame_budget"}) {
         CAPTURE(program);
         const ViewerRun r = run_benchmark(program, "--version");
         CAPTURE(r.err);
@@ -370,4 +370,65 @@ TEST_CASE("bench_convergence: the samples to --target-rmse, and a configuration 
     CHECK(r.out.find("To a relative MSE of 1e+09:") != std::string::npos);
     CHECK(r.out.find("cpu nee: there by its first checkpoint (1 spp)") != std::string::npos);
     CHECK(convergence_rmse("bench_cli_conv.csv").at("cpu nee").size() == 1);
+}
+
+// A tiny real run of bench_frame_budget: the built-in scene at 32 x 24. A
+// budget of a microsecond fits nothing, whatever the machine; the 50-ms one
+// may fit or not (its timings are never checked); the rows at --bias-spp
+// render whatever the timings.
+TEST_CASE("bench_frame_budget: budgets that do not fit say so, and its mistakes refused",
+          "[benchmark_cli]") {
+    check_help("bench_frame_budget", {"--budgets LIST", "--reference-spp N", "--images DIR",
+                                      "--csv FILE", "default 400"});
+    check_refused(
+        "bench_frame_budget",
+        {{"--budgets 10,abc", "--budgets: expected a number in [0.001, 1e+06], got 'abc'"},
+         {"--budgets 10,,20", "--budgets: expected a number"},
+         {"--budgets 10,10", "--budgets 10,10: a budget is given twice"},
+         {"--width 4", "--width: expected an integer in [8, 16384], got '4'"},
+         {"--images /nonexistent/dir", "--images /nonexistent/dir: cannot create the directory"},
+         {"--csv /nonexistent/x.csv", "--csv /nonexistent/x.csv: cannot be written"},
+         {"--bogus", "--bogus: unknown option"},
+         {"a.json b.json", "b.json: only one scene file"}},
+        2);
+    check_refused("bench_frame_budget", {{"no_such_scene.json", "no_such_scene.json"}}, 1);
+
+    REQUIRE(system("rm -rf bench_cli_fb_cache bench_cli_fb_images bench_cli_fb.csv") == 0);
+    const std::string args =
+        "--width 32 --height 24 --budgets 0.001,50 --repeats 1 --reference-spp 4 --bias-spp 2 "
+        "--move-seconds 0.1 --cache bench_cli_fb_cache --images bench_cli_fb_images "
+        "--csv bench_cli_fb.csv";
+    const ViewerRun r = run_benchmark("bench_frame_budget", args);
+    CAPTURE(r.out, r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("reference: rendering 4 spp") != std::string::npos);
+    CHECK(r.out.find("scene (built-in), 32 x 24, CPU backend, NEE, Sobol") == 0);
+    CHECK(r.out.find("0.001ms raw       does not fit") != std::string::npos);
+    CHECK(r.out.find("0.001ms filtered  does not fit") != std::string::npos);
+    CHECK(r.out.find("0.001ms temporal  does not fit") != std::string::npos);
+    CHECK(r.out.find("largest resolution at which one sample a pixel fits") != std::string::npos);
+    // The CSV: a header, three rows a budget, the two at --bias-spp.
+    std::istringstream csv(trac0r_test::read_text_file("bench_cli_fb.csv"));
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(csv, line);) {
+        lines.push_back(line);
+    }
+    REQUIRE(lines.size() == 9);
+    CHECK(lines[0].find("scene,width,height,budget_ms,mode,spp,") == 0);
+    CHECK(lines[1].find("builtin,32,24,0.001,raw,0,1,0,0,,,,") == 0);
+    CHECK(lines[7].find("builtin,32,24,,raw,2,1,") == 0);
+    CHECK(lines[8].find("builtin,32,24,,filtered,2,1,") == 0);
+    // The images the plot script reads: the reference and the bias rows'.
+    for (const char* name : {"reference", "raw-2spp", "filtered-2spp"}) {
+        CAPTURE(name);
+        const trac0r::Image image =
+            trac0r::read_pfm(std::string("bench_cli_fb_images/builtin-32x24-") + name + ".pfm");
+        CHECK(image.width == 32);
+        CHECK(image.height == 24);
+    }
+    // A second run takes the reference from the cache.
+    const ViewerRun again = run_benchmark("bench_frame_budget", args);
+    CAPTURE(again.err);
+    REQUIRE(again.exit_code == 0);
+    CHECK(again.err.find("reference: cached bench_cli_fb_cache/builtin-") != std::string::npos);
 }
