@@ -11,6 +11,7 @@
 //
 // See --help. Timings live here, never in the tests.
 #include "cli.h"
+#include "viewer_like.h"
 #include "timing.h"
 
 #include "trac0r/cpu_backend.h"
@@ -55,16 +56,9 @@ struct Options {
     std::string reference_path;
 };
 
-PackOptions pack_options() {
-    PackOptions p;
-    p.integrator = Integrator::nee;
-    p.sampler = SamplerKind::sobol;
-    return p;
-}
-
 std::unique_ptr<Renderer> render(const Scene& scene, std::uint64_t seed, int spp) {
-    std::unique_ptr<Renderer> r(
-        new Renderer(scene, std::make_unique<CpuBackend>(), seed, pack_options()));
+    std::unique_ptr<Renderer> r(new Renderer(scene, std::make_unique<CpuBackend>(), seed,
+                                             trac0r_bench::viewer_pack_options()));
     for (int i = 0; i < spp; ++i) {
         r->render_frame();
     }

@@ -15,6 +15,7 @@
 // Times are CPU seconds over the machine's cores: a frame's time on that
 // many free cores (benchmarks/timing.h), beside the wall clock.
 #include "cli.h"
+#include "viewer_like.h"
 #include "timing.h"
 
 #include "trac0r/camera.h"
@@ -192,24 +193,9 @@ std::string scene_stem(const Options& o) {
     return name.substr(0, name.rfind('.'));
 }
 
-float scene_diagonal(const Scene& scene) {
-    AABB all;
-    for (const Shape& s : scene.shapes) {
-        all.extend(s.aabb);
-    }
-    return all.empty() ? 1.0f : glm::length(all.max - all.min);
-}
-
-PackOptions viewer_defaults() {
-    PackOptions pack;
-    pack.integrator = Integrator::nee;
-    pack.sampler = SamplerKind::sobol;
-    return pack;
-}
-
 std::unique_ptr<Renderer> make_renderer(const Scene& scene, std::uint64_t seed) {
     return std::make_unique<Renderer>(scene, std::make_unique<CpuBackend>(), seed,
-                                      viewer_defaults());
+                                      trac0r_bench::viewer_pack_options());
 }
 
 // The converged reference of the scene's view: from the cache, or rendered
@@ -392,7 +378,7 @@ Row render_temporal(const Scene& scene, const Options& o, const Image& reference
                     long spp) {
     const double budget = budget_ms / 1000.0;
     const long frames = std::max(2L, std::lround(o.move_seconds / budget));
-    const float step = static_cast<float>(o.speed * budget) * scene_diagonal(scene);
+    const float step = static_cast<float>(o.speed * budget) * trac0r_bench::scene_diagonal(scene);
     TemporalSettings settings;
     settings.max_history = static_cast<float>(o.max_history);
     std::unique_ptr<Renderer> r = make_renderer(scene, 1);

@@ -10,6 +10,7 @@
 // (trac0r/temporal.h) and without (a restart), both are compared with a
 // converged render of the final view at the preview's resolution.
 #include "cli.h"
+#include "viewer_like.h"
 
 #include "trac0r/camera.h"
 #include "trac0r/cpu_backend.h"
@@ -97,21 +98,11 @@ Options parse_options(int argc, char** argv) {
     return o;
 }
 
-float scene_diagonal(const Scene& scene) {
-    AABB all;
-    for (const Shape& s : scene.shapes) {
-        all.extend(s.aabb);
-    }
-    return all.empty() ? 1.0f : glm::length(all.max - all.min);
-}
-
 std::unique_ptr<Renderer> make_renderer(Scene scene, int width, int height, std::uint64_t seed) {
     scene.render.width = width;
     scene.render.height = height;
-    PackOptions pack;
-    pack.integrator = Integrator::nee;
-    pack.sampler = SamplerKind::sobol;
-    return std::make_unique<Renderer>(scene, std::make_unique<CpuBackend>(), seed, pack);
+    return std::make_unique<Renderer>(scene, std::make_unique<CpuBackend>(), seed,
+                                      trac0r_bench::viewer_pack_options());
 }
 
 int run(int argc, char** argv) {
@@ -134,7 +125,7 @@ int run(int argc, char** argv) {
 
     std::unique_ptr<Renderer> preview = make_renderer(scene, pw, ph, 1);
     Camera camera = scene.camera;
-    const float step = static_cast<float>(o.step) * scene_diagonal(scene);
+    const float step = static_cast<float>(o.step) * trac0r_bench::scene_diagonal(scene);
     Image restart;
     TemporalStats stats;
     for (long i = 0; i < o.steps; ++i) {
