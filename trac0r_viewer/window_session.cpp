@@ -4,18 +4,14 @@
 #include "messages.h"
 #include "overlay.h"
 #include "replay.h"
+#include "screenshot_name.h"
 #include "window.h"
 
 #include "trac0r/fly_camera.h"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
-#include <fstream>
 #include <set>
 #include <vector>
 
@@ -26,28 +22,6 @@ namespace {
 // How long the window's size must stay put before the render follows it:
 // a drag of the window's edge re-renders once, at the end.
 constexpr std::uint32_t resize_debounce_ms = 200;
-
-// "trac0r-20250101-120000-123": local time to the millisecond, so that
-// screenshots sort by time and two in one second do not collide.
-std::string timestamped_name() {
-    const auto now = std::chrono::system_clock::now();
-    const std::time_t seconds = std::chrono::system_clock::to_time_t(now);
-    const long millis = static_cast<long>(
-        std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() %
-        1000);
-    std::tm local;
-    localtime_r(&seconds, &local);
-    char stamp[32];
-    std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &local);
-    char name[64];
-    std::snprintf(name, sizeof name, "trac0r-%s-%03ld", stamp, millis);
-    return name;
-}
-
-std::string in_working_directory(const std::string& name) {
-    char buffer[4096];
-    return getcwd(buffer, sizeof buffer) ? std::string(buffer) + "/" + name : name;
-}
 
 // How far the camera moves per second, and the overlay's near plane: both
 // follow the scene's size, so a scene in millimetres behaves like one in
@@ -516,17 +490,6 @@ void Session::draw() {
     }
     window_.present();
     dirty_ = false;
-}
-
-// A base name no earlier screenshot has: two in one millisecond (a
-// script's) get "-2", "-3", ...
-std::string unused_screenshot_base() {
-    const std::string stamp = in_working_directory(timestamped_name());
-    std::string base = stamp;
-    for (int n = 2; std::ifstream(base + ".png") || std::ifstream(base + ".pfm"); ++n) {
-        base = stamp + "-" + std::to_string(n);
-    }
-    return base;
 }
 
 void Session::save_screenshot() {
