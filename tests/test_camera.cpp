@@ -54,7 +54,7 @@ TEST_CASE("make_camera_record builds an orthonormal frame from the camera", "[ke
     const Camera c = tilted_camera();
     const CameraRecord cam = make_camera_record(c, 800, 600);
     const glm::vec3 forward = glm::normalize(c.direction);
-    const glm::vec3 right = glm::normalize(glm::cross(c.world_up, c.direction));
+    const glm::vec3 right = glm::normalize(glm::cross(c.direction, c.world_up));
     CHECK(glm::length(v3(cam.forward) - forward) < 1e-6f);
     CHECK(glm::length(v3(cam.right) - right) < 1e-6f);
     CHECK(std::fabs(glm::dot(v3(cam.up), v3(cam.forward))) < 1e-6f);
@@ -113,9 +113,11 @@ TEST_CASE("camera_ray: vertical_fov is the true angle between top and bottom edg
     }
 }
 
-TEST_CASE("camera_ray: image right is normalize(cross(world_up, direction)), row 0 on top",
+TEST_CASE("camera_ray: image right is normalize(cross(direction, world_up)), row 0 on top",
           "[kernel][camera]") {
-    // The default camera looks along +z with y up: right is cross(y, z) = +x.
+    // Right-handed, as glTF and Blender: the default camera looks along -z
+    // with y up, and right is cross(-z, y) = +x.
+    CHECK(Camera().direction == glm::vec3(0.0f, 0.0f, -1.0f));
     const CameraRecord cam = make_camera_record(Camera(), 800, 600);
     CHECK(glm::length(v3(cam.right) - glm::vec3(1, 0, 0)) < 1e-6f);
     const glm::vec3 right_edge = camera_ray(cam, 800.0f, 300.0f, 0.0f, 0.0f).direction;
@@ -128,10 +130,10 @@ TEST_CASE("camera_ray: image right is normalize(cross(world_up, direction)), row
     const glm::vec3 last_row = camera_ray(cam, 400.0f, 599.5f, 0.0f, 0.0f).direction;
     CHECK(first_row.y > 0.4f);
     CHECK(last_row.y < -0.4f);
-    // A general camera: the right edge leans towards cross(world_up, direction).
+    // A general camera: the right edge leans towards cross(direction, world_up).
     const Camera c = tilted_camera();
     const CameraRecord tilted = make_camera_record(c, 800, 600);
-    const glm::vec3 expected_right = glm::normalize(glm::cross(c.world_up, c.direction));
+    const glm::vec3 expected_right = glm::normalize(glm::cross(c.direction, c.world_up));
     const glm::vec3 r = camera_ray(tilted, 800.0f, 300.0f, 0.0f, 0.0f).direction;
     const glm::vec3 l = camera_ray(tilted, 0.0f, 300.0f, 0.0f, 0.0f).direction;
     CHECK(glm::dot(r - l, expected_right) > 0.5f);

@@ -153,10 +153,11 @@ TEST_CASE("along a lamp's edge, the share of each pixel that sees the lamp", "[g
     lamp.emittance = 8.0f;
     scene.materials.push_back(lamp);
     // A lamp facing the camera at z = 1.9 over the left of the view, its
-    // right edge a quarter into pixel column 8 (column 8 starts at x = 0;
-    // a pixel is 2 z tan(30 deg) 16/12 / 16 wide at depth z).
+    // right edge a quarter into pixel column 8 (the camera looks along +z,
+    // so image right is -x; column 8 starts at x = 0; a pixel is
+    // 2 z tan(30 deg) 16/12 / 16 wide at depth z).
     const float pixel = 2.0f * 1.9f * std::tan(glm::radians(30.0f)) * (16.0f / 12.0f) / 16.0f;
-    scene.shapes.push_back(make_plane(glm::vec3(0.25f * pixel - 50.0f, 0.0f, 1.9f),
+    scene.shapes.push_back(make_plane(glm::vec3(50.0f - 0.25f * pixel, 0.0f, 1.9f),
                                       glm::vec3(-half_pi, 0.0f, 0.0f), glm::vec2(100.0f), 2));
     const GuideImages g = guides_of(scene);
     const glm::vec3 radiance = lamp.color * lamp.emittance;

@@ -61,16 +61,17 @@ TEST_CASE("project_point inverts camera_ray", "[projection]") {
 }
 
 TEST_CASE("project_point refuses points behind or too near the camera", "[projection]") {
-    const kernel::CameraRecord cam = record_at(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f));
+    // Looking along -z with y up: +x is right (right-handed).
+    const kernel::CameraRecord cam = record_at(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));
     glm::vec2 image(-7.0f);
-    CHECK_FALSE(project_point(cam, glm::vec3(0.1f, 0.0f, -1.0f), 0.01f, &image));
-    CHECK_FALSE(project_point(cam, glm::vec3(0.0f, 0.0f, 0.005f), 0.01f, &image));
+    CHECK_FALSE(project_point(cam, glm::vec3(0.1f, 0.0f, 1.0f), 0.01f, &image));
+    CHECK_FALSE(project_point(cam, glm::vec3(0.0f, 0.0f, -0.005f), 0.01f, &image));
     CHECK(image == glm::vec2(-7.0f));  // left alone
-    REQUIRE(project_point(cam, glm::vec3(0.0f, 0.0f, 0.02f), 0.01f, &image));
+    REQUIRE(project_point(cam, glm::vec3(0.0f, 0.0f, -0.02f), 0.01f, &image));
     CHECK(image.x == Approx(400.0f));  // the centre of the image
     CHECK(image.y == Approx(300.0f));
     // Right of the camera is right in the image, up is up (smaller y).
-    REQUIRE(project_point(cam, glm::vec3(0.1f, 0.1f, 1.0f), 0.01f, &image));
+    REQUIRE(project_point(cam, glm::vec3(0.1f, 0.1f, -1.0f), 0.01f, &image));
     CHECK(image.x > 400.0f);
     CHECK(image.y < 300.0f);
 }
@@ -145,8 +146,8 @@ TEST_CASE(
     // in front, below and left of the eye: a floor rail the camera stands
     // over. Projecting the corners behind the camera without clipping would
     // flip them (negative depth) to the upper right of the image.
-    const kernel::CameraRecord cam = record_at(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f));
-    const AABB rail = box(glm::vec3(-0.3f, -0.3f, -2.0f), glm::vec3(-0.2f, -0.2f, 5.0f));
+    const kernel::CameraRecord cam = record_at(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));
+    const AABB rail = box(glm::vec3(-0.3f, -0.3f, -5.0f), glm::vec3(-0.2f, -0.2f, 2.0f));
     const float near_distance = 0.01f;
     const std::vector<Segment2> segments = project_aabb_wireframe(cam, rail, near_distance);
     // The 4 edges along z are clipped and visible; the 4 edges of the far
@@ -198,15 +199,15 @@ TEST_CASE(
     c.position = glm::vec3(1.0f, 2.0f, 3.0f);
     c.direction = glm::vec3(1.0f, 0.0f, 0.0f);  // looking along +x, y up
     const Camera moved = move_camera(c, glm::vec3(0.5f, 0.25f, 2.0f));
-    // Right is cross(up, forward) = cross(+y, +x) = -z.
+    // Right is cross(forward, up) = cross(+x, +y) = +z.
     CHECK(moved.position.x == Approx(3.0f));
     CHECK(moved.position.y == Approx(2.25f));
-    CHECK(moved.position.z == Approx(2.5f));
+    CHECK(moved.position.z == Approx(3.5f));
     CHECK(moved.direction == c.direction);
 
-    // Yaw by 90 degrees to the right: now looking along the old right, -z.
+    // Yaw by 90 degrees to the right: now looking along the old right, +z.
     const Camera yawed = turn_camera(c, 0.5f * 3.14159265f, 0.0f);
-    CHECK(yawed.direction.z == Approx(-1.0f));
+    CHECK(yawed.direction.z == Approx(1.0f));
     CHECK(std::abs(yawed.direction.x) < 1e-6f);
     // Pitching far up stops short of world_up, so the camera stays valid.
     const Camera up = turn_camera(c, 0.0f, 10.0f);

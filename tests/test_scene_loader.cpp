@@ -159,7 +159,7 @@ TEST_CASE("the Cornell scene has the thesis' contents", "[scene_loader]") {
     CHECK(scene.render.width == 800);
     CHECK(scene.render.height == 600);
     CHECK(scene.render.max_depth == 5);
-    CHECK(same_vec3(scene.camera.position, glm::vec3(0.0f, 0.31f, -1.2f)));
+    CHECK(same_vec3(scene.camera.position, glm::vec3(0.0f, 0.31f, 1.2f)));
     CHECK(scene.camera.vertical_fov == 53.13f);
 
     const Material& lamp = material_named(scene, "lamp");

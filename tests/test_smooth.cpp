@@ -42,7 +42,7 @@ Scene floor_scene(float tilt, bool from_below, int max_depth = 5) {
         make_plane(glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(pi, 0.0f, 0.0f), glm::vec2(1.0f), 1));
     scene.camera.position = glm::vec3(0.0f, from_below ? -1.0f : 0.5f, 0.0f);
     scene.camera.direction = glm::vec3(0.0f, from_below ? 1.0f : -1.0f, 0.0f);
-    scene.camera.world_up = glm::vec3(0.0f, 0.0f, from_below ? -1.0f : 1.0f);
+    scene.camera.world_up = glm::vec3(0.0f, 0.0f, from_below ? 1.0f : -1.0f);  // image right: +x
     scene.camera.vertical_fov = 60.0f;
     scene.render.width = 32;
     scene.render.height = 24;

@@ -51,7 +51,7 @@ inline Scene load_test_scene(const std::string& name, int width, int height) {
 // BVH leaves than a tile keeps (T0_BUNDLE_LEAVES), and traverse the tree.
 inline Scene cornell_with_dense_sphere() {
     Scene scene = builtin_scene();
-    scene.shapes.push_back(make_icosphere(glm::vec3(0.0f, 0.31f, -0.6f), glm::vec3(0.0f), 0.25f, 5,
+    scene.shapes.push_back(make_icosphere(glm::vec3(0.0f, 0.31f, 0.6f), glm::vec3(0.0f), 0.25f, 5,
                                           scene.shapes[0].material));
     return scene;
 }

@@ -196,9 +196,10 @@ TEST_CASE("a half turn leaves nothing to reuse", "[temporal]") {
 
 TEST_CASE("pixels that see nothing carry nothing over", "[temporal]") {
     // The wall alone, seen from so close to its edge that half the view
-    // is background.
+    // is background: the wall on the left (x > 0, as the camera looks
+    // along +z), the background on the right.
     Scene scene = wall_and_box();
-    scene.shapes = {make_plane(glm::vec3(-50.0f, 0.0f, 2.0f), glm::vec3(-half_pi, 0.0f, 0.0f),
+    scene.shapes = {make_plane(glm::vec3(50.0f, 0.0f, 2.0f), glm::vec3(-half_pi, 0.0f, 0.0f),
                                glm::vec2(100.0f), 0)};
     const PackedScene packed = pack_scene(scene);
     const View v = view_of(packed, scene.camera, 20, 15);

@@ -68,7 +68,7 @@ Scene textured_floor(const glm::vec3& floor_colour, const Texture& texture) {
                                       glm::vec3(3.14159265f, 0.0f, 0.0f), glm::vec2(1.0f), 1));
     scene.camera.position = glm::vec3(0.0f, 0.5f, 0.0f);
     scene.camera.direction = glm::vec3(0.0f, -1.0f, 0.0f);
-    scene.camera.world_up = glm::vec3(0.0f, 0.0f, 1.0f);
+    scene.camera.world_up = glm::vec3(0.0f, 0.0f, -1.0f);  // image right: +x
     scene.camera.vertical_fov = 60.0f;
     scene.render.width = 32;
     scene.render.height = 24;

@@ -35,7 +35,7 @@ const char* camera_problem(const Camera& camera) {
     }
     const glm::vec3 direction = direction_of(camera.direction);
     const glm::vec3 world_up = direction_of(camera.world_up);
-    const glm::vec3 right = glm::cross(world_up, direction);
+    const glm::vec3 right = glm::cross(direction, world_up);
     if (glm::length(right) <= 1e-6f * glm::length(world_up) * glm::length(direction)) {
         return "camera.direction is parallel to camera.world_up, so the image has no "
                "'right'; choose another world_up";
@@ -55,8 +55,10 @@ kernel::CameraRecord make_camera_record(const Camera& camera, int width, int hei
                                     " x " + std::to_string(height));
     }
     const glm::vec3 forward = glm::normalize(direction_of(camera.direction));
-    const glm::vec3 right = glm::normalize(glm::cross(direction_of(camera.world_up), forward));
-    const glm::vec3 up = glm::cross(forward, right);
+    // Right-handed, as glTF, Blender and OpenGL: looking along -z with y up,
+    // +x is on the image's right.
+    const glm::vec3 right = glm::normalize(glm::cross(forward, direction_of(camera.world_up)));
+    const glm::vec3 up = glm::cross(right, forward);
     const float half_height = std::tan(0.5f * glm::radians(camera.vertical_fov));
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
     kernel::CameraRecord r;

@@ -9,8 +9,8 @@
 namespace trac0r {
 
 struct Camera {
-    glm::vec3 position{0.0f, 0.31f, -1.2f};
-    glm::vec3 direction{0.0f, 0.0f, 1.0f};
+    glm::vec3 position{0.0f, 0.31f, 1.2f};
+    glm::vec3 direction{0.0f, 0.0f, -1.0f};
     glm::vec3 world_up{0.0f, 1.0f, 0.0f};
     float vertical_fov = 53.13f;  // degrees, a true field of view
 };

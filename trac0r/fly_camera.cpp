@@ -17,7 +17,7 @@ Frame frame_of(const Camera& camera) {
     Frame f;
     f.forward = glm::normalize(camera.direction);
     f.up = glm::normalize(camera.world_up);
-    f.right = glm::normalize(glm::cross(f.up, f.forward));
+    f.right = glm::normalize(glm::cross(f.forward, f.up));
     return f;
 }
 

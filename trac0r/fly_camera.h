@@ -11,7 +11,7 @@
 namespace trac0r {
 
 // The closest the view direction may come to world_up (or its opposite), in
-// radians. Nearer, the image's 'right' (cross(world_up, direction)) becomes
+// radians. Nearer, the image's 'right' (cross(direction, world_up)) becomes
 // ill-defined and mouse-look would spin.
 constexpr float fly_camera_min_pole_angle = 0.02f;  // about 1 degree
 

@@ -11,8 +11,8 @@
 // | key                    | type    | rule                                    | default         |
 // |------------------------|---------|-----------------------------------------|-----------------|
 // | camera                 | object  | optional                                | (below)         |
-// | camera.position        | [3]     | finite                                  | [0, 0.31, -1.2] |
-// | camera.direction       | [3]     | finite, non-zero                        | [0, 0, 1]       |
+// | camera.position        | [3]     | finite                                  | [0, 0.31, 1.2]  |
+// | camera.direction       | [3]     | finite, non-zero                        | [0, 0, -1]      |
 // | camera.world_up        | [3]     | finite, non-zero, not along direction   | [0, 1, 0]       |
 // | camera.vertical_fov    | number  | degrees, in (0, 180)                    | 53.13           |
 // | render                 | object  | optional                                | (below)         |

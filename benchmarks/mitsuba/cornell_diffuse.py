@@ -33,10 +33,10 @@ The scene is rebuilt from the JSON file with trac0r's own conventions
   that slips past the edge of the near copy is not stopped by the back of
   the other. Radiance = color * emittance, on both sides.
 - camera: pinhole, vertical_fov in degrees about the image height, image
-  right = normalize(cross(world_up, direction)) and up = cross(forward,
-  right). Mitsuba's image left is the camera's local +x, so local +x is
-  -right: to_world has determinant -1 (trac0r's image is the mirror of
-  Mitsuba's look_at for the same camera).
+  right = normalize(cross(direction, world_up)) and up = cross(right,
+  forward), right-handed as Mitsuba's look_at. Mitsuba's image left is the
+  camera's local +x, so local +x is -right, and to_world is a rotation
+  (the same matrix look_at builds).
 - pixels: trac0r jitters each sample uniformly in its pixel and averages:
   a 1-pixel box filter (Mitsuba `box`, radius 0.5).
 - max_depth counts surface hits on a path in both (trac0r: the trace loop
@@ -222,15 +222,15 @@ def register_emitter_surface(mi, dr):
 def camera_to_world(camera):
     """trac0r's camera (trac0r/camera.cpp) as Mitsuba's to_world: columns
     -right, up, forward, position (local +x is Mitsuba's image left)."""
-    d = np.array(camera.get("direction", [0, 0, 1]), dtype=np.float64)
+    d = np.array(camera.get("direction", [0, 0, -1]), dtype=np.float64)
     w = np.array(camera.get("world_up", [0, 1, 0]), dtype=np.float64)
     forward = d / np.linalg.norm(d)
-    right = np.cross(w, forward)
+    right = np.cross(forward, w)
     right /= np.linalg.norm(right)
-    up = np.cross(forward, right)
+    up = np.cross(right, forward)
     m = np.eye(4)
     m[:3, 0], m[:3, 1], m[:3, 2] = -right, up, forward
-    m[:3, 3] = camera.get("position", [0, 0.31, -1.2])
+    m[:3, 3] = camera.get("position", [0, 0.31, 1.2])
     return m
 
 
@@ -293,7 +293,7 @@ def build_scene_dict(mi, scene_path, mesh_dir, width, height, sampler, spp, max_
             # away from the first, so that a ray meets first the copy that
             # faces it.
             n = normals(tris)
-            eye = np.array(camera.get("position", [0, 0.31, -1.2]), dtype=np.float64)
+            eye = np.array(camera.get("position", [0, 0.31, 1.2]), dtype=np.float64)
             to_eye = eye - tris.astype(np.float64).mean(axis=1)
             sign = np.where(np.sum(n * to_eye, axis=1) >= 0.0, 1.0, -1.0)[:, None]
             facing = sign * n  # each triangle's normal toward the camera's side

@@ -134,8 +134,8 @@ typedef struct T0_ALIGN16 MaterialRecord {
 typedef struct T0_ALIGN16 CameraRecord {
     float4 position;  // xyz
     float4 forward;   // xyz, unit
-    float4 right;     // xyz, unit: normalize(cross(world_up, forward))
-    float4 up;        // xyz, unit: cross(forward, right)
+    float4 right;     // xyz, unit: normalize(cross(forward, world_up)) (right-handed)
+    float4 up;        // xyz, unit: cross(right, forward)
     float4 extent;    // x: tan(vfov/2) * aspect, y: tan(vfov/2)
     uint4 size;       // x: width, y: height
 } CameraRecord;
