@@ -130,10 +130,15 @@ TEST_CASE("a kept device shares its programs with backends made one after anothe
 // image), and most individual pixels must agree closely.
 // Both backends on the same structure (--accel auto may choose by backend).
 static void compare_backends(const std::string& name, Accel accel,
-                             SamplerKind sampler = SamplerKind::random) {
+                             SamplerKind sampler = SamplerKind::random,
+                             float aperture_radius = 0.0f) {
     // An odd size: the last column and row of tiles (work-groups, with the
     // BVH) cut off.
-    const Scene scene = load_test_scene(name, 61, 45);
+    Scene scene = load_test_scene(name, 61, 45);
+    if (aperture_radius > 0.0f) {
+        scene.camera.aperture_radius = aperture_radius;
+        scene.camera.focus_distance = 1.5f;  // the back wall's depth (1.7) blurs a little
+    }
     const int frames = 16;
     PackOptions options;
     options.accel = accel;
@@ -193,6 +198,13 @@ TEST_CASE("OpenCL and CPU images agree with the sobol sampler", "[opencl][sample
     // The same integer arithmetic on both sides: the same numbers.
     compare_backends("cornell.json", Accel::bvh, SamplerKind::sobol);
     compare_backends("cornell_diffuse.json", Accel::bvh, SamplerKind::sobol);
+}
+
+TEST_CASE("OpenCL and CPU images through a thin lens agree", "[opencl][camera]") {
+    // The lens' numbers, the tile path's bypass of the bundle (BVH), and
+    // the flat list's pixel a work-item.
+    compare_backends("cornell.json", Accel::bvh, SamplerKind::sobol, 0.03f);
+    compare_backends("cornell.json", Accel::flat, SamplerKind::random, 0.03f);
 }
 
 TEST_CASE("OpenCL and CPU images of a smooth-shaded mesh agree", "[opencl][smooth]") {

@@ -43,6 +43,13 @@ const char* camera_problem(const Camera& camera) {
     if (!(camera.vertical_fov > 0.0f && camera.vertical_fov < 180.0f)) {
         return "camera.vertical_fov must be in (0, 180) degrees";
     }
+    if (!(camera.aperture_radius >= 0.0f && std::isfinite(camera.aperture_radius))) {
+        return "camera.aperture_radius must be a finite number >= 0 (metres; 0 is a pinhole)";
+    }
+    if (!(camera.focus_distance > 0.0f && std::isfinite(camera.focus_distance))) {
+        return "camera.focus_distance must be a finite number > 0 (metres along the view "
+               "direction)";
+    }
     return nullptr;
 }
 
@@ -66,7 +73,8 @@ kernel::CameraRecord make_camera_record(const Camera& camera, int width, int hei
     r.forward = glm::vec4(forward, 0.0f);
     r.right = glm::vec4(right, 0.0f);
     r.up = glm::vec4(up, 0.0f);
-    r.extent = glm::vec4(half_height * aspect, half_height, 0.0f, 0.0f);
+    r.extent = glm::vec4(half_height * aspect, half_height, camera.aperture_radius,
+                         camera.focus_distance);
     r.size = glm::uvec4(static_cast<unsigned>(width), static_cast<unsigned>(height), 0u, 0u);
     return r;
 }

@@ -1,4 +1,4 @@
-// The pinhole camera of a scene.
+// The camera of a scene: a pinhole, or a thin lens (depth of field).
 #ifndef TRAC0R_CAMERA_H
 #define TRAC0R_CAMERA_H
 
@@ -13,10 +13,15 @@ struct Camera {
     glm::vec3 direction{0.0f, 0.0f, -1.0f};
     glm::vec3 world_up{0.0f, 1.0f, 0.0f};
     float vertical_fov = 53.13f;  // degrees, a true field of view
+    // A thin lens: the radius of its aperture in metres (0: a pinhole, all
+    // in focus) and the distance along `direction` of the plane in focus.
+    float aperture_radius = 0.0f;
+    float focus_distance = 1.0f;
 };
 
 // Why a camera cannot form an image, or nullptr when it can: a zero or
-// non-finite vector, direction parallel to world_up, fov outside (0, 180).
+// non-finite vector, direction parallel to world_up, fov outside (0, 180),
+// a negative or non-finite aperture, a focus distance not positive.
 const char* camera_problem(const Camera& camera);
 
 // The kernel's view of the camera for a width x height image. Throws

@@ -15,6 +15,8 @@
 // | camera.direction       | [3]     | finite, non-zero                        | [0, 0, -1]      |
 // | camera.world_up        | [3]     | finite, non-zero, not along direction   | [0, 1, 0]       |
 // | camera.vertical_fov    | number  | degrees, in (0, 180)                    | 53.13           |
+// | camera.aperture_radius | number  | >= 0, metres (0: a pinhole)             | 0               |
+// | camera.focus_distance  | number  | > 0, metres along direction             | 1               |
 // | render                 | object  | optional                                | (below)         |
 // | render.width           | integer | in [1, 16384]                           | 800             |
 // | render.height          | integer | in [1, 16384]                           | 600             |
@@ -86,7 +88,9 @@ float read_fov(const json& value, const Location& at) {
 // (local_origin of the position as the file writes it, in double).
 Camera read_camera(const json& value, const Location& at, glm::dvec3* origin) {
     const ObjectReader o(value, at, "a camera object");
-    o.allow_only({"position", "direction", "world_up", "vertical_fov"}, "the camera");
+    o.allow_only({"position", "direction", "world_up", "vertical_fov", "aperture_radius",
+                  "focus_distance"},
+                 "the camera");
     Camera camera;
     const glm::dvec3 position =
         o.optional_dvec3("position", NumberRule::finite, glm::dvec3(camera.position));
@@ -97,6 +101,10 @@ Camera read_camera(const json& value, const Location& at, glm::dvec3* origin) {
     if (o.has("vertical_fov")) {
         camera.vertical_fov = read_fov(o["vertical_fov"], o.at("vertical_fov"));
     }
+    camera.aperture_radius =
+        o.optional_float("aperture_radius", NumberRule::non_negative, camera.aperture_radius);
+    camera.focus_distance =
+        o.optional_float("focus_distance", NumberRule::positive, camera.focus_distance);
     // Zero vectors and a direction along world_up are the camera's own
     // conditions to state; its message names the field.
     if (const char* problem = camera_problem(camera)) {

@@ -63,9 +63,14 @@ typedef struct TileShared {
 // leaves that the tile's rays may enter, found once by the first work-item
 // (bundle_finish_leaves) into the group's local memory, or by traversal
 // where there are too many (camera_hit). Every work-item of the group calls
-// it (barriers), with the group's `shared`.
+// it (barriers), with the group's `shared`. Through a thin lens the rays
+// do not share an origin: each traverses the tree (the same choice for the
+// whole group, so no barrier is skipped by some items only).
 Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, const Ray* ray,
                     __local TileShared* shared) {
+    if (camera.extent.z > 0.0f) {
+        return inside ? intersect_scene(scene, ray) : no_hit(T0_NO_HIT);
+    }
     const uint item = (uint)get_local_id(0);
     __local float4* inverse = shared->inverse;
     inverse[item] =

@@ -16,7 +16,12 @@
 //   other draws do.
 //
 // The dimensions, in the order a path uses them (T0_DIM):
-//   0                pixel jitter (2-D; the camera is a pinhole: no lens)
+//   0                pixel jitter (2-D)
+//   T0_DIM_LENS      the point on a thin lens (2-D), drawn only when the
+//                    camera's aperture is open; with random, right after
+//                    the jitter. Its own dimension (-1, out of the way of
+//                    the path's), so a pinhole draws exactly what it drew
+//                    before lenses existed.
 //   then, for each vertex `depth` from 0, at 1 + 4 * depth:
 //   + T0_DIM_LIGHT_PICK   which light (1-D)
 //   + T0_DIM_LIGHT_POINT  the point on it (2-D)
@@ -32,6 +37,7 @@
 T0_NAMESPACE_BEGIN
 
 #define T0_DIM_PIXEL 0
+#define T0_DIM_LENS (-1)
 #define T0_DIM_LIGHT_PICK 0
 #define T0_DIM_LIGHT_POINT 1
 #define T0_DIM_ROULETTE 2

@@ -16,15 +16,37 @@
 
 T0_NAMESPACE_BEGIN
 
-// A primary ray through pixel (x, y) (row 0 at the top) at sub-pixel
-// position (jitter_x, jitter_y) in [0, 1)^2.
-T0_INLINE Ray camera_ray(CameraRecord cam, float x, float y, float jitter_x, float jitter_y) {
+// The point of the image plane at distance one along forward that pixel
+// (x, y) (row 0 at the top) shows at sub-pixel position (jitter_x,
+// jitter_y) in [0, 1)^2, relative to the camera: forward component 1.
+T0_INLINE float3 camera_plane_point(CameraRecord cam, float x, float y, float jitter_x,
+                                    float jitter_y) {
     const float width = (float)cam.size.x;
     const float height = (float)cam.size.y;
     const float sx = (2.0f * (x + jitter_x) / width - 1.0f) * cam.extent.x;
     const float sy = (1.0f - 2.0f * (y + jitter_y) / height) * cam.extent.y;
-    const float3 d = xyz(cam.forward) + xyz(cam.right) * sx + xyz(cam.up) * sy;
-    return make_ray(xyz(cam.position), normalize(d));
+    return xyz(cam.forward) + xyz(cam.right) * sx + xyz(cam.up) * sy;
+}
+
+// A primary ray of the pinhole through pixel (x, y) at (jitter_x, jitter_y).
+T0_INLINE Ray camera_ray(CameraRecord cam, float x, float y, float jitter_x, float jitter_y) {
+    return make_ray(xyz(cam.position),
+                    normalize(camera_plane_point(cam, x, y, jitter_x, jitter_y)));
+}
+
+// A thin lens (pbrt's): the ray from a point on the aperture through the
+// point where the pinhole ray of the same pixel position meets the plane in
+// focus, cam.extent.w along forward; so what lies on that plane is sharp,
+// and a point at depth z blurs to a disc of radius
+// aperture * |z - focus| / (z * focus) on the image plane at distance one.
+// `lens` in [0, 1)^2 picks the aperture point (polar: uniform on the disc).
+T0_INLINE Ray camera_lens_ray(CameraRecord cam, float x, float y, float jitter_x, float jitter_y,
+                              float2 lens) {
+    const float3 d = camera_plane_point(cam, x, y, jitter_x, jitter_y);
+    const float r = cam.extent.z * sqrt(lens.x);
+    const float2_cs turn = turn_cos_sin(lens.y);
+    const float3 on_lens = xyz(cam.right) * (r * turn.c) + xyz(cam.up) * (r * turn.s);
+    return make_ray(xyz(cam.position) + on_lens, normalize(d * cam.extent.w - on_lens));
 }
 
 // The thesis' rule, 1 - 1/(max_depth - depth), caps paths at max_depth
@@ -232,7 +254,12 @@ T0_INLINE void begin_pixel(const SceneView* scene, CameraRecord cam, t0_u32 pixe
     const t0_u32 x = pixel % cam.size.x;
     const t0_u32 y = pixel / cam.size.x;
     const float2 jitter = sample_2d(&s->sampler, T0_DIM_PIXEL);
-    s->ray = camera_ray(cam, (float)x, (float)y, jitter.x, jitter.y);
+    if (cam.extent.z > 0.0f) {
+        const float2 lens = sample_2d(&s->sampler, T0_DIM_LENS);
+        s->ray = camera_lens_ray(cam, (float)x, (float)y, jitter.x, jitter.y, lens);
+    } else {
+        s->ray = camera_ray(cam, (float)x, (float)y, jitter.x, jitter.y);
+    }
 }
 
 T0_INLINE void finish_pixel(const SceneView* scene, T0_GLOBAL AccumPixel* accum, t0_u32 pixel,

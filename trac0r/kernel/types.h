@@ -136,7 +136,8 @@ typedef struct T0_ALIGN16 CameraRecord {
     float4 forward;   // xyz, unit
     float4 right;     // xyz, unit: normalize(cross(forward, world_up)) (right-handed)
     float4 up;        // xyz, unit: cross(right, forward)
-    float4 extent;    // x: tan(vfov/2) * aspect, y: tan(vfov/2)
+    float4 extent;    // x: tan(vfov/2) * aspect, y: tan(vfov/2), z: the lens' aperture
+                      // radius (0: a pinhole), w: the focus distance along forward
     uint4 size;       // x: width, y: height
 } CameraRecord;
 
