@@ -1,11 +1,8 @@
 #include "window_session.h"
 
 #include "headless.h"
-#include "messages.h"
-#include "overlay.h"
-#include "replay.h"
 #include "screenshot_name.h"
-#include "window.h"
+#include "session.h"
 
 #include "trac0r/fly_camera.h"
 
@@ -34,74 +31,7 @@ float scene_size(const std::vector<trac0r::AABB>& boxes) {
     return all.empty() ? 1.0f : std::max(1e-6f, glm::length(all.max - all.min));
 }
 
-class Session {
-  public:
-    Session(const Options& options, Window& window, const Font& font,
-            std::unique_ptr<trac0r::Renderer> renderer,
-            const RenderWorker::BackendFactory& make_backend, std::vector<ReplayCommand> replay);
-    int run();
-
-  private:
-    void handle(const SDL_Event& e);
-    void handle_key(const SDL_KeyboardEvent& key);
-    bool held(SDL_Keycode key) const { return held_.count(key) != 0; }
-    // The held movement keys' direction: x right, y up, z forward; 0: none.
-    glm::vec3 move_direction() const;
-    void move(float seconds);
-    void change_camera(const trac0r::Camera& camera);
-    // A new window size: once it stays put, the render follows it.
-    void follow_window_size(std::uint32_t now);
-    void take_from_worker();
-    // What the window shows of shown_: the filtered image where there is
-    // one and the filter is on (F off shows the unfiltered one at once).
-    const trac0r::Image& shown_image() const {
-        return filter_ && !shown_.filtered.pixels.empty() ? shown_.filtered : shown_.image;
-    }
-    void set_filter(bool on);
-    long shown_spp() const;
-    void draw();
-    OverlayFigures figures() const;
-    void save_screenshot();
-    // `text` goes to stderr and, unless `shown` is given, to the window,
-    // where it replaces the message of the same `kind` (MessageList).
-    void say(const std::string& text, const std::string& shown = "", const std::string& kind = "");
-
-    const Options& options_;
-    Window& window_;
-    const Font& font_;
-    std::vector<trac0r::AABB> boxes_;
-    std::size_t triangles_;
-    float scene_size_;
-    trac0r::Camera camera_;
-    std::uint32_t frame_event_;
-    std::unique_ptr<RenderWorker> worker_;  // after everything it may call
-    ReplayPlayer replay_;
-    bool replaying_;
-
-    std::uint64_t requested_generation_ = 0;
-    WorkerFrame shown_;  // the frame on screen
-    bool have_frame_ = false;
-    trac0r::Image last_full_image_;  // for --output at the end
-    float exposure_;
-    bool overlay_ = false;
-    bool filter_ = false;  // the display filter (F, --filter)
-    bool help_ = false;
-    bool screenshot_requested_ = false;
-    bool quit_ = false;
-    bool dirty_ = true;
-    std::set<SDL_Keycode> held_;  // from events, so replayed keys count too
-    bool looking_ = false;        // right button held
-    int mouse_x_ = -1;
-    int mouse_y_ = -1;
-    MessageList messages_;
-    int window_width_ = 0;  // the drawable size last seen, in pixels
-    int window_height_ = 0;
-    bool resize_pending_ = false;  // the window's size changed; the render's not yet
-    std::uint32_t resize_at_ms_ = 0;
-    std::uint64_t resize_generation_ = 0;  // of the last resize request; 0: none waiting
-    int resize_width_ = 0;                 // its size
-    int resize_height_ = 0;
-};
+}  // namespace
 
 Session::Session(const Options& options, Window& window, const Font& font,
                  std::unique_ptr<trac0r::Renderer> renderer,
@@ -321,34 +251,6 @@ void Session::handle_key(const SDL_KeyboardEvent& key) {
     }
 }
 
-glm::vec3 Session::move_direction() const {
-    glm::vec3 direction(0.0f);  // x right, y up, z forward
-    direction.z += held(SDLK_w) ? 1.0f : 0.0f;
-    direction.z -= held(SDLK_s) ? 1.0f : 0.0f;
-    direction.x += held(SDLK_d) ? 1.0f : 0.0f;
-    direction.x -= held(SDLK_a) ? 1.0f : 0.0f;
-    direction.y += (held(SDLK_e) || held(SDLK_SPACE)) ? 1.0f : 0.0f;
-    direction.y -= (held(SDLK_q) || held(SDLK_LCTRL) || held(SDLK_RCTRL)) ? 1.0f : 0.0f;
-    return direction;
-}
-
-void Session::move(float seconds) {
-    const glm::vec3 direction = move_direction();
-    if (direction == glm::vec3(0.0f) || seconds <= 0.0f) {
-        return;
-    }
-    // A quarter of the scene's diagonal per second; Shift five times that.
-    const float fast = (held(SDLK_LSHIFT) || held(SDLK_RSHIFT)) ? 5.0f : 1.0f;
-    const float distance = 0.25f * scene_size_ * fast * seconds;
-    change_camera(trac0r::move_camera(camera_, glm::normalize(direction) * distance));
-}
-
-void Session::change_camera(const trac0r::Camera& camera) {
-    camera_ = camera;
-    requested_generation_ = worker_->set_camera(camera_);
-    dirty_ = dirty_ || overlay_;  // the wireframes follow at once
-}
-
 void Session::follow_window_size(std::uint32_t now) {
     int width = 0;
     int height = 0;
@@ -517,7 +419,6 @@ void Session::save_screenshot() {
     say(text, shown);
 }
 
-}  // namespace
 
 int run_window(const Options& options, const std::string& title,
                const trac0r::RenderSettings& render, const RendererFactory& make_renderer,
