@@ -1357,3 +1357,46 @@ TEST_CASE("printable: control bytes escaped, cut between characters", "[scene_lo
     CHECK(printable("abcde\x1b\x1b\x1b", 10) == "abcde...");
     CHECK(printable("abcdefghij", 10) == "abcdefghij");  // fits exactly: not cut
 }
+
+TEST_CASE("a camera block loads over a scene's; bad ones are one message", "[scene_loader][camera]") {
+    const glm::dvec3 origin(0.0);
+    const Camera c = parse_camera_block(
+        R"({"camera": {"position": [1, 2, 3], "direction": [0, 0, -1], "aperture_radius": 0.02,
+            "focus_distance": 2.5}})",
+        "cam.json", origin);
+    CHECK(c.position == glm::vec3(1.0f, 2.0f, 3.0f));
+    CHECK(c.aperture_radius == 0.02f);
+    CHECK(c.focus_distance == 2.5f);
+    // The block alone is a camera too.
+    CHECK(parse_camera_block(R"({"vertical_fov": 40})", "cam.json", origin).vertical_fov == 40.0f);
+    // Printed and read back: the same floats.
+    Camera odd;
+    odd.position = glm::vec3(0.1f, -1234.5677f, 3e-7f);
+    odd.direction = glm::vec3(0.3f, -0.2f, -0.9f);
+    odd.vertical_fov = 33.333f;
+    odd.aperture_radius = 0.0123f;
+    odd.focus_distance = 7.77f;
+    const glm::dvec3 far(4096.0, 0.0, -1024.0);
+    const Camera read = parse_camera_block(camera_block_json(odd, far), "printed", far);
+    CHECK(read.position == odd.position);
+    CHECK(read.direction == odd.direction);
+    CHECK(read.vertical_fov == odd.vertical_fov);
+    CHECK(read.aperture_radius == odd.aperture_radius);
+    CHECK(read.focus_distance == odd.focus_distance);
+
+    const auto message = [&](const std::string& text) {
+        try {
+            parse_camera_block(text, "cam.json", origin);
+        } catch (const SceneError& e) {
+            return std::string(e.what());
+        }
+        return std::string("(no error)");
+    };
+    CHECK(message(R"({"camera": {"aperture_radius": -0.1}})") ==
+          "cam.json: /camera/aperture_radius: expected a finite number >= 0, got -0.1");
+    CHECK(message(R"({"camera": {"focus_distance": 0}})") ==
+          "cam.json: /camera/focus_distance: expected a finite positive number, got 0");
+    CHECK(message(R"({"camera": {"positon": [0, 0, 0]}})").find("positon") != std::string::npos);
+    CHECK(message(R"({"render": {"width": 8}})").find("render") != std::string::npos);
+    CHECK(message("[1, 2]").find("cam.json") == 0);
+}

@@ -520,3 +520,59 @@ TEST_CASE("SIGINT and SIGTERM close the window as Escape does", "[window]") {
         CHECK(trac0r::read_pfm(pfm).width == 32);
     }
 }
+
+TEST_CASE("C prints the camera; --camera loads it; the same view renders", "[window][camera]") {
+    const std::string dir = empty_directory("window_camera");
+    // Move and turn, print the camera (C), and take a screenshot of the
+    // new view; Home goes back to the scene's camera, printed too.
+    write_file(dir + "/moved.txt", R"(wait_spp 2
+key_down W
+wait 120
+key_up W
+mouse_move 60 45
+mouse_down right
+mouse_move 75 40
+mouse_up right
+wait_spp 3
+key C
+key P
+key Home
+key C
+key Escape
+)");
+    const ViewerRun moved = run_viewer_process(
+        cornell + " --width 120 --height 90 --spp 3 --replay moved.txt", "cd " + dir + " &&");
+    INFO(moved.err);
+    REQUIRE(moved.exit_code == 0);
+    // Two blocks on stdout, one a line: the moved view, then the scene's.
+    const std::size_t newline = moved.out.find('\n');
+    REQUIRE(newline != std::string::npos);
+    const std::string block = moved.out.substr(0, newline);
+    const std::string home = moved.out.substr(newline + 1);
+    const nlohmann::json parsed = nlohmann::json::parse(block);
+    REQUIRE(parsed.at("camera").at("position").size() == 3);
+    const trac0r::Scene scene = trac0r::load_scene_file(cornell);
+    const trac0r::Camera back = trac0r::parse_camera_block(home, "home", scene.origin);
+    CHECK(back.position == scene.camera.position);
+    CHECK(back.direction == scene.camera.direction);
+    const trac0r::Camera there = trac0r::parse_camera_block(block, "moved", scene.origin);
+    CHECK(glm::length(there.position - scene.camera.position) > 0.01f);
+
+    // The printed block, loaded with --camera: the same camera printed
+    // back, and the same 3 spp, bit for bit.
+    write_file(dir + "/camera.json", block + "\n");
+    write_file(dir + "/again.txt", "wait_spp 3\nkey C\nkey P\nkey Escape\n");
+    const ViewerRun again = run_viewer_process(
+        cornell + " --width 120 --height 90 --spp 3 --camera camera.json --replay again.txt",
+        "cd " + dir + " &&");
+    INFO(again.err);
+    REQUIRE(again.exit_code == 0);
+    CHECK(again.out == block + "\n");
+    const std::vector<Screenshot> a = screenshots_said(moved.err);
+    const std::vector<Screenshot> b = screenshots_said(again.err);
+    REQUIRE(a.size() == 1);
+    REQUIRE(b.size() == 1);
+    CHECK(a[0].spp == 3);
+    CHECK(b[0].spp == 3);
+    CHECK(same_pixels(trac0r::read_pfm(a[0].pfm), trac0r::read_pfm(b[0].pfm)));
+}

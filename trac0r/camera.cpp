@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -51,6 +53,42 @@ const char* camera_problem(const Camera& camera) {
                "direction)";
     }
     return nullptr;
+}
+
+namespace {
+
+// The shortest decimal of `value` (at most 17 digits) that reads back as
+// `offset` plus a number whose float is `target`: what the scene loader
+// does with a position (relative to the origin) or any other number.
+std::string shortest(double value, double offset, float target) {
+    char text[40];
+    for (int digits = 1; digits <= 17; ++digits) {
+        std::snprintf(text, sizeof text, "%.*g", digits, value);
+        if (static_cast<float>(std::strtod(text, nullptr) - offset) == target) {
+            break;
+        }
+    }
+    return text;
+}
+
+std::string json_vec3(const glm::vec3& v, const glm::dvec3& offset) {
+    return "[" + shortest(offset.x + v.x, offset.x, v.x) + ", " +
+           shortest(offset.y + v.y, offset.y, v.y) + ", " +
+           shortest(offset.z + v.z, offset.z, v.z) + "]";
+}
+
+std::string json_number(float v) { return shortest(v, 0.0, v); }
+
+}  // namespace
+
+std::string camera_block_json(const Camera& camera, const glm::dvec3& origin) {
+    const glm::dvec3 none(0.0);
+    return "{\"camera\": {\"position\": " + json_vec3(camera.position, origin) +
+           ", \"direction\": " + json_vec3(camera.direction, none) +
+           ", \"world_up\": " + json_vec3(camera.world_up, none) +
+           ", \"vertical_fov\": " + json_number(camera.vertical_fov) +
+           ", \"aperture_radius\": " + json_number(camera.aperture_radius) +
+           ", \"focus_distance\": " + json_number(camera.focus_distance) + "}}";
 }
 
 kernel::CameraRecord make_camera_record(const Camera& camera, int width, int height) {

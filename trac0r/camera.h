@@ -6,6 +6,8 @@
 
 #include <glm/glm.hpp>
 
+#include <string>
+
 namespace trac0r {
 
 struct Camera {
@@ -23,6 +25,12 @@ struct Camera {
 // non-finite vector, direction parallel to world_up, fov outside (0, 180),
 // a negative or non-finite aperture, a focus distance not positive.
 const char* camera_problem(const Camera& camera);
+
+// The camera as a scene file's block, on one line:
+// {"camera": {"position": [...], ...}}, every key, each number with the
+// digits that read back to the same float; `origin` is the scene's
+// (Scene::origin), added back to the position.
+std::string camera_block_json(const Camera& camera, const glm::dvec3& origin);
 
 // The kernel's view of the camera for a width x height image. Throws
 // std::invalid_argument when camera_problem() reports one.

@@ -467,4 +467,34 @@ const char* builtin_scene_json() {
 
 Scene builtin_scene() { return parse_scene(builtin_scene_json(), "built-in scene", ""); }
 
+Camera parse_camera_block(const std::string& json_text, const std::string& origin,
+                          const glm::dvec3& scene_origin) {
+    try {
+        const json document = parse_json(json_text, origin);
+        const Location at{origin, ""};
+        // {"camera": {...}}, as the window prints it, or the block alone.
+        const bool wrapped = document.is_object() && document.size() == 1 &&
+                             document.begin().key() == "camera";
+        const json& block = wrapped ? document["camera"] : document;
+        const Location block_at = wrapped ? Location{origin, "/camera"} : at;
+        glm::dvec3 file_origin(0.0);
+        Camera camera = read_camera(block, block_at, &file_origin);
+        // Relative to the scene's origin, as its own camera.
+        camera.position = glm::vec3(glm::dvec3(camera.position) + file_origin - scene_origin);
+        return camera;
+    } catch (const JsonError& e) {
+        throw SceneError(e.what());
+    }
+}
+
+Camera load_camera_file(const std::string& path, const glm::dvec3& scene_origin) {
+    std::string text;
+    try {
+        text = read_input_file(path, "camera file");
+    } catch (const std::runtime_error& e) {
+        throw SceneError(e.what());
+    }
+    return parse_camera_block(text, path, scene_origin);
+}
+
 }  // namespace trac0r

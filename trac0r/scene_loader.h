@@ -28,6 +28,14 @@ Scene parse_scene(const std::string& json_text, const std::string& origin,
 Scene builtin_scene();
 const char* builtin_scene_json();
 
+// A camera block, as the window prints it (camera_block_json): a JSON
+// object {"camera": {...}}, or the block {...} alone, with the scene
+// file's camera keys and rules; its position made relative to the scene's
+// `scene_origin`. SceneError names the file and JSON path.
+Camera parse_camera_block(const std::string& json_text, const std::string& origin,
+                          const glm::dvec3& scene_origin);
+Camera load_camera_file(const std::string& path, const glm::dvec3& scene_origin);
+
 }  // namespace trac0r
 
 #endif

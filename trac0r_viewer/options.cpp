@@ -19,9 +19,14 @@ void set_program_name(const char* name) { current_program_name = name; }
 const char* key_help_text() {
     return R"(  W A S D            move forward, left, back, right
   Q / E              move down / up (also Ctrl / Space)
-  Shift              move five times faster
+  Shift / Alt        move five times faster / slower
   right mouse drag   look around
   mouse wheel        field of view (zoom)
+  C                  print the camera as a scene file's "camera" block (stdout
+                     and the window); --camera FILE loads it
+  Home               back to the scene's camera
+  [ / ]              close / open the lens' aperture (depth of field)
+  G, middle click    focus on the surface under the mouse
   F1                 debug overlay: AABBs, timings, camera, the pixel under the
                      mouse
   P                  screenshot: the window as a timestamped PNG and the render
@@ -37,8 +42,9 @@ const char* key_help_text() {
 }
 
 const char* key_help_short_text() {
-    return R"(W A S D     move (Shift: faster)
+    return R"(W A S D     move (Shift/Alt: faster/slower)
 Q / E       down / up
+C / Home    print / reset the camera
 right drag  look around
 wheel       zoom
 F1          overlay
@@ -110,6 +116,10 @@ void define_options(trac0r_cli::CommandLine& cl, Options& o) {
                 "S");
     cl.value("--seed", "N", "random seed (default 1); same seed, same image",
              [&o](const std::string& v) { o.seed = trac0r_cli::parse_u64("--seed", v); });
+    cl.value("--camera", "FILE",
+             "a camera block over the scene's camera: the JSON the window's C key prints, "
+             "{\"camera\": {...}}, or the block alone (docs/viewer.md)",
+             [&o](const std::string& v) { o.camera_path = v; });
     cl.integer("--max-depth", &o.max_depth, 1, 100000,
                "maximum path length in vertices (default: the scene's)", "D");
     cl.integer("--threads", &o.threads, 1, 1024, "CPU threads (default: all)");

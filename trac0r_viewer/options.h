@@ -16,6 +16,7 @@ namespace trac0r_viewer {
 
 struct Options {
     std::string scene_path;  // empty: the built-in thesis scene
+    std::string camera_path;  // --camera: a camera block over the scene's; empty: none
     std::string backend = "cpu";
     int device = -1;
     int width = 0;  // 0: the scene's

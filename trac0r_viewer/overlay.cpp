@@ -202,6 +202,10 @@ std::string overlay_text(const OverlayFigures& f) {
     const glm::vec3 d = glm::normalize(f.camera.direction);
     text += format("camera   pos (%.3f, %.3f, %.3f)  dir (%.3f, %.3f, %.3f)  fov %.1f\n", p.x, p.y,
                    p.z, d.x, d.y, d.z, f.camera.vertical_fov);
+    if (f.camera.aperture_radius > 0.0f) {
+        text += format("lens     aperture radius %.3g m  focus at %.3g m\n",
+                       f.camera.aperture_radius, f.camera.focus_distance);
+    }
     text += f.mouse_in_image
                 ? format("mouse    pixel (%d, %d)  radiance (%.4g, %.4g, %.4g)\n", f.mouse_x,
                          f.mouse_y, f.mouse_radiance.x, f.mouse_radiance.y, f.mouse_radiance.z)

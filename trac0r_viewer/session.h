@@ -40,6 +40,11 @@ class Session {
     glm::vec3 move_direction() const;
     void move(float seconds);
     void change_camera(const trac0r::Camera& camera);
+    // The camera keys: C prints the camera block, Home returns to the
+    // starting camera, [ and ] close and open the aperture, G (or the
+    // middle button) focuses on the surface under the mouse.
+    bool handle_camera_key(SDL_Keycode k);
+    void focus_under_mouse();
     // A new window size: once it stays put, the render follows it.
     void follow_window_size(std::uint32_t now);
     void take_from_worker();
@@ -64,6 +69,9 @@ class Session {
     std::size_t triangles_;
     float scene_size_;
     trac0r::Camera camera_;
+    const trac0r::Camera start_camera_;   // the scene's (or --camera's): Home
+    const glm::dvec3 origin_;             // the scene's, for printing positions
+    std::uint64_t focus_generation_ = 0;  // of the last focus request; 0: none waiting
     std::uint32_t frame_event_;
     std::unique_ptr<RenderWorker> worker_;  // after everything it may call
     ReplayPlayer replay_;

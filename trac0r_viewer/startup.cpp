@@ -114,6 +114,9 @@ trac0r::Scene load_scene(const Options& o) {
     if (o.max_depth > 0) {
         scene.render.max_depth = o.max_depth;
     }
+    if (!o.camera_path.empty()) {
+        scene.camera = trac0r::load_camera_file(o.camera_path, scene.origin);
+    }
     return scene;
 }
 

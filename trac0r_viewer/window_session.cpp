@@ -42,6 +42,8 @@ Session::Session(const Options& options, Window& window, const Font& font,
       font_(font),
       triangles_(renderer->packed().triangles.size()),
       camera_(renderer->scene().camera),
+      start_camera_(camera_),
+      origin_(renderer->scene().origin),
       frame_event_(SDL_RegisterEvents(1)),
       replay_(std::move(replay), options.replay_path),
       replaying_(!options.replay_path.empty()),
@@ -166,6 +168,11 @@ void Session::handle(const SDL_Event& e) {
         if (e.button.button == SDL_BUTTON_RIGHT) {
             looking_ = e.type == SDL_MOUSEBUTTONDOWN;
         }
+        if (e.button.button == SDL_BUTTON_MIDDLE && e.type == SDL_MOUSEBUTTONDOWN) {
+            mouse_x_ = e.button.x;
+            mouse_y_ = e.button.y;
+            focus_under_mouse();
+        }
         break;
     case SDL_MOUSEMOTION: {
         mouse_x_ = e.motion.x;
@@ -212,6 +219,9 @@ void Session::handle_key(const SDL_KeyboardEvent& key) {
     }
     if (key.repeat) {
         return;  // toggles and actions: once per press
+    }
+    if (handle_camera_key(k)) {
+        return;
     }
     switch (k) {
     case SDLK_ESCAPE:
@@ -292,6 +302,11 @@ void Session::take_from_worker() {
     if (worker_->take_frame(&frame)) {
         shown_ = std::move(frame);
         have_frame_ = true;
+        if (focus_generation_ != 0 && shown_.generation >= focus_generation_) {
+            // The worker found the depth: the camera keeps it from now on.
+            camera_.focus_distance = shown_.focus_distance;
+            focus_generation_ = 0;
+        }
         if (resize_generation_ != 0 && shown_.generation >= resize_generation_) {
             // The first frame at the new size: the window maps it 1:1.
             window_.set_render_size(resize_width_, resize_height_);

@@ -1,5 +1,6 @@
 #include "window_worker.h"
 
+#include "trac0r/kernel/guides.h"
 #include "trac0r/noise.h"
 
 #include <algorithm>
@@ -85,6 +86,15 @@ std::uint64_t RenderWorker::resize(int width, int height) {
 
 std::uint64_t RenderWorker::set_filter(bool on) {
     return request([&](Requests& r) { r.filter = on ? 1 : 0; }, false);
+}
+
+std::uint64_t RenderWorker::focus_at(int x, int y) {
+    return request(
+        [&](Requests& r) {
+            r.focus_x = x;
+            r.focus_y = y;
+        },
+        true);
 }
 
 std::uint64_t RenderWorker::switch_backend(const std::string& name) {
@@ -195,6 +205,30 @@ void RenderWorker::run() {
     }
 }
 
+// The guides' first-hit depth (along the view direction) of the pixel's
+// centre ray: the distance at which the thin lens is sharp there.
+void RenderWorker::focus_on(int x, int y) {
+    const int width = full_->width();
+    const int height = full_->height();
+    x = std::max(0, std::min(width - 1, x));
+    y = std::max(0, std::min(height - 1, y));
+    const trac0r::kernel::SceneView view = full_->packed().view();
+    const trac0r::kernel::CameraRecord record = trac0r::make_camera_record(camera_, width, height);
+    const trac0r::kernel::GuidePixel g = trac0r::kernel::pixel_guides(
+        &view, record, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y));
+    const float depth = g.albedo.w;
+    if (!(depth > 0.0f && depth < T0_NO_HIT)) {
+        tell("focus: nothing under the mouse to focus on");
+        return;
+    }
+    camera_.focus_distance = depth;
+    full_stale_ = true;
+    char text[128];
+    std::snprintf(text, sizeof text, "focus at %.3g m (aperture radius %.3g m)", depth,
+                  camera_.aperture_radius);
+    tell(text);
+}
+
 void RenderWorker::apply(const Requests& requests) {
     if (requests.camera_changed) {
         camera_ = requests.camera;
@@ -203,6 +237,9 @@ void RenderWorker::apply(const Requests& requests) {
     if (requests.restart) {
         full_stale_ = true;
         drop_history_ = true;
+    }
+    if (requests.focus_x >= 0) {
+        focus_on(requests.focus_x, requests.focus_y);
     }
     if (requests.width > 0 &&
         (requests.width != full_->width() || requests.height != full_->height())) {
@@ -396,6 +433,7 @@ void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time
     }
     frame.spp = renderer.frames();
     frame.preview = preview;
+    frame.focus_distance = camera_.focus_distance;
     frame.frame_seconds = seconds_since(start);
     if (!preview) {
         // The clock stops with the accumulation: a paused window shown

@@ -81,6 +81,7 @@ struct WorkerFrame {
     bool estimate_overflowed = false;
     std::string backend;
     std::string device;
+    float focus_distance = 0.0f;  // of the camera the frame was rendered with
 };
 
 struct WorkerSettings {
@@ -114,6 +115,11 @@ class RenderWorker {
     std::uint64_t switch_backend(const std::string& name);
     // The display filter on or off (the accumulation goes on untouched).
     std::uint64_t set_filter(bool on);
+    // Focuses the camera's thin lens on the surface that render pixel
+    // (x, y) of the full-resolution view sees (its depth along the view
+    // direction); says so, or that nothing is there. Frames that reflect
+    // it carry the new focus_distance.
+    std::uint64_t focus_at(int x, int y);
 
     // The newest frame, when there is one not taken yet.
     bool take_frame(WorkerFrame* frame);
@@ -135,6 +141,8 @@ class RenderWorker {
         int height = 0;
         std::string backend;
         int filter = -1;  // -1: unchanged; 0: off; 1: on
+        int focus_x = -1;  // >= 0: focus_at this pixel
+        int focus_y = -1;
         std::uint64_t generation = 0;
     };
 
@@ -151,6 +159,7 @@ class RenderWorker {
     std::string pause_reason_now() const;
     void apply(const Requests& requests);
     void change_backend(const std::string& name);
+    void focus_on(int x, int y);
     void render_preview();
     void render_full();
     // The guides of `camera`'s view of full_'s scene, made once per view.
