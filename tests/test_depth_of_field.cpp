@@ -29,7 +29,8 @@ const double pixel = 2.0 * half_height / height;
 // A lamp of radiance 1 over the left half of the view (x < 0: the camera at
 // the origin looks along -z, so +x is right), facing the camera at depth
 // `depth`; nothing else: right of its edge the view is black.
-Scene edge_scene(float depth, float aperture_radius, float focus_distance) {
+// Every length times `unit` (a power of two: the same floats, scaled).
+Scene edge_scene(float depth, float aperture_radius, float focus_distance, float unit = 1.0f) {
     Scene scene;
     Material lamp;
     lamp.name = "lamp";
@@ -38,13 +39,14 @@ Scene edge_scene(float depth, float aperture_radius, float focus_distance) {
     lamp.emittance = 1.0f;
     scene.materials = {lamp};
     // A plane's normal is local +y: turned by pi/2 about x it is +z.
-    scene.shapes.push_back(make_plane(glm::vec3(-50.0f, 0.0f, -depth),
-                                      glm::vec3(half_pi, 0.0f, 0.0f), glm::vec2(100.0f), 0));
+    scene.shapes.push_back(make_plane(glm::vec3(-50.0f, 0.0f, -depth) * unit,
+                                      glm::vec3(half_pi, 0.0f, 0.0f), glm::vec2(100.0f * unit),
+                                      0));
     scene.camera.position = glm::vec3(0.0f);
     scene.camera.direction = glm::vec3(0.0f, 0.0f, -1.0f);
     scene.camera.vertical_fov = static_cast<float>(2.0 * std::atan(half_height) * 180.0 / pi);
-    scene.camera.aperture_radius = aperture_radius;
-    scene.camera.focus_distance = focus_distance;
+    scene.camera.aperture_radius = aperture_radius * unit;
+    scene.camera.focus_distance = focus_distance * unit;
     scene.render.width = width;
     scene.render.height = height;
     scene.render.max_depth = 1;
@@ -138,6 +140,16 @@ TEST_CASE("a thin lens keeps the focus plane sharp and blurs by the circle of co
                   1.0);
         }
     }
+}
+
+TEST_CASE("a lens in a scene packed at another scale blurs the same", "[camera][dof]") {
+    // A scene of 2^-50 m is packed scaled up to ordinary floats
+    // (PackedScene::scale): the lens' lengths scale with it.
+    const float unit = std::ldexp(1.0f, -50);
+    const std::vector<double> ordinary = column_profile(edge_scene(4.0f, 0.08f, 2.0f), 64);
+    const std::vector<double> tiny = column_profile(edge_scene(4.0f, 0.08f, 2.0f, unit), 64);
+    CAPTURE(edge_width(ordinary), edge_width(tiny));
+    CHECK(std::fabs(edge_width(ordinary) - edge_width(tiny)) < 0.02 * edge_width(ordinary));
 }
 
 TEST_CASE("a pinhole draws the same numbers whatever its focus distance", "[camera][dof]") {

@@ -475,7 +475,11 @@ DeviceTiles device_tile_hits(const Scene& scene, int width, int height) {
         kernel::PixelSample host;
         kernel::begin_pixel(&view, camera, static_cast<std::uint32_t>(i), seed, frame, &host);
         if (glm::length(glm::vec3(directions[i]) - host.ray.direction) > 1e-5f) {
-            UNSCOPED_INFO("pixel " << i << ": the device's ray is not the pixel's");
+            UNSCOPED_INFO("pixel " << i << ": the device's ray (" << directions[i].x << ", "
+                                   << directions[i].y << ", " << directions[i].z
+                                   << ") is not the pixel's (" << host.ray.direction.x << ", "
+                                   << host.ray.direction.y << ", " << host.ray.direction.z
+                                   << ")");
             ++misplaced;
         }
         bool same = true;

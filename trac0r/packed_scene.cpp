@@ -378,6 +378,8 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
 kernel::CameraRecord scaled_camera(const kernel::CameraRecord& camera, float scale) {
     kernel::CameraRecord c = camera;
     c.position = glm::vec4(glm::vec3(c.position) * scale, c.position.w);
+    c.extent.z *= scale;  // the lens' aperture radius and focus distance: lengths too
+    c.extent.w *= scale;
     return c;
 }
 

@@ -91,7 +91,8 @@ struct PackedScene {
 PackedScene pack_scene(const Scene& scene, const PackOptions& options = PackOptions());
 
 // The camera in a packed scene's coordinates: its position times the
-// scene's scale (PackedScene::scale; its directions and extents stay).
+// scene's scale (PackedScene::scale), and the lens' aperture radius and focus
+// distance with it (extent.z, w); its directions and field of view stay.
 kernel::CameraRecord scaled_camera(const kernel::CameraRecord& camera, float scale);
 
 // "flat", "bvh", "auto" and back; parse_accel throws std::invalid_argument.

@@ -212,15 +212,17 @@ void RenderWorker::focus_on(int x, int y) {
     const int height = full_->height();
     x = std::max(0, std::min(width - 1, x));
     y = std::max(0, std::min(height - 1, y));
-    const trac0r::kernel::SceneView view = full_->packed().view();
-    const trac0r::kernel::CameraRecord record = trac0r::make_camera_record(camera_, width, height);
+    const trac0r::PackedScene& packed = full_->packed();
+    const trac0r::kernel::SceneView view = packed.view();
+    const trac0r::kernel::CameraRecord record =
+        trac0r::scaled_camera(trac0r::make_camera_record(camera_, width, height), packed.scale);
     const trac0r::kernel::GuidePixel g = trac0r::kernel::pixel_guides(
         &view, record, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y));
-    const float depth = g.albedo.w;
-    if (!(depth > 0.0f && depth < T0_NO_HIT)) {
+    if (!(g.albedo.w > 0.0f && g.albedo.w < T0_NO_HIT)) {
         tell("focus: nothing under the mouse to focus on");
         return;
     }
+    const float depth = g.albedo.w / packed.scale;
     camera_.focus_distance = depth;
     full_stale_ = true;
     char text[128];

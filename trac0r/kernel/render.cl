@@ -64,13 +64,11 @@ typedef struct TileShared {
 // (bundle_finish_leaves) into the group's local memory, or by traversal
 // where there are too many (camera_hit). Every work-item of the group calls
 // it (barriers), with the group's `shared`. Through a thin lens the rays
-// do not share an origin: each traverses the tree (the same choice for the
-// whole group, so no barrier is skipped by some items only).
+// do not share an origin: the leaf count is -1, and each ray traverses the
+// tree. (The barriers stay on every path: PoCL gave wrong results with an
+// early return before them, though the condition is the group's own.)
 Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, const Ray* ray,
                     __local TileShared* shared) {
-    if (camera.extent.z > 0.0f) {
-        return inside ? intersect_scene(scene, ray) : no_hit(T0_NO_HIT);
-    }
     const uint item = (uint)get_local_id(0);
     __local float4* inverse = shared->inverse;
     inverse[item] =
@@ -84,7 +82,8 @@ Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, con
                 bundle_add(&b, inverse[i].xyz);
             }
         }
-        shared->leaf_count = bundle_finish_leaves(scene, &b, shared->leaves);
+        shared->leaf_count =
+            camera.extent.z > 0.0f ? -1 : bundle_finish_leaves(scene, &b, shared->leaves);
     }
     barrier(CLK_LOCAL_MEM_FENCE);
     return inside ? camera_hit(scene, ray, shared->leaves, shared->leaf_count) : no_hit(T0_NO_HIT);
