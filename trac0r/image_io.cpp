@@ -28,31 +28,35 @@ bool host_is_little_endian() {
 
 }  // namespace
 
-std::uint8_t tonemap_channel(float linear, float exposure) {
-    float v = linear * exposure;
-    if (!(v > 0.0f)) {
+std::uint8_t encode_srgb8(float display) {
+    if (!(display > 0.0f)) {
         return 0;  // also NaN
     }
-    v = std::min(v, 1.0f);
+    const float v = std::min(display, 1.0f);
     const float srgb = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
     return static_cast<std::uint8_t>(std::lround(srgb * 255.0f));
 }
 
-Rgb8Image tonemap_image(const Image& image, float exposure) {
+std::uint8_t tonemap_channel(float linear, float exposure) {
+    return encode_srgb8(linear * exposure);
+}
+
+Rgb8Image tonemap_image(const Image& image, float exposure, ViewTransform view) {
     Rgb8Image out;
     out.width = image.width;
     out.height = image.height;
     out.bytes.resize(image.pixels.size() * 3);
     for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+        const glm::vec3 display = apply_view(view, image.pixels[i] * exposure);
         for (int c = 0; c < 3; ++c) {
-            out.bytes[3 * i + c] = tonemap_channel(image.pixels[i][c], exposure);
+            out.bytes[3 * i + c] = encode_srgb8(display[c]);
         }
     }
     return out;
 }
 
-void write_png(const std::string& path, const Image& image, float exposure) {
-    write_png(path, tonemap_image(image, exposure));
+void write_png(const std::string& path, const Image& image, float exposure, ViewTransform view) {
+    write_png(path, tonemap_image(image, exposure, view));
 }
 
 void write_png(const std::string& path, const Rgb8Image& image) {
@@ -236,9 +240,9 @@ bool is_png_path(const std::string& path) { return has_extension(path, ".png"); 
 
 bool is_exr_path(const std::string& path) { return has_extension(path, ".exr"); }
 
-void write_image(const std::string& path, const Image& image, float exposure) {
+void write_image(const std::string& path, const Image& image, float exposure, ViewTransform view) {
     if (is_png_path(path)) {
-        write_png(path, image, exposure);
+        write_png(path, image, exposure, view);
     } else if (has_extension(path, ".pfm")) {
         write_pfm(path, image);
     } else if (has_extension(path, ".exr")) {

@@ -2,6 +2,8 @@
 #ifndef TRAC0R_IMAGE_IO_H
 #define TRAC0R_IMAGE_IO_H
 
+#include "trac0r/view_transform.h"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -29,10 +31,16 @@ struct Rgb8Image {
     std::vector<std::uint8_t> bytes;  // 3 per pixel
 };
 
-// Linear radiance to an 8-bit sRGB value: exposure, clamp, sRGB curve.
+// Linear radiance to an 8-bit sRGB value: exposure, clamp, sRGB curve
+// (the standard view).
 std::uint8_t tonemap_channel(float linear, float exposure);
-// tonemap_channel applied to every channel of every pixel.
-Rgb8Image tonemap_image(const Image& image, float exposure);
+// A display value in [0, 1] (a view transform's) as 8-bit sRGB: the sRGB
+// curve, rounded. Below 0 and NaN give 0, above 1 gives 255.
+std::uint8_t encode_srgb8(float display);
+// Every pixel: times the exposure, through the view transform, sRGB
+// encoded. The standard view gives tonemap_channel of every channel.
+Rgb8Image tonemap_image(const Image& image, float exposure,
+                        ViewTransform view = ViewTransform::standard);
 
 // True for the extensions write_image knows (.png, .pfm, .exr, any case).
 bool is_supported_image_path(const std::string& path);
@@ -41,11 +49,14 @@ bool is_png_path(const std::string& path);
 // Whether path names an EXR (ends in .exr, in any case).
 bool is_exr_path(const std::string& path);
 
-// .png (tone-mapped sRGB), .pfm or .exr (linear float), chosen by the
+// .png (tone-mapped sRGB: exposure and view), .pfm or .exr (linear float,
+// the pixels as they are, whatever the exposure and view), chosen by the
 // extension.
 // Throws std::runtime_error naming the file on failure or another extension.
-void write_image(const std::string& path, const Image& image, float exposure = 1.0f);
-void write_png(const std::string& path, const Image& image, float exposure = 1.0f);
+void write_image(const std::string& path, const Image& image, float exposure = 1.0f,
+                 ViewTransform view = ViewTransform::standard);
+void write_png(const std::string& path, const Image& image, float exposure = 1.0f,
+               ViewTransform view = ViewTransform::standard);
 void write_png(const std::string& path, const Rgb8Image& image);
 // Any 8-bit PNG, converted to RGB. Throws std::runtime_error naming the file.
 Rgb8Image read_png(const std::string& path);
