@@ -1,9 +1,11 @@
 // The view transform (trac0r/view_transform.h): `standard` is the clamp
 // PNGs always had, `filmic` (AgX) maps 0 to 0, never falls as radiance
-// rises, and takes bright colours to white instead of clipping them.
+// rises, and takes bright colours to white instead of clipping them; the
+// scene key render.view chooses it.
 #include <catch2/catch.hpp>
 
 #include "trac0r/image_io.h"
+#include "trac0r/scene_loader.h"
 #include "trac0r/view_transform.h"
 
 #include <algorithm>
@@ -192,4 +194,22 @@ TEST_CASE("view names: standard and filmic, anything else refused by name", "[vi
     CHECK(trac0r::view_transform_names() == std::vector<std::string>{"standard", "filmic"});
     CHECK_THROWS_WITH(trac0r::parse_view_transform("agx"),
                       "unknown view transform 'agx' (expected standard or filmic)");
+}
+
+TEST_CASE("render.view in a scene file: standard by default, filmic, or one clear message",
+          "[view_transform]") {
+    const std::string head = R"({"materials": {"w": {"type": "diffuse", "color": [1, 1, 1]}},
+        "shapes": [{"type": "plane", "size": [1, 1], "material": "w"}])";
+    const auto parse = [&](const std::string& render) {
+        return trac0r::parse_scene(head + render + "}", "test.json", "");
+    };
+    CHECK(parse("").render.view == ViewTransform::standard);
+    CHECK(parse(R"(, "render": {"view": "filmic"})").render.view == ViewTransform::filmic);
+    CHECK(parse(R"(, "render": {"view": "standard"})").render.view == ViewTransform::standard);
+    for (const char* bad : {R"("AgX")", "1", "null"}) {
+        CAPTURE(bad);
+        CHECK_THROWS_WITH(
+            parse(std::string(R"(, "render": {"view": )") + bad + "}"),
+            Catch::StartsWith("test.json: /render/view: expected one of \"standard\", \"filmic\""));
+    }
 }

@@ -5,6 +5,7 @@
 #include "trac0r/camera.h"
 #include "trac0r/material.h"
 #include "trac0r/shape.h"
+#include "trac0r/view_transform.h"
 
 #include <cstdint>
 #include <string>
@@ -16,6 +17,9 @@ struct RenderSettings {
     int width = 800;
     int height = 600;
     int max_depth = 5;
+    // How the window and PNG outputs show the render (not in scene_digest:
+    // it changes no sample).
+    ViewTransform view = ViewTransform::standard;
 };
 
 struct Scene {

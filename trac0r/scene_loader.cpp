@@ -21,6 +21,7 @@
 // | render.width           | integer | in [1, 16384]                           | 800             |
 // | render.height          | integer | in [1, 16384]                           | 600             |
 // | render.max_depth       | integer | in [1, 100000]                          | 5               |
+// | render.view            | string  | standard/filmic (view_transform.h)      | standard        |
 // | materials              | object  | required, non-empty: name -> material   |                 |
 // | material.type          | string  | required: emissive/diffuse/glass/glossy |                 |
 // | material.color         | [3]     | required; in [0, 1] (emissive: >= 0)    |                 |
@@ -115,12 +116,16 @@ Camera read_camera(const json& value, const Location& at, glm::dvec3* origin) {
 
 RenderSettings read_render(const json& value, const Location& at) {
     const ObjectReader o(value, at, "a render settings object");
-    o.allow_only({"width", "height", "max_depth"}, "the render settings");
+    o.allow_only({"width", "height", "max_depth", "view"}, "the render settings");
     const int max_image_side = 16384;
     RenderSettings render;
     render.width = o.optional_int("width", 1, max_image_side, render.width);
     render.height = o.optional_int("height", 1, max_image_side, render.height);
     render.max_depth = o.optional_int("max_depth", 1, 100000, render.max_depth);
+    if (o.has("view")) {
+        render.view =
+            parse_view_transform(read_choice(o["view"], o.at("view"), view_transform_names()));
+    }
     return render;
 }
 
