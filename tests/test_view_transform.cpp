@@ -1,15 +1,22 @@
 // The view transform (trac0r/view_transform.h): `standard` is the clamp
 // PNGs always had, `filmic` (AgX) maps 0 to 0, never falls as radiance
 // rises, and takes bright colours to white instead of clipping them; the
-// scene key render.view chooses it.
+// scene key render.view and --view choose it, and linear outputs (PFM,
+// EXR) never see it.
 #include <catch2/catch.hpp>
+
+#include "viewer_process.h"
 
 #include "trac0r/image_io.h"
 #include "trac0r/scene_loader.h"
 #include "trac0r/view_transform.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <limits>
 #include <string>
 #include <vector>
@@ -43,6 +50,8 @@ std::vector<float> ramp() {
     }
     return k;
 }
+
+const std::string cornell = std::string(TRAC0R_SOURCE_DIR) + "/scenes/cornell.json";
 
 }  // namespace
 
@@ -212,4 +221,77 @@ TEST_CASE("render.view in a scene file: standard by default, filmic, or one clea
             parse(std::string(R"(, "render": {"view": )") + bad + "}"),
             Catch::StartsWith("test.json: /render/view: expected one of \"standard\", \"filmic\""));
     }
+}
+
+TEST_CASE("--view filmic changes the PNG and leaves PFM and EXR files bit for bit",
+          "[view_transform]") {
+    using trac0r_test::read_text_file;
+    using trac0r_test::run_viewer_process;
+    // Exposure 4: the lamp, the ceiling and the walls' brightest parts
+    // above 1, where the two views differ most.
+    const std::string base = cornell + " --headless --width 48 --height 36 --spp 4 --exposure 4";
+    // Plain, and with the filter (a filtered and a raw file of each kind)
+    // and every EXR layer.
+    for (const std::string extra : {"", " --filter --exr-layers all"}) {
+        CAPTURE(extra);
+        const std::string outputs = " -o view_a.png -o view_a.pfm -o view_a.exr";
+        const trac0r_test::ViewerRun standard = run_viewer_process(base + extra + outputs);
+        INFO(standard.err);
+        REQUIRE(standard.exit_code == 0);
+        const trac0r_test::ViewerRun filmic = run_viewer_process(
+            base + extra + " --view filmic" + " -o view_b.png -o view_b.pfm -o view_b.exr");
+        INFO(filmic.err);
+        REQUIRE(filmic.exit_code == 0);
+        std::vector<std::string> suffixes = {".pfm", ".exr"};
+        if (!extra.empty()) {
+            suffixes.push_back(".raw.pfm");
+            suffixes.push_back(".raw.exr");
+        }
+        for (const std::string& suffix : suffixes) {
+            CAPTURE(suffix);
+            const std::string a = read_text_file("view_a" + suffix);
+            CHECK(!a.empty());
+            CHECK(a == read_text_file("view_b" + suffix));
+        }
+        CHECK(trac0r::read_png("view_a.png").bytes != trac0r::read_png("view_b.png").bytes);
+        // The PNG is the PFM through the view: the same pixels by another road.
+        const trac0r::Image pfm = trac0r::read_pfm("view_b.pfm");
+        CHECK(trac0r::read_png("view_b.png").bytes ==
+              trac0r::tonemap_image(pfm, 4.0f, ViewTransform::filmic).bytes);
+    }
+    for (const char* f : {"view_a", "view_b"}) {
+        for (const char* s : {".png", ".pfm", ".exr", ".raw.png", ".raw.pfm", ".raw.exr"}) {
+            std::remove((std::string(f) + s).c_str());
+        }
+    }
+}
+
+TEST_CASE("--view overrides the scene's render.view", "[view_transform]") {
+    using trac0r_test::run_viewer_process;
+    nlohmann::json scene;
+    {
+        std::ifstream in(cornell);
+        in >> scene;
+    }
+    scene["render"]["view"] = "filmic";
+    {
+        std::ofstream out("view_scene.json");
+        out << scene.dump();
+    }
+    const std::string args = " --headless --width 32 --height 24 --spp 2 --exposure 4 -o ";
+    const auto png = [&](const std::string& scene_path, const std::string& more,
+                         const std::string& name) {
+        const trac0r_test::ViewerRun r = run_viewer_process(scene_path + args + name + more);
+        INFO(r.err);
+        REQUIRE(r.exit_code == 0);
+        const trac0r::Rgb8Image image = trac0r::read_png(name);
+        std::remove(name.c_str());
+        return image.bytes;
+    };
+    const auto from_scene = png("view_scene.json", "", "view_s.png");
+    CHECK(from_scene == png(cornell, " --view filmic", "view_f.png"));
+    CHECK(from_scene != png(cornell, "", "view_c.png"));
+    CHECK(png("view_scene.json", " --view standard", "view_s2.png") ==
+          png(cornell, "", "view_c2.png"));
+    std::remove("view_scene.json");
 }

@@ -253,7 +253,7 @@ TEST_CASE("--help is generated from the options: every group, the keys, examples
         for (const char* option :
              {"--device", "--list-devices", "--width", "--height", "--seconds", "--seed",
               "--max-depth", "--threads", "--accel", "--integrator", "--target-error", "--exposure",
-              "--verbose", "--exr-layers", "--benchmark", "--replay"}) {
+              "--view", "--verbose", "--exr-layers", "--benchmark", "--replay"}) {
             CHECK(r.out.find(std::string("  ") + option + " ") != std::string::npos);
         }
     }
@@ -317,6 +317,9 @@ TEST_CASE("bad command lines give one clear message and a non-zero exit", "[cli]
         {"--headless --spp +3 --output x.png", "--spp: expected an integer"},
         {"--headless --spp ' 3' --output x.png", "--spp: expected an integer"},
         {"--headless --output x.pfm --exposure 4", "--exposure: scales the tone mapping of PNG"},
+        {"--headless --view agx --output x.png", "--view: expected one of standard|filmic"},
+        {"--headless --output x.pfm --output x.exr --view filmic",
+         "--view: sets how PNG outputs (and the window) show the render, never .pfm or .exr"},
         {"--list-devices --output x.png", "--list-devices: lists the OpenCL devices and exits"},
         {"--headless=yes --output x.png", "--headless: takes no value, got 'yes'"},
         {"--headless --spp= --output x.png", "--spp: expected a value after '='"},

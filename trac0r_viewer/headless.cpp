@@ -190,7 +190,7 @@ std::string json_escape(const std::string& s) {
 
 }  // namespace
 
-void save_outputs(const trac0r::Image& image, const Options& options,
+void save_outputs(const trac0r::Image& image, const Options& options, trac0r::ViewTransform view,
                   const trac0r::Renderer* renderer,
                   const std::vector<trac0r::kernel::AccumPixel>* accumulator) {
     const bool with_guides = renderer != nullptr && accumulator != nullptr;
@@ -210,7 +210,7 @@ void save_outputs(const trac0r::Image& image, const Options& options,
         if (trac0r::is_exr_path(path)) {
             trac0r::write_exr(path, picture, layers, precision);
         } else {
-            trac0r::write_image(path, picture, options.exposure);
+            trac0r::write_image(path, picture, options.exposure, view);
         }
         std::fprintf(stderr, "wrote %s\n", path.c_str());
     };
@@ -389,7 +389,7 @@ int run_batch(trac0r::Renderer& renderer, const Options& options, Cluster& clust
                      "float's range: radiance samples above about 1e19); give --spp "
                      "or --seconds instead (the image so far is written)\n",
                      program_name());
-        save_outputs(image, options, &renderer, &accumulator);
+        save_outputs(image, options, renderer.scene().render.view, &renderer, &accumulator);
         return code;
     }
     if (signal_number != 0) {
@@ -397,7 +397,7 @@ int run_batch(trac0r::Renderer& renderer, const Options& options, Cluster& clust
                      "%s: interrupted by %s after %ld spp (%.2f s): writing the "
                      "image so far\n",
                      program_name(), signal_number == SIGINT ? "SIGINT" : "SIGTERM", spp, elapsed);
-        save_outputs(image, options, &renderer, &accumulator);
+        save_outputs(image, options, renderer.scene().render.view, &renderer, &accumulator);
         return code;
     }
     double dropped = 0.0;
@@ -428,7 +428,7 @@ int run_batch(trac0r::Renderer& renderer, const Options& options, Cluster& clust
                              : "");
         }
     }
-    save_outputs(image, options, &renderer, &accumulator);
+    save_outputs(image, options, renderer.scene().render.view, &renderer, &accumulator);
     return code;
 }
 
@@ -467,7 +467,8 @@ int run_benchmark(trac0r::Renderer& renderer, const Options& options,
          << json_escape(renderer.backend().device()) << "\"}";
     std::cout << json.str() << std::endl;
     if (!options.outputs.empty()) {
-        save_outputs(renderer.image(), options, &renderer, &renderer.accumulator());
+        save_outputs(renderer.image(), options, renderer.scene().render.view, &renderer,
+                     &renderer.accumulator());
     }
     return 0;
 }

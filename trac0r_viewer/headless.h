@@ -23,10 +23,10 @@ int run_batch(trac0r::Renderer& renderer, const Options& options, Cluster& clust
 int run_benchmark(trac0r::Renderer& renderer, const Options& options,
                   const std::function<bool()>& after_frame = nullptr);
 
-// Writes every --output file of the image; each .exr with the
-// --exr-layers, made from `renderer`'s scene and view and `accumulator`
-// (where both are given).
-void save_outputs(const trac0r::Image& image, const Options& options,
+// Writes every --output file of the image, each .png through `view`;
+// each .exr with the --exr-layers, made from `renderer`'s scene and
+// camera and `accumulator` (where both are given).
+void save_outputs(const trac0r::Image& image, const Options& options, trac0r::ViewTransform view,
                   const trac0r::Renderer* renderer = nullptr,
                   const std::vector<trac0r::kernel::AccumPixel>* accumulator = nullptr);
 

@@ -136,6 +136,10 @@ void define_options(trac0r_cli::CommandLine& cl, Options& o) {
                 "E");
     cl.positive("--exposure", &o.exposure,
                 "multiply radiance by X before tone mapping (PNG, window)");
+    cl.choice("--view", &o.view, "standard|filmic",
+              "how PNG outputs and the window show radiance: each channel clipped at 1 "
+              "(standard), or AgX, highlights rolled off to white as in Blender (filmic); "
+              "default: the scene's render.view, else standard; never changes .pfm or .exr");
     cl.flag("--verbose", &o.verbose,
             "each mesh (triangles, bounds, material, smooth ones), backend, device, feature "
             "mask and what was left out");

@@ -34,6 +34,7 @@ struct Options {
     std::string sampler = "sobol";
     double target_error = 0.0;
     float exposure = 1.0f;
+    std::string view;                   // --view standard|filmic; empty: the scene's render.view
     trac0r::ExrLayerChoice exr_layers;  // --exr-layers
     bool exr_half = false;              // --exr-half
     bool filter = false;                // --filter

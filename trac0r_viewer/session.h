@@ -14,6 +14,7 @@
 
 #include "trac0r/geometry.h"
 #include "trac0r/camera.h"
+#include "trac0r/view_transform.h"
 
 #include <SDL.h>
 
@@ -54,6 +55,8 @@ class Session {
         return filter_ && !shown_.filtered.pixels.empty() ? shown_.filtered : shown_.image;
     }
     void set_filter(bool on);
+    // Tone maps shown_image() into the window, with the exposure and view.
+    void show_image();
     long shown_spp() const;
     void draw();
     OverlayFigures figures() const;
@@ -82,6 +85,7 @@ class Session {
     bool have_frame_ = false;
     trac0r::Image last_full_image_;  // for --output at the end
     float exposure_;
+    trac0r::ViewTransform view_;  // --view, else the scene's render.view
     bool overlay_ = false;
     bool filter_ = false;  // the display filter (F, --filter)
     bool help_ = false;

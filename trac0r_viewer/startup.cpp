@@ -61,6 +61,12 @@ void check_options(const Options& o, bool writes_outputs) {
             "--exposure: scales the tone mapping of PNG outputs (and the window); no --output is "
             "a .png");
     }
+    if (o.headless && !o.view.empty() &&
+        std::none_of(o.outputs.begin(), o.outputs.end(), trac0r::is_png_path)) {
+        throw UsageError(
+            "--view: sets how PNG outputs (and the window) show the render, never .pfm or .exr; "
+            "no --output is a .png");
+    }
     if (o.exr_layers.any()) {
         if (!o.headless) {
             throw UsageError(
@@ -116,6 +122,9 @@ trac0r::Scene load_scene(const Options& o) {
     }
     if (!o.camera_path.empty()) {
         scene.camera = trac0r::load_camera_file(o.camera_path, scene.origin);
+    }
+    if (!o.view.empty()) {
+        scene.render.view = trac0r::parse_view_transform(o.view);
     }
     return scene;
 }

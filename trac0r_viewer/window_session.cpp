@@ -47,7 +47,8 @@ Session::Session(const Options& options, Window& window, const Font& font,
       frame_event_(SDL_RegisterEvents(1)),
       replay_(std::move(replay), options.replay_path),
       replaying_(!options.replay_path.empty()),
-      exposure_(options.exposure) {
+      exposure_(options.exposure),
+      view_(renderer->scene().render.view) {
     for (const trac0r::Shape& shape : renderer->scene().shapes) {
         boxes_.push_back(shape.aabb);
     }
@@ -74,10 +75,14 @@ Session::Session(const Options& options, Window& window, const Font& font,
     }
 }
 
+void Session::show_image() {
+    window_.set_image(trac0r::tonemap_image(shown_image(), exposure_, view_));
+}
+
 void Session::set_filter(bool on) {
     filter_ = on;
     if (have_frame_) {
-        window_.set_image(trac0r::tonemap_image(shown_image(), exposure_));
+        show_image();
     }
     requested_generation_ = worker_->set_filter(on);
     say(on ? "filter on: edge-preserving, for display only (the accumulation is untouched)"
@@ -129,7 +134,7 @@ int Session::run() {
                          "saved\n");
             return 1;
         }
-        save_outputs(last_full_image_, options_);
+        save_outputs(last_full_image_, options_, view_);
     }
     return 0;
 }
@@ -152,7 +157,7 @@ void Session::handle(const SDL_Event& e) {
     case SDL_RENDER_TARGETS_RESET:
     case SDL_RENDER_DEVICE_RESET:
         if (have_frame_) {
-            window_.set_image(trac0r::tonemap_image(shown_image(), exposure_));
+            show_image();
         }
         dirty_ = true;
         break;
@@ -210,7 +215,7 @@ void Session::handle_key(const SDL_KeyboardEvent& key) {
         const bool up = k == SDLK_PLUS || k == SDLK_EQUALS || k == SDLK_KP_PLUS;
         exposure_ *= up ? std::sqrt(2.0f) : 1.0f / std::sqrt(2.0f);
         if (have_frame_) {
-            window_.set_image(trac0r::tonemap_image(shown_image(), exposure_));
+            show_image();
         }
         char text[64];
         std::snprintf(text, sizeof text, "exposure %.3g", exposure_);
@@ -312,7 +317,7 @@ void Session::take_from_worker() {
             window_.set_render_size(resize_width_, resize_height_);
             resize_generation_ = 0;
         }
-        window_.set_image(trac0r::tonemap_image(shown_image(), exposure_));
+        show_image();
         if (!shown_.preview) {
             last_full_image_ = shown_.accumulation;
         }
@@ -454,7 +459,8 @@ int run_window(const Options& options, const std::string& title,
     std::unique_ptr<trac0r::Renderer> renderer = make_renderer();
     if (benchmark) {
         return run_benchmark(*renderer, options, [&] {
-            window.set_image(trac0r::tonemap_image(renderer->image(), options.exposure));
+            window.set_image(trac0r::tonemap_image(renderer->image(), options.exposure,
+                                                   renderer->scene().render.view));
             window.draw_image();
             window.present();
             SDL_Event e;
