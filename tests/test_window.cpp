@@ -417,6 +417,50 @@ key Escape
     CHECK(trac0r::read_png(on_shots[0].png).bytes == png[1].bytes);
 }
 
+TEST_CASE("V switches the view to filmic and back; the accumulation stays as it was", "[window]") {
+    const std::string dir = empty_directory("window_view");
+    write_file(dir + "/script.txt", R"(wait_spp 4
+key P            # 1: standard
+key V
+key P            # 2: filmic
+key V
+key P            # 3: standard again
+key Escape
+)");
+    // Exposure 4: much of the box above 1, where the views differ.
+    const std::string view = cornell + " --width 200 --height 150 --spp 4 --exposure 4";
+    const ViewerRun r = run_viewer_process(view + " --replay script.txt", "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    CHECK(r.err.find("view filmic") != std::string::npos);
+    CHECK(r.err.find("view standard") != std::string::npos);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 3);
+    std::vector<trac0r::Rgb8Image> png;
+    for (const Screenshot& s : shots) {
+        png.push_back(trac0r::read_png(s.png));
+        CHECK(same_pixels(trac0r::read_pfm(s.pfm), trac0r::read_pfm(shots[0].pfm)));
+    }
+    CHECK(png[0].bytes != png[1].bytes);
+    CHECK(png[0].bytes == png[2].bytes);
+    // What is shown is the batch render's PNG in that view.
+    for (const char* v : {"standard", "filmic"}) {
+        const ViewerRun batch = run_viewer_process(
+            view + " --headless --view " + v + " --output batch.png", "cd " + dir + " &&");
+        REQUIRE(batch.exit_code == 0);
+        CHECK(trac0r::read_png(dir + "/batch.png").bytes == png[v[0] == 'f' ? 1 : 0].bytes);
+    }
+    // --view filmic starts the window with it.
+    write_file(dir + "/on.txt", "wait_spp 4\nkey P\nkey Escape\n");
+    const ViewerRun on =
+        run_viewer_process(view + " --view filmic --replay on.txt", "cd " + dir + " &&");
+    INFO(on.err);
+    REQUIRE(on.exit_code == 0);
+    const std::vector<Screenshot> on_shots = screenshots_said(on.err);
+    REQUIRE(on_shots.size() == 1);
+    CHECK(trac0r::read_png(on_shots[0].png).bytes == png[1].bytes);
+}
+
 TEST_CASE("--target-error pauses the window once the estimate reaches it", "[window]") {
     // Before, the window accepted --target-error and went on forever.
     const std::string dir = empty_directory("window_target");

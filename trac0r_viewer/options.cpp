@@ -34,6 +34,7 @@ const char* key_help_text() {
   B                  switch backend, CPU <-> OpenCL
   R                  restart accumulation
   + / -              exposure up / down
+  V                  view: standard (clip at 1) / filmic (AgX)
   F                  display filter on / off (edge-preserving; the accumulation
                      is untouched)
   H                  this help
@@ -53,6 +54,7 @@ P           screenshot
 B           CPU <-> OpenCL
 R           restart
 + / -       exposure
+V           standard / filmic
 H           help   Esc quit)";
 }
 

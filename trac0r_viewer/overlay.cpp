@@ -210,7 +210,7 @@ std::string overlay_text(const OverlayFigures& f) {
                 ? format("mouse    pixel (%d, %d)  radiance (%.4g, %.4g, %.4g)\n", f.mouse_x,
                          f.mouse_y, f.mouse_radiance.x, f.mouse_radiance.y, f.mouse_radiance.z)
                 : std::string("mouse    not over the image\n");
-    text += format("exposure %.3g   F1 overlay  H keys", f.exposure);
+    text += format("exposure %.3g  view %s   F1 overlay  H keys", f.exposure, f.view.c_str());
     return text;
 }
 

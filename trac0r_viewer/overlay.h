@@ -74,6 +74,7 @@ struct OverlayFigures {
     int height = 0;
     trac0r::Camera camera;
     float exposure = 1.0f;
+    std::string view = "standard";  // the view transform (V, --view)
     bool mouse_in_image = false;
     int mouse_x = 0;  // render pixel
     int mouse_y = 0;

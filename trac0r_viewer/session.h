@@ -85,7 +85,9 @@ class Session {
     bool have_frame_ = false;
     trac0r::Image last_full_image_;  // for --output at the end
     float exposure_;
-    trac0r::ViewTransform view_;  // --view, else the scene's render.view
+    trac0r::ViewTransform view_;  // V; at first --view, else the scene's render.view
+    // --output's PNGs get the first view, as they get --exposure, not + / -.
+    trac0r::ViewTransform saved_view_;
     bool overlay_ = false;
     bool filter_ = false;  // the display filter (F, --filter)
     bool help_ = false;

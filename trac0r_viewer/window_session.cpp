@@ -48,7 +48,8 @@ Session::Session(const Options& options, Window& window, const Font& font,
       replay_(std::move(replay), options.replay_path),
       replaying_(!options.replay_path.empty()),
       exposure_(options.exposure),
-      view_(renderer->scene().render.view) {
+      view_(renderer->scene().render.view),
+      saved_view_(view_) {
     for (const trac0r::Shape& shape : renderer->scene().shapes) {
         boxes_.push_back(shape.aabb);
     }
@@ -134,7 +135,7 @@ int Session::run() {
                          "saved\n");
             return 1;
         }
-        save_outputs(last_full_image_, options_, view_);
+        save_outputs(last_full_image_, options_, saved_view_);
     }
     return 0;
 }
@@ -238,6 +239,17 @@ void Session::handle_key(const SDL_KeyboardEvent& key) {
         break;
     case SDLK_f:
         set_filter(!filter_);
+        break;
+    case SDLK_v:
+        view_ = view_ == trac0r::ViewTransform::standard ? trac0r::ViewTransform::filmic
+                                                         : trac0r::ViewTransform::standard;
+        if (have_frame_) {
+            show_image();
+        }
+        say(view_ == trac0r::ViewTransform::filmic
+                ? "view filmic: AgX, highlights roll off to white (for display only)"
+                : "view standard: each channel clipped at 1",
+            "", "view");
         break;
     case SDLK_h:
         help_ = !help_;
@@ -367,6 +379,7 @@ OverlayFigures Session::figures() const {
     f.height = window_.render_height();
     f.camera = camera_;
     f.exposure = exposure_;
+    f.view = trac0r::to_string(view_);
     float x = 0.0f;
     float y = 0.0f;
     f.mouse_in_image = have_frame_ && window_.window_to_render(mouse_x_, mouse_y_, &x, &y);
