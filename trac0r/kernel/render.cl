@@ -74,7 +74,9 @@ Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, con
     inverse[item] =
         inside ? (float4)(ray->inv_direction, ray->any_parallel ? 0.0f : 1.0f) : (float4)(0.0f);
     barrier(CLK_LOCAL_MEM_FENCE);
-    if (item == 0u) {
+    if (item == 0u && camera.extent.z > 0.0f) {
+        shared->leaf_count = -1;
+    } else if (item == 0u) {
         RayBundle b;
         bundle_start(&b, camera.position.xyz);
         for (int i = 0; i < T0_TILE * T0_TILE; ++i) {
@@ -82,8 +84,7 @@ Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, con
                 bundle_add(&b, inverse[i].xyz);
             }
         }
-        shared->leaf_count =
-            camera.extent.z > 0.0f ? -1 : bundle_finish_leaves(scene, &b, shared->leaves);
+        shared->leaf_count = bundle_finish_leaves(scene, &b, shared->leaves);
     }
     barrier(CLK_LOCAL_MEM_FENCE);
     return inside ? camera_hit(scene, ray, shared->leaves, shared->leaf_count) : no_hit(T0_NO_HIT);
