@@ -12,8 +12,8 @@
 #include "window.h"
 #include "window_worker.h"
 
-#include "trac0r/geometry.h"
 #include "trac0r/camera.h"
+#include "trac0r/geometry.h"
 #include "trac0r/view_transform.h"
 
 #include <SDL.h>

@@ -452,7 +452,6 @@ void Session::save_screenshot() {
     say(text, shown);
 }
 
-
 int run_window(const Options& options, const std::string& title,
                const trac0r::RenderSettings& render, const RendererFactory& make_renderer,
                const RenderWorker::BackendFactory& make_backend) {
