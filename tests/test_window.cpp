@@ -62,6 +62,18 @@ std::vector<Screenshot> screenshots_said(const std::string& err) {
     return shots;
 }
 
+// The window on `args` (which pause it at --spp 4), in `dir`: the PNG of
+// the screenshot taken once the 4 spp are there.
+trac0r::Rgb8Image first_screenshot_png(const std::string& dir, const std::string& args) {
+    write_file(dir + "/first.txt", "wait_spp 4\nkey P\nkey Escape\n");
+    const ViewerRun r = run_viewer_process(args + " --replay first.txt", "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 1);
+    return trac0r::read_png(shots[0].png);
+}
+
 // Pixels of exactly the overlay's AABB colour (255, 255, 0).
 long yellow_pixels(const trac0r::Rgb8Image& image) {
     long count = 0;
@@ -407,14 +419,7 @@ key Escape
     CHECK(trac0r::read_png(dir + "/batch.png").bytes == png[1].bytes);
 
     // --filter starts the window with it on.
-    write_file(dir + "/on.txt", "wait_spp 4\nkey P\nkey Escape\n");
-    const ViewerRun on =
-        run_viewer_process(view + " --filter --replay on.txt", "cd " + dir + " &&");
-    INFO(on.err);
-    REQUIRE(on.exit_code == 0);
-    const std::vector<Screenshot> on_shots = screenshots_said(on.err);
-    REQUIRE(on_shots.size() == 1);
-    CHECK(trac0r::read_png(on_shots[0].png).bytes == png[1].bytes);
+    CHECK(first_screenshot_png(dir, view + " --filter").bytes == png[1].bytes);
 }
 
 TEST_CASE("V switches the view to filmic and back; the accumulation stays as it was", "[window]") {
@@ -451,14 +456,7 @@ key Escape
         CHECK(trac0r::read_png(dir + "/batch.png").bytes == png[v[0] == 'f' ? 1 : 0].bytes);
     }
     // --view filmic starts the window with it.
-    write_file(dir + "/on.txt", "wait_spp 4\nkey P\nkey Escape\n");
-    const ViewerRun on =
-        run_viewer_process(view + " --view filmic --replay on.txt", "cd " + dir + " &&");
-    INFO(on.err);
-    REQUIRE(on.exit_code == 0);
-    const std::vector<Screenshot> on_shots = screenshots_said(on.err);
-    REQUIRE(on_shots.size() == 1);
-    CHECK(trac0r::read_png(on_shots[0].png).bytes == png[1].bytes);
+    CHECK(first_screenshot_png(dir, view + " --view filmic").bytes == png[1].bytes);
 }
 
 TEST_CASE("--target-error pauses the window once the estimate reaches it", "[window]") {
