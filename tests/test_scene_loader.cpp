@@ -8,6 +8,7 @@
 #include "trac0r/kernel/types.h"
 #include "trac0r/packed_scene.h"
 #include "trac0r/scene_loader.h"
+#include "test_support.h"
 
 #include <dirent.h>
 #include <unistd.h>
@@ -108,33 +109,6 @@ std::vector<std::string> scene_files() {
 bool same_vec3(const glm::vec3& a, const glm::vec3& b) {
     return a.x == b.x && a.y == b.y && a.z == b.z;
 }
-
-// A directory under /tmp holding files written by a test; removed after.
-class TempDir {
-  public:
-    TempDir() {
-        char name[] = "/tmp/trac0r_scene_loader_XXXXXX";
-        REQUIRE(mkdtemp(name) != nullptr);
-        path_ = name;
-    }
-    ~TempDir() {
-        for (const std::string& f : files_) {
-            std::remove(f.c_str());
-        }
-        rmdir(path_.c_str());
-    }
-    std::string write(const std::string& name, const std::string& text) {
-        const std::string file = path_ + "/" + name;
-        std::ofstream(file) << text;
-        files_.push_back(file);
-        return file;
-    }
-    const std::string& path() const { return path_; }
-
-  private:
-    std::string path_;
-    std::vector<std::string> files_;
-};
 
 const char* const tetrahedron_obj =
     "v 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n";

@@ -1,5 +1,6 @@
 // What several test files need: the repository's scenes at a test's size,
-// and a warning-free OpenCL build of a packed scene.
+// a warning-free OpenCL build of a packed scene, block statistics, and a
+// temporary directory.
 #ifndef TRAC0R_TESTS_TEST_SUPPORT_H
 #define TRAC0R_TESTS_TEST_SUPPORT_H
 
@@ -16,8 +17,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace trac0r {
 
@@ -144,6 +148,33 @@ inline double bonferroni_k(int comparisons, double family_false_alarm) {
     }
     return hi;
 }
+
+// A directory under /tmp holding files written by a test; removed after.
+class TempDir {
+  public:
+    TempDir() {
+        char name[] = "/tmp/trac0r_test_XXXXXX";
+        REQUIRE(mkdtemp(name) != nullptr);
+        path_ = name;
+    }
+    ~TempDir() {
+        for (const std::string& f : files_) {
+            std::remove(f.c_str());
+        }
+        rmdir(path_.c_str());
+    }
+    std::string write(const std::string& name, const std::string& text) {
+        const std::string file = path_ + "/" + name;
+        std::ofstream(file) << text;
+        files_.push_back(file);
+        return file;
+    }
+    const std::string& path() const { return path_; }
+
+  private:
+    std::string path_;
+    std::vector<std::string> files_;
+};
 
 }  // namespace trac0r
 
