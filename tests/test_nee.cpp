@@ -360,7 +360,7 @@ TEST_CASE("the light list: picks in proportion to power, densities per area", "[
     double total = 0.0;
     for (std::size_t k = 0; k < packed.lights.size(); ++k) {
         const kernel::LightRecord& light = packed.lights[k];
-        const kernel::TriangleRecord& tri = packed.triangles[light.triangle.x];
+        const kernel::TriangleRecord& tri = packed.triangles[light.ids.x];
         const kernel::MaterialRecord& m = packed.materials[tri.ids.x];
         CAPTURE(k, light.cdf.y, picks[k]);
         REQUIRE(tri.ids.z == k);

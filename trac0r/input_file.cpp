@@ -89,4 +89,11 @@ std::string read_input_file(const std::string& path, const std::string& what) {
     return text;
 }
 
+std::string resolve_path(const std::string& base_dir, const std::string& file) {
+    if (base_dir.empty() || file.empty() || file.front() == '/') {
+        return file;
+    }
+    return base_dir.back() == '/' ? base_dir + file : base_dir + "/" + file;
+}
+
 }  // namespace trac0r

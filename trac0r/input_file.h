@@ -23,6 +23,10 @@ void set_input_size_limit(std::uint64_t bytes);
 // limit ...; or the system's reason).
 std::string read_input_file(const std::string& path, const std::string& what);
 
+// A path that a file in base_dir names: file itself where it is absolute
+// or base_dir is empty, else base_dir/file.
+std::string resolve_path(const std::string& base_dir, const std::string& file);
+
 }  // namespace trac0r
 
 #endif

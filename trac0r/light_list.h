@@ -10,10 +10,14 @@
 
 namespace trac0r {
 
-// Fills packed.lights from the packed triangles and materials;
+// Fills packed.lights from the scene's environment and lamps and the
+// packed triangles and materials (their coordinates times packed.scale
+// already), with packed.environment and packed.distant_count, and sets
+// T0_FEATURE_ENVIRONMENT and T0_FEATURE_LAMPS where they are used;
 // packed_index maps the scene's usable triangles, in the scene's order, to
 // the packed ones.
-void pack_lights(PackedScene& packed, const std::vector<std::uint32_t>& packed_index);
+void pack_lights(const Scene& scene, PackedScene& packed,
+                 const std::vector<std::uint32_t>& packed_index);
 
 }  // namespace trac0r
 

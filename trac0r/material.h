@@ -35,6 +35,10 @@ struct Material {
     // an index into the scene's textures (Scene::textures, or
     // MeshParts::textures for a mesh file's materials); -1 for none.
     int texture = -1;
+    // Whether an emitting material emits from both sides (the thesis'), or
+    // only from the front: the side its triangles' counter-clockwise
+    // winding faces, as OBJ and glTF define it.
+    bool two_sided = true;
 };
 
 // Whether a material of this type takes a base-colour texture (diffuse

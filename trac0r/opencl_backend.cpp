@@ -231,23 +231,25 @@ OpenClMem upload(cl_context context, const std::vector<T>& data) {
 // The arguments of render_frame, named in the order of its signature in
 // trac0r/kernel/render.cl: a change there must change this list.
 enum RenderFrameArg : cl_uint {
-    arg_triangles,    // __global const TriangleRecord*
-    arg_shapes,       // __global const ShapeRecord*
-    arg_materials,    // __global const MaterialRecord*
-    arg_nodes,        // __global const BvhNode*
-    arg_shape_count,  // uint
-    arg_camera,       // CameraRecord
-    arg_accum,        // __global AccumPixel*
-    arg_seed,         // ulong
-    arg_frame,        // uint
-    arg_max_depth,    // int
-    arg_lights,       // __global const LightRecord*
-    arg_light_count,  // uint
-    arg_packets,      // __global const TrianglePacket*
-    arg_normals,      // __global const VertexNormals*
-    arg_uvs,          // __global const TriangleUVs*
-    arg_textures,     // __global const TextureRecord*
-    arg_texels,       // __global const uint*
+    arg_triangles,      // __global const TriangleRecord*
+    arg_shapes,         // __global const ShapeRecord*
+    arg_materials,      // __global const MaterialRecord*
+    arg_nodes,          // __global const BvhNode*
+    arg_shape_count,    // uint
+    arg_camera,         // CameraRecord
+    arg_accum,          // __global AccumPixel*
+    arg_seed,           // ulong
+    arg_frame,          // uint
+    arg_max_depth,      // int
+    arg_lights,         // __global const LightRecord*
+    arg_light_count,    // uint
+    arg_packets,        // __global const TrianglePacket*
+    arg_normals,        // __global const VertexNormals*
+    arg_uvs,            // __global const TriangleUVs*
+    arg_textures,       // __global const TextureRecord*
+    arg_texels,         // __global const uint*
+    arg_environment,    // __global const float4*
+    arg_distant_count,  // uint
 };
 
 // Sets render_frame's argument `index` to `value`: a cl_mem for a buffer,
@@ -270,6 +272,7 @@ struct SceneBuffers {
     OpenClMem uvs;
     OpenClMem textures;
     OpenClMem texels;
+    OpenClMem environment;
 };
 
 SceneBuffers upload_scene(cl_context context, const PackedScene& scene, std::uint64_t largest,
@@ -291,6 +294,7 @@ SceneBuffers upload_scene(cl_context context, const PackedScene& scene, std::uin
     check("the scene's texture coordinates", sizeof(scene.uvs[0]) * scene.uvs.size());
     check("the scene's texture records", sizeof(scene.textures[0]) * scene.textures.size());
     check("the scene's texels", sizeof(scene.texels[0]) * scene.texels.size());
+    check("the environment map", sizeof(glm::vec4) * scene.environment.size());
     SceneBuffers buffers;
     buffers.triangles = upload(context, scene.triangles);
     buffers.shapes = upload(context, scene.shapes);
@@ -302,6 +306,7 @@ SceneBuffers upload_scene(cl_context context, const PackedScene& scene, std::uin
     buffers.uvs = upload(context, scene.uvs);
     buffers.textures = upload(context, scene.textures);
     buffers.texels = upload(context, scene.texels);
+    buffers.environment = upload(context, scene.environment);
     return buffers;
 }
 
@@ -368,6 +373,7 @@ struct OpenClBackend::State {
     bool bvh = false;  // the BVH's program: a tile a work-group
     cl_uint shape_count = 0;
     cl_uint light_count = 0;
+    cl_uint distant_count = 0;
     double build_seconds = 0.0;
     std::string options;
 };
@@ -442,6 +448,7 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
                                  state_->device->description);
     state_->shape_count = static_cast<cl_uint>(scene.shapes.size());
     state_->light_count = static_cast<cl_uint>(scene.lights.size());
+    state_->distant_count = static_cast<cl_uint>(scene.distant_count);
 }
 
 void OpenClBackend::reset(int width, int height) {
@@ -503,6 +510,8 @@ bool OpenClBackend::render_frame_cancellable(const kernel::CameraRecord& camera,
     set_arg(k, arg_uvs, state_->scene.uvs.get());
     set_arg(k, arg_textures, state_->scene.textures.get());
     set_arg(k, arg_texels, state_->scene.texels.get());
+    set_arg(k, arg_environment, state_->scene.environment.get());
+    set_arg(k, arg_distant_count, state_->distant_count);
     std::size_t global = 0;
     const std::size_t* local = nullptr;  // the driver's choice
     if (state_->bvh) {

@@ -22,8 +22,10 @@ kernel::TriangleRecord pack_triangle(const Triangle& t, unsigned material, unsig
 }
 
 kernel::MaterialRecord pack_material(const Material& m) {
-    return kernel::make_material_record(static_cast<unsigned>(m.type), m.color, m.emittance,
-                                        m.roughness, m.ior);
+    kernel::MaterialRecord r = kernel::make_material_record(static_cast<unsigned>(m.type), m.color,
+                                                            m.emittance, m.roughness, m.ior);
+    r.type.z = m.two_sided ? 0u : 1u;
+    return r;
 }
 
 std::uint32_t material_feature(MaterialType type) {
@@ -40,15 +42,16 @@ std::uint32_t material_feature(MaterialType type) {
     return 0;
 }
 
-const char* const feature_bit_names[T0_FEATURE_COUNT] = {"emissive",  "diffuse", "glass",  "glossy",
-                                                         "emittance", "flat",    "bvh",    "nee",
-                                                         "sobol",     "smooth",  "texture"};
+const char* const feature_bit_names[T0_FEATURE_COUNT] = {
+    "emissive", "diffuse", "glass",  "glossy",  "emittance",   "flat",  "bvh",
+    "nee",      "sobol",   "smooth", "texture", "environment", "lamps", "one_sided"};
 
 // What this build's kernel can do at all.
 const std::uint32_t implemented_features =
     T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE | T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
     T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT | T0_FEATURE_BVH | T0_FEATURE_NEE | T0_FEATURE_SOBOL |
-    T0_FEATURE_SMOOTH | T0_FEATURE_TEXTURE;
+    T0_FEATURE_SMOOTH | T0_FEATURE_TEXTURE | T0_FEATURE_ENVIRONMENT | T0_FEATURE_LAMPS |
+    T0_FEATURE_ONE_SIDED;
 
 }  // namespace
 
@@ -67,6 +70,8 @@ kernel::SceneView PackedScene::view() const {
     v.uvs = uvs.data();
     v.textures = textures.data();
     v.texels = texels.data();
+    v.environment = environment.data();
+    v.distant_count = distant_count;
     return v;
 }
 
@@ -322,11 +327,14 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
         if (material.emittance > 0.0f &&
             std::max({material.color.x, material.color.y, material.color.z}) > 0.0f) {
             packed.features |= T0_FEATURE_EMITTANCE;
+            if (!material.two_sided) {
+                packed.features |= T0_FEATURE_ONE_SIDED;
+            }
         }
     }
     pack_normals(usable, packed_index, packed);
     pack_textures(scene, usable, packed_index, packed);
-    pack_lights(packed, packed_index);
+    pack_lights(scene, packed, packed_index);
     if (options.integrator == Integrator::nee && !packed.lights.empty()) {
         packed.features |= T0_FEATURE_NEE;
     }

@@ -57,8 +57,9 @@ struct PackedScene {
     int bvh_depth = 0;
     bool bvh_by_levels = false;  // see Bvh::by_levels
     std::vector<kernel::MaterialRecord> materials;
-    // Every emitting triangle with its power CDF (built for both
-    // integrators; only NEE reads it).
+    // Every light (environment, lamps, emitting triangles) with its power
+    // CDF (light_list.h; built for both integrators: NEE samples them, and
+    // a ray that leaves the scene looks up the distant ones).
     std::vector<kernel::LightRecord> lights;
     // By packed triangle, its vertex normals (T0_FEATURE_SMOOTH); empty when
     // no triangle has them.
@@ -68,6 +69,11 @@ struct PackedScene {
     std::vector<kernel::TriangleUVs> uvs;
     std::vector<kernel::TextureRecord> textures;
     std::vector<std::uint32_t> texels;
+    // With T0_FEATURE_ENVIRONMENT (else empty): the environment's texels
+    // and CDFs (SceneView.environment); the lights list's distant lights
+    // (environment and suns), first in it.
+    std::vector<glm::vec4> environment;
+    std::uint32_t distant_count = 0;
     std::uint32_t features = 0;
     std::size_t dropped_degenerate_triangles = 0;  // zero-area or non-finite
     // The power of two every coordinate was multiplied by: 1 for a scene of

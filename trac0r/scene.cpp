@@ -67,6 +67,7 @@ std::uint64_t scene_digest(const Scene& scene) {
         h.value(m.roughness);
         h.value(m.ior);
         h.value(m.texture);
+        h.value(static_cast<int>(m.two_sided));
     }
     h.value(scene.shapes.size());
     for (const Shape& s : scene.shapes) {
@@ -97,6 +98,26 @@ std::uint64_t scene_digest(const Scene& scene) {
         h.value(t.width);
         h.value(t.height);
         h.bytes(t.texels.data(), t.texels.size() * sizeof(std::uint32_t));
+    }
+    const Environment& e = scene.environment;
+    h.value(static_cast<int>(e.present));
+    h.value(e.strength);
+    h.value(e.rotation);
+    h.vec3(e.color);
+    h.value(e.width);
+    h.value(e.height);
+    for (const glm::vec3& t : e.texels) {
+        h.vec3(t);
+    }
+    h.value(scene.lamps.size());
+    for (const Lamp& l : scene.lamps) {
+        h.value(static_cast<int>(l.type));
+        h.vec3(l.position);
+        h.vec3(l.direction);
+        h.vec3(l.color);
+        h.value(l.power);
+        h.value(l.angle);
+        h.value(l.blend);
     }
     return h.hash();
 }

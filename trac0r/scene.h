@@ -1,8 +1,10 @@
-// A scene as authored: camera, render settings, materials and shapes.
+// A scene as authored: camera, render settings, materials, shapes, and
+// the light that is not a surface's (environment, lamps).
 #ifndef TRAC0R_SCENE_H
 #define TRAC0R_SCENE_H
 
 #include "trac0r/camera.h"
+#include "trac0r/lights.h"
 #include "trac0r/material.h"
 #include "trac0r/shape.h"
 #include "trac0r/view_transform.h"
@@ -33,6 +35,8 @@ struct Scene {
     std::vector<Material> materials;
     std::vector<Shape> shapes;
     std::vector<Texture> textures;  // the materials' base-colour textures (Material::texture)
+    Environment environment;        // none unless present
+    std::vector<Lamp> lamps;        // positions relative to origin, as the shapes'
 
     std::size_t triangle_count() const;
 };
@@ -47,9 +51,10 @@ struct Scene {
 glm::dvec3 local_origin(const glm::dvec3& position);
 
 // A 64-bit FNV-1a hash of everything that decides the image: the origin,
-// camera, render settings, materials and every triangle's vertices, field
-// by field (no padding bytes). Equal scenes hash equal on every machine of
-// the same byte order; trac0r_mpi's ranks compare theirs.
+// camera, render settings, materials, every triangle's vertices, the
+// environment and the lamps, field by field (no padding bytes). Equal
+// scenes hash equal on every machine of the same byte order; trac0r_mpi's
+// ranks compare theirs.
 std::uint64_t scene_digest(const Scene& scene);
 
 }  // namespace trac0r

@@ -29,6 +29,7 @@
 // |                        |         | diffuse: optional, >= 0                 | 0               |
 // |                        |         | colour x emittance <= 1e30 per channel  |                 |
 // | material.roughness     | number  | glossy only, in [0, 1]                  | 0               |
+// | material.two_sided     | boolean | emissive, diffuse: emits from both sides | true           |
 // | material.ior           | number  | glass only, > 0                         | 1.5             |
 // | shapes                 | array   | required, non-empty                     |                 |
 // | shape.type             | string  | required: plane/box/icosphere/mesh      |                 |
@@ -43,6 +44,22 @@
 // | mesh.scale             | [3]     | finite, non-zero (negative mirrors)     | [1, 1, 1]       |
 // | mesh.smooth            | boolean | shade with the file's vertex normals    | true            |
 // | mesh.file_materials    | boolean | faces take the file's materials (MTL...) | true           |
+// | environment            | object  | optional: "color" or "map" (below)      | none (black)    |
+// | environment.color      | [3]     | >= 0: a constant environment            |                 |
+// | environment.map        | string  | an equirectangular .exr or .hdr path    |                 |
+// | environment.strength   | number  | >= 0                                    | 1               |
+// | environment.rotation   | number  | map only: degrees about +y              | 0               |
+// | lights                 | array   | optional: point, spot and sun lights    | []              |
+// | light.type             | string  | required: point/spot/sun                |                 |
+// | light.color            | [3]     | >= 0                                    | [1, 1, 1]       |
+// | point/spot.position    | [3]     | required, finite                        |                 |
+// | point/spot.intensity   | number  | required, >= 0, W/sr                    |                 |
+// | spot/sun.direction     | [3]     | required, non-zero: the spot's axis,    |                 |
+// |                        |         | the direction towards the sun           |                 |
+// | spot.angle             | number  | degrees in (0, 180]: the cone's angle   | 45              |
+// | spot.blend             | number  | in [0, 1]: the soft edge's share        | 0.15            |
+// | sun.irradiance         | number  | required, >= 0, W/m^2                   |                 |
+// | sun.angle              | number  | degrees in [0, 90]: angular diameter    | 0.53            |
 //
 // Every number must be finite as a float (1e39 is rejected); "> 0" and
 // ">= 0" imply finite. Integers may be written 800 or 800.0 but not 800.5.
@@ -53,6 +70,7 @@
 #include "trac0r/input_checks.h"
 #include "trac0r/input_file.h"
 #include "trac0r/json_diagnostics.h"
+#include "trac0r/light_loader.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -158,7 +176,12 @@ void read_material_parameters(const ObjectReader& o, Material& m) {
     const MaterialKeys& keys =
         *std::find_if(std::begin(material_keys), std::end(material_keys),
                       [&](const MaterialKeys& k) { return k.type == m.type; });
-    o.allow_only({"type", "color", keys.parameter}, with_article(to_string(m.type)) + " material");
+    std::vector<std::string> allowed = {"type", "color", keys.parameter};
+    if (keys.field == &Material::emittance) {
+        allowed.push_back("two_sided");
+    }
+    o.allow_only(allowed, with_article(to_string(m.type)) + " material");
+    m.two_sided = o.optional_bool("two_sided", true);
     m.color = o.required_vec3("color", keys.color_rule);
     float& parameter = m.*keys.field;
     parameter = keys.parameter_required
@@ -252,12 +275,6 @@ int read_material_reference(const ObjectReader& o, const ShapeContext& context) 
     return found->second;
 }
 
-std::string resolve_path(const std::string& base_dir, const std::string& file) {
-    if (base_dir.empty() || file.front() == '/') {
-        return file;
-    }
-    return base_dir.back() == '/' ? base_dir + file : base_dir + "/" + file;
-}
 
 std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
                              const glm::vec3& position, const glm::vec3& orientation,
@@ -406,7 +423,8 @@ std::vector<Shape> read_shapes(const json& value, const Location& at, const Shap
 
 Scene read_scene(const json& document, const Location& at, const std::string& base_dir) {
     const ObjectReader o(document, at, "a JSON object with materials and shapes");
-    o.allow_only({"camera", "render", "materials", "shapes"}, "the top level");
+    o.allow_only({"camera", "render", "materials", "shapes", "environment", "lights"},
+                 "the top level");
     Scene scene;
     if (o.has("camera")) {
         scene.camera = read_camera(o["camera"], o.at("camera"), &scene.origin);
@@ -428,6 +446,12 @@ Scene read_scene(const json& document, const Location& at, const std::string& ba
         context.material_names.push_back(scene.materials[i].name);
     }
     scene.shapes = read_shapes(o.required("shapes", "an array of shapes"), o.at("shapes"), context);
+    if (o.has("environment")) {
+        scene.environment = read_environment(o["environment"], o.at("environment"), base_dir);
+    }
+    if (o.has("lights")) {
+        scene.lamps = read_lamps(o["lights"], o.at("lights"), scene.origin);
+    }
     return scene;
 }
 

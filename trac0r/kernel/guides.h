@@ -65,7 +65,7 @@ T0_INLINE GuidePixel guide_ray(const SceneView* scene, CameraRecord camera, t0_u
             g.normal = make_float4(facing_normal.x, facing_normal.y, facing_normal.z,
                                    type == T0_MATERIAL_EMISSIVE ? 1.0f : 0.0f);
             if (type == T0_MATERIAL_EMISSIVE) {
-                *emitted = tint * material_emission(m);
+                *emitted = tint * material_emission_seen(scene, m, front);
             }
             return g;
         }

@@ -1,10 +1,12 @@
-// Next-event estimation's light sampling: a point on an emitting triangle
-// picked by power, its radiance through the material with its MIS weight
-// (sample_light), and the density of picking a given point
+// Next-event estimation's light sampling: a light picked by power (an
+// emitting triangle, a lamp, the sun or the environment), a point or
+// direction on it, its radiance through the material with its MIS weight
+// (sample_light), and the density of picking a given point on a triangle
 // (light_pdf_solid_angle).
 #ifndef TRAC0R_KERNEL_LIGHT_SAMPLING_H
 #define TRAC0R_KERNEL_LIGHT_SAMPLING_H
 
+#include "lamps.h"
 #include "material.h"
 #include "ray.h"
 #include "ray_offset.h"
@@ -48,6 +50,58 @@ T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const Tr
     return area_to_solid_angle(scene->lights[tri->ids.z].cdf.z, distance * distance, cos_light);
 }
 
+// Next-event estimation of a light that is not a triangle (lamps.h): the
+// sample's radiance through the material, if nothing is in between; with
+// its MIS weight where the light has an area (the sun's disc, the
+// environment), in full for a delta light. pick is the light's
+// probability.
+T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord* light,
+                             T0_GLOBAL const MaterialRecord* m, float3 incoming,
+                             float3 facing_normal, float3 facing_geometric, float3 position,
+                             float magnitude, float2 u) {
+    LightSample ls;
+    const t0_u32 kind = light->ids.y;
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT) && kind == T0_LIGHT_ENVIRONMENT) {
+        ls = sample_environment_light(scene, light, u);
+    } else if (kind == T0_LIGHT_SUN) {
+        ls = sample_sun(light, u);
+    } else {
+        ls = sample_point_lamp(light, position);
+    }
+    if (!(ls.radiance.x > 0.0f || ls.radiance.y > 0.0f || ls.radiance.z > 0.0f)) {
+        return float3_splat(0.0f);
+    }
+    const MaterialEval e = eval_material(scene, m, incoming, facing_normal, ls.direction);
+    if (!(e.pdf > 0.0f)) {
+        return float3_splat(0.0f);
+    }
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) && !(dot(ls.direction, facing_geometric) > 0.0f)) {
+        return float3_splat(0.0f);
+    }
+    const float3 origin = offset_ray_origin(position, facing_geometric, magnitude);
+    Ray shadow_ray;
+    float shadow_length = T0_NO_HIT;
+    if (ls.distance < T0_NO_HIT) {
+        // To the lamp's point itself, from the moved origin.
+        const float3 shadow = xyz(light->a) - origin;
+        shadow_length = length(shadow);
+        if (!(shadow_length > 0.0f)) {
+            return float3_splat(0.0f);
+        }
+        shadow_ray = make_ray(origin, shadow / shadow_length);
+    } else {
+        shadow_ray = make_ray(origin, ls.direction);
+    }
+    if (occluded(scene, &shadow_ray, shadow_length)) {
+        return float3_splat(0.0f);
+    }
+    if (!(ls.pdf > 0.0f)) {
+        return e.f_cos * ls.radiance / light->cdf.y;
+    }
+    const float light_pdf = light->cdf.y * ls.pdf;
+    return e.f_cos * ls.radiance * (power_heuristic(light_pdf, e.pdf) / light_pdf);
+}
+
 // Next-event estimation at a surface point: picks an emitting triangle in
 // proportion to its power and a uniform point on it, and returns the
 // radiance it sends back along -incoming through the material, if nothing
@@ -57,12 +111,18 @@ T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const Tr
 // triangle's normal on the incoming side (the side the light must be on,
 // and the shadow ray leaves from); both the same for a flat triangle.
 // magnitude is hit_magnitude of position; u_pick chooses the light and u
-// the point on it.
+// the point on it (or the direction to it).
 T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
                               float3 incoming, float3 facing_normal, float3 facing_geometric,
                               float3 position, float magnitude, float u_pick, float2 u) {
     T0_GLOBAL const LightRecord* light = &scene->lights[pick_light(scene, u_pick)];
-    T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->triangle.x];
+    if ((T0_HAS_FEATURE(scene, T0_FEATURE_LAMPS) ||
+         T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT)) &&
+        light->ids.y != T0_LIGHT_TRIANGLE) {
+        return sample_lamp(scene, light, m, incoming, facing_normal, facing_geometric, position,
+                           magnitude, u);
+    }
+    T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->ids.x];
     float b1 = 0.0f;
     float b2 = 0.0f;
     sample_triangle_barycentrics(u.x, u.y, &b1, &b2);
@@ -84,6 +144,11 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     if (T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) && !(dot(direction, facing_geometric) > 0.0f)) {
         return float3_splat(0.0f);  // in the shading normal's lobe, behind the triangle
     }
+    T0_GLOBAL const MaterialRecord* emitter = &scene->materials[tri->ids.x];
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_ONE_SIDED) && material_one_sided(emitter) &&
+        !(dot(direction, light_normal) < 0.0f)) {
+        return float3_splat(0.0f);  // the back of a one-sided emitter
+    }
     // The shadow ray runs between the two points, each moved off its surface
     // towards the other, so neither surface can block it.
     const float3 light_side = dot(direction, light_normal) < 0.0f ? light_normal : -light_normal;
@@ -99,7 +164,7 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
         return float3_splat(0.0f);
     }
     const float light_pdf = area_to_solid_angle(light->cdf.z, distance2, cos_light);
-    const float3 emitted = material_emission(&scene->materials[tri->ids.x]);
+    const float3 emitted = material_emission(emitter);
     return e.f_cos * emitted * (power_heuristic(light_pdf, e.pdf) / light_pdf);
 }
 

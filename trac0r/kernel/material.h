@@ -42,9 +42,24 @@ T0_INLINE MaterialRecord make_material_record(t0_u32 type, float3 color, float e
 // record is (make_material_record): not a sine at every glossy bounce.
 T0_INLINE float glossy_cone_sin2(T0_GLOBAL const MaterialRecord* m) { return m->params.w; }
 
-// Emitted radiance: colour x emittance, on both sides (as in the thesis).
+// Emitted radiance: colour x emittance, on both sides (as in the thesis)
+// or, for a one-sided emitter, from its front only (material_emission_seen).
 T0_INLINE float3 material_emission(T0_GLOBAL const MaterialRecord* m) {
     return xyz(m->color) * m->params.x;
+}
+
+// Whether the material emits from its front only (the side its triangles'
+// counter-clockwise winding faces; type.z).
+T0_INLINE int material_one_sided(T0_GLOBAL const MaterialRecord* m) { return m->type.z != 0u; }
+
+// The radiance a ray meets on the material from its front (front != 0) or
+// its back.
+T0_INLINE float3 material_emission_seen(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
+                                        int front) {
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_ONE_SIDED) && !front && material_one_sided(m)) {
+        return float3_splat(0.0f);
+    }
+    return material_emission(m);
 }
 
 T0_INLINE float3 reflect_direction(float3 d, float3 n) { return d - n * (2.0f * dot(d, n)); }

@@ -7,14 +7,15 @@
 #include "trace.h"
 
 // The kernel's view of the packed buffers (PackedScene::view on the host).
-// A kernel that reads no materials, lights, normals or textures (the
-// ray-cast benchmark's) passes 0 for them.
+// A kernel that reads no materials, lights, normals, textures or
+// environment (the ray-cast benchmark's) passes 0 for them.
 SceneView scene_view(__global const TriangleRecord* triangles, __global const ShapeRecord* shapes,
                      __global const MaterialRecord* materials, __global const BvhNode* nodes,
                      __global const TrianglePacket* packets, __global const LightRecord* lights,
                      __global const VertexNormals* normals, __global const TriangleUVs* uvs,
                      __global const TextureRecord* textures, __global const uint* texels,
-                     uint shape_count, uint light_count) {
+                     __global const float4* environment, uint shape_count, uint light_count,
+                     uint distant_count) {
     SceneView scene;
     scene.triangles = triangles;
     scene.shapes = shapes;
@@ -26,6 +27,8 @@ SceneView scene_view(__global const TriangleRecord* triangles, __global const Sh
     scene.uvs = uvs;
     scene.textures = textures;
     scene.texels = texels;
+    scene.environment = environment;
+    scene.distant_count = distant_count;
     scene.shape_count = shape_count;
     scene.light_count = light_count;
     scene.features = T0_FEATURES;
@@ -119,9 +122,11 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
                            __global const TrianglePacket* packets,
                            __global const VertexNormals* normals,
                            __global const TriangleUVs* uvs,
-                           __global const TextureRecord* textures, __global const uint* texels) {
-    const SceneView scene = scene_view(triangles, shapes, materials, nodes, packets, lights,
-                                       normals, uvs, textures, texels, shape_count, light_count);
+                           __global const TextureRecord* textures, __global const uint* texels,
+                           __global const float4* environment, uint distant_count) {
+    const SceneView scene =
+        scene_view(triangles, shapes, materials, nodes, packets, lights, normals, uvs, textures,
+                   texels, environment, shape_count, light_count, distant_count);
     if (!T0_HAS_FEATURE(&scene, T0_FEATURE_BVH)) {
         // A pixel a work-item.
         const uint pixel = (uint)get_global_id(0);

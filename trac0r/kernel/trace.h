@@ -130,11 +130,17 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
     float scatter_pdf = 0.0f;  // the density with which that vertex picked this ray
     Hit hit = first;
     for (int depth = 0; depth < max_depth; ++depth) {
-        // Intersect: the nearest triangle, or the black background.
+        // Intersect: the nearest triangle, or the distant lights (the
+        // environment, the sun's disc), else the black background.
         if (depth > 0) {
             hit = intersect_scene(scene, &ray);
         }
         if (hit.triangle < 0) {
+            if (T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT) ||
+                T0_HAS_FEATURE(scene, T0_FEATURE_LAMPS)) {
+                radiance += throughput *
+                            escaped_radiance(scene, ray.direction, lights_sampled, scatter_pdf);
+            }
             break;
         }
         T0_GLOBAL const TriangleRecord* tri = &scene->triangles[hit.triangle];
@@ -152,7 +158,7 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
 
         // Emit.
         if (T0_HAS_FEATURE(scene, T0_FEATURE_EMITTANCE)) {
-            float3 emitted = throughput * material_emission(m);
+            float3 emitted = throughput * material_emission_seen(scene, m, front);
             if (T0_HAS_FEATURE(scene, T0_FEATURE_NEE) && lights_sampled &&
                 tri->ids.z != T0_NO_LIGHT) {
                 emitted *= power_heuristic(scatter_pdf,

@@ -27,7 +27,10 @@
 #define T0_FEATURE_SOBOL (1u << 8)      // Owen-scrambled Sobol samples (sampler.h)
 #define T0_FEATURE_SMOOTH (1u << 9)     // vertex normals (VertexNormals) on some triangles
 #define T0_FEATURE_TEXTURE (1u << 10)   // base-colour textures (texture.h) on some triangles
-#define T0_FEATURE_COUNT 11
+#define T0_FEATURE_ENVIRONMENT (1u << 11)  // light from all around (environment.h)
+#define T0_FEATURE_LAMPS (1u << 12)        // point, spot and sun lights (lamps.h)
+#define T0_FEATURE_ONE_SIDED (1u << 13)    // emitters that emit from their front only
+#define T0_FEATURE_COUNT 14
 
 T0_NAMESPACE_BEGIN
 
@@ -49,14 +52,38 @@ typedef struct T0_ALIGN16 TriangleRecord {
 // TriangleRecord.ids.z of a triangle that emits no light.
 #define T0_NO_LIGHT 0xffffffffu
 
-// One emitting triangle of the light list that next-event estimation picks
-// from, in proportion to its power (emittance x luminance x area). The pick
-// is an inverse-CDF search over cdf.x, so y is exactly the difference of
-// consecutive cdf.x and picks and densities agree bit for bit.
+// The kinds of light in the light list (LightRecord.ids.y).
+#define T0_LIGHT_TRIANGLE 0u     // an emitting triangle (its material emits)
+#define T0_LIGHT_POINT 1u        // a point lamp
+#define T0_LIGHT_SPOT 2u         // a point lamp whose light is a cone
+#define T0_LIGHT_SUN 3u          // a distant disc, or a direction (angle 0)
+#define T0_LIGHT_ENVIRONMENT 4u  // an environment (environment.h)
+
+// One light of the list that next-event estimation picks from, in
+// proportion to its power. The pick is an inverse-CDF search over cdf.x,
+// so y is exactly the difference of consecutive cdf.x and picks and
+// densities agree bit for bit. The distant lights (the environment and
+// suns) come first, SceneView.distant_count of them: a ray that leaves the
+// scene looks them up; an environment is always the first.
+// By kind (all vectors in the packed scene's coordinates):
+//   triangle:    ids.x the triangle; the rest unused.
+//   point:       a.xyz position; b.xyz intensity (W/sr, colour times intensity).
+//   spot:        a.xyz position, a.w cos of the cone's half-angle (where the light
+//                ends); b.xyz intensity on the axis; c.xyz unit axis, c.w cos of
+//                the angle where the soft edge begins (lamps.h, spot_falloff).
+//   sun:         a.xyz unit direction towards the sun; b.xyz its radiance, or for a
+//                delta sun (angle 0) its irradiance (W/m^2); c.x sin^2 of its
+//                angular radius (0: delta), c.y the solid angle of its disc.
+//   environment: a.x, a.y cos and sin of the rotation about +y; ids.z, ids.w the
+//                map's width and height (SceneView.environment).
 typedef struct T0_ALIGN16 LightRecord {
-    float4 cdf;      // x: probability of this light or an earlier one (the last is 1),
-                     // y: probability of this light, z: y / area, the density per area
-    uint4 triangle;  // x: triangle index
+    float4 cdf;  // x: probability of this light or an earlier one (the last is 1),
+                 // y: probability of this light, z: y / area, the density per
+                 // area (triangles)
+    uint4 ids;   // x: triangle index, y: kind (T0_LIGHT_*), z, w: map size
+    float4 a;
+    float4 b;
+    float4 c;
 } LightRecord;
 
 // One shape of the flat structure: its AABB and its run of triangles.
@@ -126,7 +153,8 @@ typedef struct T0_ALIGN16 TextureRecord {
 typedef struct T0_ALIGN16 MaterialRecord {
     float4 color;   // xyz: colour (albedo, or emitted colour), w: unused
     float4 params;  // x: emittance, y: roughness, z: ior, w: glossy_cone_sin2
-    uint4 type;     // x: T0_MATERIAL_*, y: base-colour texture + 1 (0: none)
+    uint4 type;     // x: T0_MATERIAL_*, y: base-colour texture + 1 (0: none),
+                    // z: 1 for an emitter that emits from its front only
 } MaterialRecord;
 
 // The camera as the kernel needs it: an orthonormal frame and the image
@@ -168,6 +196,11 @@ typedef struct SceneView {
     T0_GLOBAL const TriangleUVs* uvs;
     T0_GLOBAL const TextureRecord* textures;
     T0_GLOBAL const t0_u32* texels;
+    // Only with T0_FEATURE_ENVIRONMENT: the map's texels row by row from
+    // the top (xyz radiance, w the row's CDF through this texel), then one
+    // a row (x: the rows' CDF through it) (environment.h).
+    T0_GLOBAL const float4* environment;
+    t0_u32 distant_count;  // the lights list's distant lights, first in it
 } SceneView;
 
 // Per-frame settings of the render.
@@ -185,7 +218,7 @@ T0_STATIC_ASSERT_SIZE(ShapeRecord, 48);
 T0_STATIC_ASSERT_SIZE(MaterialRecord, 48);
 T0_STATIC_ASSERT_SIZE(BvhNode, 256);
 T0_STATIC_ASSERT_SIZE(TrianglePacket, 176);
-T0_STATIC_ASSERT_SIZE(LightRecord, 32);
+T0_STATIC_ASSERT_SIZE(LightRecord, 80);
 T0_STATIC_ASSERT_SIZE(VertexNormals, 48);
 T0_STATIC_ASSERT_SIZE(TriangleUVs, 32);
 T0_STATIC_ASSERT_SIZE(TextureRecord, 16);
