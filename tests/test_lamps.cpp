@@ -12,6 +12,7 @@
 #include "trac0r/opencl_backend.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene.h"
+#include "trac0r/scene_loader.h"
 #include "trac0r/shape.h"
 #include "test_support.h"
 
@@ -305,4 +306,32 @@ TEST_CASE("lamps and a one-sided emitter render alike on OpenCL and the CPU", "[
     }
     CAPTURE(close, a.pixels.size());
     REQUIRE(close >= static_cast<int>(0.95 * a.pixels.size()));
+}
+
+TEST_CASE("scene files set two_sided on emitting materials only, and lamps by type",
+          "[lamps][scene_loader]") {
+    const Scene scene = parse_scene(
+        R"({"materials": {"lamp": {"type": "emissive", "color": [1, 1, 1], "emittance": 2,
+                                   "two_sided": false},
+                          "wall": {"type": "diffuse", "color": [0.5, 0.5, 0.5]}},
+            "shapes": [{"type": "plane", "size": [1, 1], "material": "lamp"}],
+            "lights": [{"type": "spot", "position": [0, 2, 0], "direction": [0, -2, 0],
+                        "intensity": 5, "color": [1, 0.5, 0.5]},
+                       {"type": "sun", "direction": [0, 1, 1], "irradiance": 3}]})",
+        "s.json", "");
+    CHECK_FALSE(scene.materials[0].two_sided);
+    CHECK(scene.materials[1].two_sided);
+    REQUIRE(scene.lamps.size() == 2);
+    CHECK(scene.lamps[0].type == LampType::spot);
+    CHECK(scene.lamps[0].direction == glm::vec3(0.0f, -1.0f, 0.0f));
+    CHECK(scene.lamps[0].angle == 45.0f);  // the documented defaults
+    CHECK(scene.lamps[0].blend == 0.15f);
+    CHECK(scene.lamps[1].angle == default_sun_angle);
+    CHECK(scene.lamps[1].direction.y == Approx(std::sqrt(0.5f)));
+    CHECK_THROWS_WITH(
+        parse_scene(R"({"materials": {"g": {"type": "glass", "color": [1, 1, 1],
+                                            "two_sided": false}},
+                        "shapes": [{"type": "plane", "size": [1, 1], "material": "g"}]})",
+                    "s.json", ""),
+        Catch::Matchers::Contains("/materials/g/two_sided: unknown key in a glass material"));
 }

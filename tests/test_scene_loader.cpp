@@ -959,6 +959,8 @@ TEST_CASE("PLY and glTF 2.0 meshes, with their normals and materials", "[scene_l
         CHECK(glow.type == MaterialType::emissive);
         CHECK(glow.emittance == 1.0f);
         CHECK(glow.color == glm::vec3(1.0f, 0.5f, 0.25f));
+        // Not doubleSided (glTF's default): it emits from its front alone.
+        CHECK_FALSE(glow.two_sided);
         // The node's translation applied: z = 1 + 2.
         CHECK(scene.shapes[1].aabb.min.z == 3.0f);
         CHECK(scene.shapes[0].normals.size() == 1);
@@ -991,6 +993,15 @@ TEST_CASE("PLY and glTF 2.0 meshes, with their normals and materials", "[scene_l
         REQUIRE(plain.shapes.size() == 1);
         CHECK(plain.shapes[0].triangles.size() == 2);
         CHECK(plain.materials.size() == 1);
+    }
+    SECTION("a doubleSided glTF emitter emits from both sides") {
+        dir.write("t.bin", two_triangle_buffer());
+        std::string json = two_triangle_gltf("t.bin");
+        const std::string glow = R"("emissiveFactor": [1, 0.5, 0.25])";
+        json.replace(json.find(glow), glow.size(), glow + R"(, "doubleSided": true)");
+        dir.write("d.gltf", json);
+        const Scene scene = load_scene_file(mesh_scene("d.gltf"));
+        CHECK(scene.materials[static_cast<std::size_t>(scene.shapes[1].material)].two_sided);
     }
     SECTION("a glTF primitive without a material takes the shape's") {
         dir.write("t.bin", two_triangle_buffer());

@@ -181,7 +181,7 @@ TEST_CASE("a scene with nothing that emits renders, with a warning", "[cli]") {
     const Run r = run_viewer(scene + " --headless --width 8 --height 6 --spp 1 --output cli_d.png");
     INFO(r.output);
     REQUIRE(r.exit_code == 0);
-    CHECK(r.output.find("warning: no shape emits light") != std::string::npos);
+    CHECK(r.output.find("warning: nothing emits light") != std::string::npos);
     // An emissive material of colour 0 emits nothing either.
     const std::string black_lamp = "cli_black_lamp.json";
     std::ofstream(black_lamp) << R"({"materials": {"lamp": {"type": "emissive", "color": [0, 0, 0],
@@ -189,10 +189,23 @@ TEST_CASE("a scene with nothing that emits renders, with a warning", "[cli]") {
     const Run black =
         run_viewer(black_lamp + " --headless --width 8 --height 6 --spp 1 --output cli_d.png");
     CHECK(black.exit_code == 0);
-    CHECK(black.output.find("warning: no shape emits light") != std::string::npos);
+    CHECK(black.output.find("warning: nothing emits light") != std::string::npos);
     const Run lit = run_viewer("--headless --width 8 --height 6 --spp 1 --output cli_d.png");
     CHECK(lit.exit_code == 0);
     CHECK(lit.output.find("warning") == std::string::npos);
+    // A sky lights a scene; a black one does not.
+    for (const char* sky : {"[0.5, 0.6, 1]", "[0, 0, 0]"}) {
+        const std::string outdoor = "cli_sky.json";
+        std::ofstream(outdoor) << R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},
+            "shapes": [{"type": "plane", "size": [1, 1], "material": "white"}],
+            "environment": {"color": )" << sky << "}}";
+        const Run run =
+            run_viewer(outdoor + " --headless --width 8 --height 6 --spp 1 --output cli_d.png");
+        INFO(run.output);
+        CHECK(run.exit_code == 0);
+        CHECK((run.output.find("warning: nothing emits light") != std::string::npos) ==
+              (std::string(sky) == "[0, 0, 0]"));
+    }
 }
 
 TEST_CASE("what the checks let through: any case of .png, exponents as %g writes them", "[cli]") {

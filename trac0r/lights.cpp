@@ -1,13 +1,13 @@
 #include "trac0r/lights.h"
 
 #include "trac0r/enum_names.h"
+#include "trac0r/input_checks.h"
 #include "trac0r/input_file.h"
 
 #include <stb_image.h>
 #include <tinyexr.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
@@ -18,17 +18,6 @@ namespace {
 
 const EnumName<LampType> lamp_type_table[] = {
     {LampType::point, "point"}, {LampType::spot, "spot"}, {LampType::sun, "sun"}};
-
-bool ends_with_nocase(const std::string& s, const std::string& suffix) {
-    if (s.size() < suffix.size()) {
-        return false;
-    }
-    return std::equal(suffix.begin(), suffix.end(), s.end() - static_cast<long>(suffix.size()),
-                      [](char a, char b) {
-                          return std::tolower(static_cast<unsigned char>(a)) ==
-                                 std::tolower(static_cast<unsigned char>(b));
-                      });
-}
 
 void check_size(const std::string& path, int width, int height) {
     const long long texels = static_cast<long long>(width) * height;
@@ -119,8 +108,8 @@ LampType parse_lamp_type(const std::string& name) {
 std::vector<std::string> lamp_type_names() { return enum_names(lamp_type_table); }
 
 Environment read_environment_map(const std::string& path) {
-    const bool exr = ends_with_nocase(path, ".exr");
-    if (!exr && !ends_with_nocase(path, ".hdr")) {
+    const bool exr = has_extension(path, ".exr");
+    if (!exr && !has_extension(path, ".hdr")) {
         throw std::runtime_error(path +
                                  ": cannot read environment map: expected an .exr or .hdr "
                                  "file (equirectangular, linear RGB)");

@@ -368,6 +368,16 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
         out.type = MaterialType::diffuse;
         out.color = unit_colour(where, "base colour", colour);
     }
+    // An emitter of a glTF file emits from its front alone unless the
+    // material is doubleSided (glTF 2.0, 3.9.5), which assimp reports as
+    // AI_MATKEY_TWOSIDED; other formats keep the thesis' two sides unless
+    // they say otherwise.
+    int two_sided = 0;
+    if (m.Get(AI_MATKEY_TWOSIDED, two_sided) == AI_SUCCESS) {
+        out.two_sided = two_sided != 0;
+    } else {
+        out.two_sided = !has_extension(file, ".gltf") && !has_extension(file, ".glb");
+    }
     out.name = name.C_Str();
     return out;
 }
@@ -956,6 +966,7 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
         w.f32(m.roughness);
         w.f32(m.ior);
         w.i32(m.texture);
+        w.u8(m.two_sided ? 1 : 0);
     }
     w.u64(files.textures.size());
     for (const Texture& t : files.textures) {
@@ -1035,7 +1046,7 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         part_materials.push_back(id);
         mesh.parts.push_back(std::move(p));
     }
-    const std::size_t material_count = r.count(8 + 4 + 12 + 12 + 4, "materials");
+    const std::size_t material_count = r.count(8 + 4 + 12 + 12 + 4 + 1, "materials");
     for (std::size_t i = 0; i < material_count; ++i) {
         Material m;
         m.name = r.text("bytes of a material's name");
@@ -1052,6 +1063,7 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         m.roughness = r.get<float>();
         m.ior = r.get<float>();
         m.texture = r.get<std::int32_t>();
+        m.two_sided = r.get<std::uint8_t>() != 0;
         if (!(std::min({m.color.x, m.color.y, m.color.z}) >= 0.0f) || !(peak(m.color) <= 1.0f) ||
             !(m.emittance >= 0.0f && m.emittance <= max_emitted_radiance) ||
             !(m.roughness >= 0.0f && m.roughness <= 1.0f) ||

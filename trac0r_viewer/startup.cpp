@@ -129,6 +129,68 @@ trac0r::Scene load_scene(const Options& o) {
     return scene;
 }
 
+// The environment, the lamps and the light list: what each kind's share
+// of next-event estimation's picks is.
+void print_lights(const trac0r::Scene& scene, const trac0r::PackedScene& p) {
+    const trac0r::Environment& e = scene.environment;
+    if (e.present && e.map.empty()) {
+        std::fprintf(stderr, "environment: constant colour (%g, %g, %g), strength %g\n", e.color.x,
+                     e.color.y, e.color.z, e.strength);
+    } else if (e.present) {
+        std::fprintf(stderr, "environment: map %s (%dx%d), strength %g, rotation %g degrees\n",
+                     e.map.c_str(), e.width, e.height, e.strength, e.rotation);
+    } else {
+        std::fprintf(stderr, "environment: none (rays that leave the scene find black)\n");
+    }
+    for (std::size_t i = 0; i < scene.lamps.size(); ++i) {
+        const trac0r::Lamp& l = scene.lamps[i];
+        const glm::dvec3 at = glm::dvec3(l.position) + scene.origin;
+        if (l.type == trac0r::LampType::sun) {
+            std::fprintf(stderr,
+                         "light %zu: sun towards (%g, %g, %g), irradiance %g W/m^2, colour (%g, "
+                         "%g, %g), angle %g degrees\n",
+                         i, l.direction.x, l.direction.y, l.direction.z, l.power, l.color.x,
+                         l.color.y, l.color.z, l.angle);
+        } else {
+            std::fprintf(stderr, "light %zu: %s at (%.6g, %.6g, %.6g), intensity %g W/sr, colour "
+                                 "(%g, %g, %g)",
+                         i, trac0r::to_string(l.type), at.x, at.y, at.z, l.power, l.color.x,
+                         l.color.y, l.color.z);
+            if (l.type == trac0r::LampType::spot) {
+                std::fprintf(stderr, ", pointing (%g, %g, %g), angle %g degrees, blend %g",
+                             l.direction.x, l.direction.y, l.direction.z, l.angle, l.blend);
+            }
+            std::fprintf(stderr, "\n");
+        }
+    }
+    // The picks' shares by kind (kernel/types.h's T0_LIGHT_* order).
+    const char* const kinds[] = {"emitting triangles", "point", "spot", "sun", "environment"};
+    double share[5] = {0.0, 0.0, 0.0, 0.0, 0.0};
+    std::size_t count[5] = {0, 0, 0, 0, 0};
+    for (const trac0r::kernel::LightRecord& light : p.lights) {
+        share[light.ids.y] += light.cdf.y;
+        ++count[light.ids.y];
+    }
+    std::string list;
+    for (int k = 4; k >= 0; --k) {
+        if (count[k] > 0) {
+            char text[96];
+            std::snprintf(text, sizeof text, "%s%zu %s %.1f%%", list.empty() ? "" : ", ",
+                          count[k], kinds[k], 100.0 * share[k]);
+            list += text;
+        }
+    }
+    const std::size_t one_sided = static_cast<std::size_t>(std::count_if(
+        scene.materials.begin(), scene.materials.end(), [](const trac0r::Material& m) {
+            return !m.two_sided && m.emittance > 0.0f;
+        }));
+    std::fprintf(stderr, "light list: %zu lights picked by power (%s)%s\n", p.lights.size(),
+                 list.empty() ? "none" : list.c_str(),
+                 one_sided > 0 ? (", " + std::to_string(one_sided) +
+                                  " one-sided emitting material(s)").c_str()
+                               : "");
+}
+
 void print_verbose(trac0r::Renderer& r, const Options& o) {
     const trac0r::PackedScene& p = r.packed();
     std::fprintf(stderr,
@@ -173,6 +235,7 @@ void print_verbose(trac0r::Renderer& r, const Options& o) {
                      s.source.c_str(), s.triangles.size(), lo.x, lo.y, lo.z, hi.x, hi.y, hi.z,
                      m.name.c_str(), texture.c_str(), smooth);
     }
+    print_lights(scene, p);
     std::fprintf(stderr, "backend: %s (%s)\n", r.backend().name().c_str(),
                  r.backend().device().c_str());
     if (o.filter) {
@@ -282,10 +345,13 @@ std::unique_ptr<trac0r::Renderer> Startup::make_renderer(const Options& options)
     }
     // Not an error (a scene may be built up light by light), but nothing
     // else would say why the image stays black.
-    if ((renderer->packed().features & T0_FEATURE_EMITTANCE) == 0u && !warned_dark_ && speaks_) {
+    const std::uint32_t lit =
+        T0_FEATURE_EMITTANCE | T0_FEATURE_ENVIRONMENT | T0_FEATURE_LAMPS;
+    if ((renderer->packed().features & lit) == 0u && !warned_dark_ && speaks_) {
         std::fprintf(stderr,
-                     "%s: warning: no shape emits light (no material with an emittance and "
-                     "a colour above 0 is used), so the image will be black\n",
+                     "%s: warning: nothing emits light (no material with an emittance and a "
+                     "colour above 0 is used, and there is no environment or lamp that is not "
+                     "black), so the image will be black\n",
                      program_name());
         warned_dark_ = true;
     }
