@@ -1,9 +1,11 @@
 #include "trac0r/light_list.h"
 
 #include "trac0r/kernel/accumulate.h"
+#include "trac0r/light_tree.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace trac0r {
 
@@ -158,7 +160,7 @@ Candidate lamp_light(const Lamp& lamp, float scale, double radius) {
 // the structure's, so that a light sample picks the same triangle with the
 // flat list and with any BVH. Lights of no power are left out.
 void pack_lights(const Scene& scene, PackedScene& packed,
-                 const std::vector<std::uint32_t>& packed_index) {
+                 const std::vector<std::uint32_t>& packed_index, LightSampler sampler) {
     std::vector<Candidate> lights;
     const double radius = scene_radius(packed);
     if (scene.environment.present) {
@@ -217,6 +219,17 @@ void pack_lights(const Scene& scene, PackedScene& packed,
         }
         packed.lights.push_back(light);
         previous_cdf = cdf;
+    }
+    const std::size_t positioned = lights.size() - packed.distant_count;
+    if (positioned > 0 &&
+        (sampler == LightSampler::tree ||
+         (sampler == LightSampler::automatic && positioned >= light_tree_min_lights))) {
+        std::vector<double> power;
+        for (const Candidate& c : lights) {
+            power.push_back(c.power);
+        }
+        build_light_tree(packed, power);
+        packed.features |= T0_FEATURE_LIGHT_TREE;
     }
 }
 

@@ -16,8 +16,11 @@ namespace trac0r {
 // T0_FEATURE_ENVIRONMENT and T0_FEATURE_LAMPS where they are used;
 // packed_index maps the scene's usable triangles, in the scene's order, to
 // the packed ones.
+// With the light sampler's tree (T0_FEATURE_LIGHT_TREE: LightSampler::tree
+// where any light has a position, or automatic from light_tree_min_lights
+// of them), the tree too (light_tree.h).
 void pack_lights(const Scene& scene, PackedScene& packed,
-                 const std::vector<std::uint32_t>& packed_index);
+                 const std::vector<std::uint32_t>& packed_index, LightSampler sampler);
 
 }  // namespace trac0r
 

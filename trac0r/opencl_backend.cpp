@@ -250,6 +250,7 @@ enum RenderFrameArg : cl_uint {
     arg_texels,         // __global const uint*
     arg_environment,    // __global const float4*
     arg_distant_count,  // uint
+    arg_light_nodes,    // __global const LightTreeNode*
 };
 
 // Sets render_frame's argument `index` to `value`: a cl_mem for a buffer,
@@ -273,6 +274,7 @@ struct SceneBuffers {
     OpenClMem textures;
     OpenClMem texels;
     OpenClMem environment;
+    OpenClMem light_nodes;
 };
 
 SceneBuffers upload_scene(cl_context context, const PackedScene& scene, std::uint64_t largest,
@@ -295,6 +297,7 @@ SceneBuffers upload_scene(cl_context context, const PackedScene& scene, std::uin
     check("the scene's texture records", sizeof(scene.textures[0]) * scene.textures.size());
     check("the scene's texels", sizeof(scene.texels[0]) * scene.texels.size());
     check("the environment map", sizeof(glm::vec4) * scene.environment.size());
+    check("the light tree", sizeof(scene.light_nodes[0]) * scene.light_nodes.size());
     SceneBuffers buffers;
     buffers.triangles = upload(context, scene.triangles);
     buffers.shapes = upload(context, scene.shapes);
@@ -307,6 +310,7 @@ SceneBuffers upload_scene(cl_context context, const PackedScene& scene, std::uin
     buffers.textures = upload(context, scene.textures);
     buffers.texels = upload(context, scene.texels);
     buffers.environment = upload(context, scene.environment);
+    buffers.light_nodes = upload(context, scene.light_nodes);
     return buffers;
 }
 
@@ -512,6 +516,7 @@ bool OpenClBackend::render_frame_cancellable(const kernel::CameraRecord& camera,
     set_arg(k, arg_texels, state_->scene.texels.get());
     set_arg(k, arg_environment, state_->scene.environment.get());
     set_arg(k, arg_distant_count, state_->distant_count);
+    set_arg(k, arg_light_nodes, state_->scene.light_nodes.get());
     std::size_t global = 0;
     const std::size_t* local = nullptr;  // the driver's choice
     if (state_->bvh) {

@@ -43,15 +43,15 @@ std::uint32_t material_feature(MaterialType type) {
 }
 
 const char* const feature_bit_names[T0_FEATURE_COUNT] = {
-    "emissive", "diffuse", "glass",  "glossy",  "emittance",   "flat",  "bvh",
-    "nee",      "sobol",   "smooth", "texture", "environment", "lamps", "one_sided"};
+    "emissive", "diffuse", "glass",   "glossy",      "emittance", "flat",      "bvh",       "nee",
+    "sobol",    "smooth",  "texture", "environment", "lamps",     "one_sided", "light_tree"};
 
 // What this build's kernel can do at all.
 const std::uint32_t implemented_features =
     T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE | T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
     T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT | T0_FEATURE_BVH | T0_FEATURE_NEE | T0_FEATURE_SOBOL |
     T0_FEATURE_SMOOTH | T0_FEATURE_TEXTURE | T0_FEATURE_ENVIRONMENT | T0_FEATURE_LAMPS |
-    T0_FEATURE_ONE_SIDED;
+    T0_FEATURE_ONE_SIDED | T0_FEATURE_LIGHT_TREE;
 
 }  // namespace
 
@@ -72,6 +72,7 @@ kernel::SceneView PackedScene::view() const {
     v.texels = texels.data();
     v.environment = environment.data();
     v.distant_count = distant_count;
+    v.light_nodes = light_nodes.data();
     return v;
 }
 
@@ -334,7 +335,7 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
     }
     pack_normals(usable, packed_index, packed);
     pack_textures(scene, usable, packed_index, packed);
-    pack_lights(scene, packed, packed_index);
+    pack_lights(scene, packed, packed_index, options.light_sampler);
     if (options.integrator == Integrator::nee && !packed.lights.empty()) {
         packed.features |= T0_FEATURE_NEE;
     }
@@ -358,6 +359,9 @@ const EnumName<Accel> accel_names[] = {
     {Accel::flat, "flat"}, {Accel::bvh, "bvh"}, {Accel::automatic, "auto"}};
 const EnumName<Integrator> integrator_names[] = {{Integrator::naive, "naive"},
                                                  {Integrator::nee, "nee"}};
+const EnumName<LightSampler> light_sampler_names[] = {{LightSampler::power, "power"},
+                                                      {LightSampler::tree, "tree"},
+                                                      {LightSampler::automatic, "auto"}};
 const EnumName<SamplerKind> sampler_names[] = {{SamplerKind::random, "random"},
                                                {SamplerKind::sobol, "sobol"}};
 
@@ -375,6 +379,14 @@ Integrator parse_integrator(const std::string& name) {
 
 const char* to_string(Integrator integrator) {
     return enum_name(integrator_names, integrator, "naive");
+}
+
+LightSampler parse_light_sampler(const std::string& name) {
+    return enum_value(light_sampler_names, name, "light sampler");
+}
+
+const char* to_string(LightSampler sampler) {
+    return enum_name(light_sampler_names, sampler, "auto");
 }
 
 SamplerKind parse_sampler(const std::string& name) {

@@ -40,6 +40,17 @@ enum class SamplerKind {
     sobol,   // Owen-scrambled Sobol points: stratified, less error per sample
 };
 
+// How next-event estimation picks a light (light_list.h).
+enum class LightSampler {
+    power,      // in proportion to power alone, from one CDF
+    tree,       // the light tree: by power, distance and orientation
+    automatic,  // the tree from light_tree_min_lights lights with a position
+};
+
+// From how many lights with a position (emitting triangles, point and
+// spot lamps) `automatic` builds the light tree.
+const std::size_t light_tree_min_lights = 32;
+
 struct PackOptions {
     Accel accel = Accel::automatic;
     // For automatic: from how many triangles a BVH is built; 0 for
@@ -47,6 +58,7 @@ struct PackOptions {
     std::size_t auto_bvh_min_triangles = 0;
     Integrator integrator = Integrator::naive;
     SamplerKind sampler = SamplerKind::random;
+    LightSampler light_sampler = LightSampler::automatic;
 };
 
 struct PackedScene {
@@ -74,6 +86,8 @@ struct PackedScene {
     // (environment and suns), first in it.
     std::vector<glm::vec4> environment;
     std::uint32_t distant_count = 0;
+    // With T0_FEATURE_LIGHT_TREE (else empty): the light tree, root first.
+    std::vector<kernel::LightTreeNode> light_nodes;
     std::uint32_t features = 0;
     std::size_t dropped_degenerate_triangles = 0;  // zero-area or non-finite
     // The power of two every coordinate was multiplied by: 1 for a scene of
@@ -108,6 +122,11 @@ const char* to_string(Accel accel);
 // "naive", "nee" and back; parse_integrator throws std::invalid_argument.
 Integrator parse_integrator(const std::string& name);
 const char* to_string(Integrator integrator);
+
+// "power", "tree", "auto" and back; parse_light_sampler throws
+// std::invalid_argument.
+LightSampler parse_light_sampler(const std::string& name);
+const char* to_string(LightSampler sampler);
 
 // "random", "sobol" and back; parse_sampler throws std::invalid_argument.
 SamplerKind parse_sampler(const std::string& name);

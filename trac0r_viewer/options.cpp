@@ -131,6 +131,10 @@ void define_options(trac0r_cli::CommandLine& cl, Options& o) {
     cl.choice("--sampler", &o.sampler, "random|sobol",
               "Owen-scrambled Sobol points, stratified (sobol, default), or the thesis' "
               "xorshift1024* numbers");
+    cl.choice("--light-sampler", &o.light_sampler, "power|tree|auto",
+              "how next-event estimation picks a light: by power alone, or by a light tree "
+              "(power, distance, orientation); auto (default): the tree from 32 lights with a "
+              "position");
     cl.positive("--target-error", &o.target_error,
                 "stop when the estimated relative MSE (no reference needed: from each pixel's "
                 "sample variance) reaches E, e.g. 0.01; with --spp or --seconds, whichever "
@@ -219,6 +223,7 @@ trac0r::PackOptions pack_options(const Options& options) {
     pack.accel = trac0r::parse_accel(options.accel);
     pack.integrator = trac0r::parse_integrator(options.integrator);
     pack.sampler = trac0r::parse_sampler(options.sampler);
+    pack.light_sampler = trac0r::parse_light_sampler(options.light_sampler);
     return pack;
 }
 

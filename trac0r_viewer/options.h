@@ -32,6 +32,7 @@ struct Options {
     std::string accel = "auto";
     std::string integrator = "nee";
     std::string sampler = "sobol";
+    std::string light_sampler = "auto";
     double target_error = 0.0;
     float exposure = 1.0f;
     std::string view;                   // --view standard|filmic; empty: the scene's render.view
@@ -53,7 +54,8 @@ using UsageError = trac0r_cli::UsageError;
 // The options (help and version as flags: the caller prints them).
 Options parse_options(int argc, const char* const* argv);
 
-// --accel, --integrator and --sampler as the library's packing options.
+// --accel, --integrator, --sampler and --light-sampler as the library's
+// packing options.
 trac0r::PackOptions pack_options(const Options& options);
 
 // The name messages begin with: "trac0r_viewer", or what set_program_name

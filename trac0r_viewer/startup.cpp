@@ -152,8 +152,9 @@ void print_lights(const trac0r::Scene& scene, const trac0r::PackedScene& p) {
                          i, l.direction.x, l.direction.y, l.direction.z, l.power, l.color.x,
                          l.color.y, l.color.z, l.angle);
         } else {
-            std::fprintf(stderr, "light %zu: %s at (%.6g, %.6g, %.6g), intensity %g W/sr, colour "
-                                 "(%g, %g, %g)",
+            std::fprintf(stderr,
+                         "light %zu: %s at (%.6g, %.6g, %.6g), intensity %g W/sr, colour "
+                         "(%g, %g, %g)",
                          i, trac0r::to_string(l.type), at.x, at.y, at.z, l.power, l.color.x,
                          l.color.y, l.color.z);
             if (l.type == trac0r::LampType::spot) {
@@ -175,8 +176,8 @@ void print_lights(const trac0r::Scene& scene, const trac0r::PackedScene& p) {
     for (int k = 4; k >= 0; --k) {
         if (count[k] > 0) {
             char text[96];
-            std::snprintf(text, sizeof text, "%s%zu %s %.1f%%", list.empty() ? "" : ", ",
-                          count[k], kinds[k], 100.0 * share[k]);
+            std::snprintf(text, sizeof text, "%s%zu %s %.1f%%", list.empty() ? "" : ", ", count[k],
+                          kinds[k], 100.0 * share[k]);
             list += text;
         }
     }

@@ -7,6 +7,7 @@
 #define TRAC0R_KERNEL_LIGHT_SAMPLING_H
 
 #include "lamps.h"
+#include "light_tree.h"
 #include "material.h"
 #include "ray.h"
 #include "ray_offset.h"
@@ -31,6 +32,19 @@ T0_INLINE t0_u32 pick_light(const SceneView* scene, float u) {
     return lo;
 }
 
+// The share of picks that the distant lights (environment, suns: first in
+// the list) take; the light tree picks among the rest.
+T0_INLINE float distant_share(const SceneView* scene) {
+    return scene->distant_count > 0u ? scene->lights[scene->distant_count - 1u].cdf.x : 0.0f;
+}
+
+// The probability that next-event estimation at p with normal n picks
+// `light`, a light of the tree (not a distant one).
+T0_INLINE float tree_light_pmf(const SceneView* scene, T0_GLOBAL const LightRecord* light, float3 p,
+                               float3 n) {
+    return (1.0f - distant_share(scene)) * light_tree_pmf(scene, p, n, light->ids.z);
+}
+
 // A density per area on a light turned into one per solid angle, seen from
 // squared distance distance2 at cosine cos_light to the light's surface.
 T0_INLINE float area_to_solid_angle(float pdf_area, float distance2, float cos_light) {
@@ -38,16 +52,24 @@ T0_INLINE float area_to_solid_angle(float pdf_area, float distance2, float cos_l
 }
 
 // The density per solid angle, seen from distance away along unit
-// direction, with which next-event estimation picks a point on the emitting
-// triangle tri; zero for a triangle that is not in the light list. Emitters
-// are two-sided, so the cosine at the light is taken on either side.
+// direction, with which next-event estimation at `from` (with normal
+// from_normal: the light tree's pick depends on them) picks a point on
+// the emitting triangle tri; zero for a triangle that is not in the light
+// list. The cosine at the light is taken on either side (a one-sided
+// emitter's back, which this is asked about too, emits nothing anyway).
 T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const TriangleRecord* tri,
-                                      float3 direction, float distance) {
+                                      float3 direction, float distance, float3 from,
+                                      float3 from_normal) {
     if (tri->ids.z == T0_NO_LIGHT) {
         return 0.0f;
     }
     const float cos_light = fabs(dot(direction, xyz(tri->normal)));
-    return area_to_solid_angle(scene->lights[tri->ids.z].cdf.z, distance * distance, cos_light);
+    T0_GLOBAL const LightRecord* light = &scene->lights[tri->ids.z];
+    float pdf_area = light->cdf.z;
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)) {
+        pdf_area = tree_light_pmf(scene, light, from, from_normal) / (0.5f * tri->normal.w);
+    }
+    return area_to_solid_angle(pdf_area, distance * distance, cos_light);
 }
 
 // Next-event estimation of a light that is not a triangle (lamps.h): the
@@ -55,7 +77,7 @@ T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const Tr
 // its MIS weight where the light has an area (the sun's disc, the
 // environment), in full for a delta light. pick is the light's
 // probability.
-T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord* light,
+T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord* light, float pick,
                              T0_GLOBAL const MaterialRecord* m, float3 incoming,
                              float3 facing_normal, float3 facing_geometric, float3 position,
                              float magnitude, float2 u) {
@@ -96,9 +118,9 @@ T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord
         return float3_splat(0.0f);
     }
     if (!(ls.pdf > 0.0f)) {
-        return e.f_cos * ls.radiance / light->cdf.y;
+        return e.f_cos * ls.radiance / pick;
     }
-    const float light_pdf = light->cdf.y * ls.pdf;
+    const float light_pdf = pick * ls.pdf;
     return e.f_cos * ls.radiance * (power_heuristic(light_pdf, e.pdf) / light_pdf);
 }
 
@@ -115,12 +137,30 @@ T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord
 T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
                               float3 incoming, float3 facing_normal, float3 facing_geometric,
                               float3 position, float magnitude, float u_pick, float2 u) {
-    T0_GLOBAL const LightRecord* light = &scene->lights[pick_light(scene, u_pick)];
+    T0_GLOBAL const LightRecord* light;
+    float pick;           // the light's probability
+    float pick_per_area;  // for a triangle, over its area
+    const float distant =
+        T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE) ? distant_share(scene) : 1.0f;
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE) && u_pick >= distant) {
+        const LightPick tree = light_tree_pick(scene, position, facing_normal,
+                                               (u_pick - distant) / (1.0f - distant));
+        if (!(tree.pmf > 0.0f)) {
+            return float3_splat(0.0f);
+        }
+        light = &scene->lights[tree.light];
+        pick = (1.0f - distant) * tree.pmf;
+        pick_per_area = pick / (0.5f * scene->triangles[light->ids.x].normal.w);
+    } else {
+        light = &scene->lights[pick_light(scene, u_pick)];
+        pick = light->cdf.y;
+        pick_per_area = light->cdf.z;
+    }
     if ((T0_HAS_FEATURE(scene, T0_FEATURE_LAMPS) ||
          T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT)) &&
         light->ids.y != T0_LIGHT_TRIANGLE) {
-        return sample_lamp(scene, light, m, incoming, facing_normal, facing_geometric, position,
-                           magnitude, u);
+        return sample_lamp(scene, light, pick, m, incoming, facing_normal, facing_geometric,
+                           position, magnitude, u);
     }
     T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->ids.x];
     float b1 = 0.0f;
@@ -163,7 +203,7 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     if (occluded(scene, &shadow_ray, shadow_length)) {
         return float3_splat(0.0f);
     }
-    const float light_pdf = area_to_solid_angle(light->cdf.z, distance2, cos_light);
+    const float light_pdf = area_to_solid_angle(pick_per_area, distance2, cos_light);
     const float3 emitted = material_emission(emitter);
     return e.f_cos * emitted * (power_heuristic(light_pdf, e.pdf) / light_pdf);
 }

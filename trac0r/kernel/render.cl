@@ -14,8 +14,8 @@ SceneView scene_view(__global const TriangleRecord* triangles, __global const Sh
                      __global const TrianglePacket* packets, __global const LightRecord* lights,
                      __global const VertexNormals* normals, __global const TriangleUVs* uvs,
                      __global const TextureRecord* textures, __global const uint* texels,
-                     __global const float4* environment, uint shape_count, uint light_count,
-                     uint distant_count) {
+                     __global const float4* environment, __global const LightTreeNode* light_nodes,
+                     uint shape_count, uint light_count, uint distant_count) {
     SceneView scene;
     scene.triangles = triangles;
     scene.shapes = shapes;
@@ -29,6 +29,7 @@ SceneView scene_view(__global const TriangleRecord* triangles, __global const Sh
     scene.texels = texels;
     scene.environment = environment;
     scene.distant_count = distant_count;
+    scene.light_nodes = light_nodes;
     scene.shape_count = shape_count;
     scene.light_count = light_count;
     scene.features = T0_FEATURES;
@@ -123,10 +124,11 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
                            __global const VertexNormals* normals,
                            __global const TriangleUVs* uvs,
                            __global const TextureRecord* textures, __global const uint* texels,
-                           __global const float4* environment, uint distant_count) {
+                           __global const float4* environment, uint distant_count,
+                           __global const LightTreeNode* light_nodes) {
     const SceneView scene =
         scene_view(triangles, shapes, materials, nodes, packets, lights, normals, uvs, textures,
-                   texels, environment, shape_count, light_count, distant_count);
+                   texels, environment, light_nodes, shape_count, light_count, distant_count);
     if (!T0_HAS_FEATURE(&scene, T0_FEATURE_BVH)) {
         // A pixel a work-item.
         const uint pixel = (uint)get_global_id(0);

@@ -128,6 +128,10 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
     float3 throughput = float3_splat(1.0f);
     int lights_sampled = 0;    // whether the vertex this ray leaves sampled a light
     float scatter_pdf = 0.0f;  // the density with which that vertex picked this ray
+    // With the light tree: that vertex's position and normal, on which its
+    // pick of a light depended.
+    float3 sampled_from = float3_splat(0.0f);
+    float3 sampled_normal = float3_splat(0.0f);
     Hit hit = first;
     for (int depth = 0; depth < max_depth; ++depth) {
         // Intersect: the nearest triangle, or the distant lights (the
@@ -162,7 +166,8 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
             if (T0_HAS_FEATURE(scene, T0_FEATURE_NEE) && lights_sampled &&
                 tri->ids.z != T0_NO_LIGHT) {
                 emitted *= power_heuristic(scatter_pdf,
-                                           light_pdf_solid_angle(scene, tri, ray.direction, hit.t));
+                                           light_pdf_solid_angle(scene, tri, ray.direction, hit.t,
+                                                                 sampled_from, sampled_normal));
             }
             radiance += emitted;
         }
@@ -205,6 +210,10 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
                         sample_light(scene, m, ray.direction, facing_normal, facing_geometric,
                                      position, magnitude, u_pick, u_point);
             lights_sampled = 1;
+            if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)) {
+                sampled_from = position;
+                sampled_normal = facing_normal;
+            }
         }
 
         if (nee && !survives_roulette(nee_continuation_probability(depth, max_depth, throughput),

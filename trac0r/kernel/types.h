@@ -30,7 +30,8 @@
 #define T0_FEATURE_ENVIRONMENT (1u << 11)  // light from all around (environment.h)
 #define T0_FEATURE_LAMPS (1u << 12)        // point, spot and sun lights (lamps.h)
 #define T0_FEATURE_ONE_SIDED (1u << 13)    // emitters that emit from their front only
-#define T0_FEATURE_COUNT 14
+#define T0_FEATURE_LIGHT_TREE (1u << 14)   // lights picked by a tree (light_tree.h)
+#define T0_FEATURE_COUNT 15
 
 T0_NAMESPACE_BEGIN
 
@@ -66,8 +67,10 @@ typedef struct T0_ALIGN16 TriangleRecord {
 // suns) come first, SceneView.distant_count of them: a ray that leaves the
 // scene looks them up; an environment is always the first.
 // By kind (all vectors in the packed scene's coordinates):
-//   triangle:    ids.x the triangle; the rest unused.
-//   point:       a.xyz position; b.xyz intensity (W/sr, colour times intensity).
+//   triangle:    ids.x the triangle; ids.z its path in the light tree (bit k:
+//                the child taken at depth k), with T0_FEATURE_LIGHT_TREE.
+//   point:       a.xyz position; b.xyz intensity (W/sr, colour times intensity);
+//                ids.z its path in the light tree, as a triangle's.
 //   spot:        a.xyz position, a.w cos of the cone's half-angle (where the light
 //                ends); b.xyz intensity on the axis; c.xyz unit axis, c.w cos of
 //                the angle where the soft edge begins (lamps.h, spot_falloff).
@@ -85,6 +88,20 @@ typedef struct T0_ALIGN16 LightRecord {
     float4 b;
     float4 c;
 } LightRecord;
+
+// A node of the light tree (light_tree.h): bounds of the lights under it
+// (the emitting triangles and point and spot lamps), their power, and the
+// cone of directions their light leaves in: an axis, the half-angle
+// theta_o of the cone of their normals, and theta_e, how far beyond it
+// light leaves (pi/2 for a surface). A node's two children are next to
+// each other; a leaf holds one light.
+typedef struct T0_ALIGN16 LightTreeNode {
+    float4 lo;    // xyz: the bounds' minimum, w: the power (the light list's unit)
+    float4 hi;    // xyz: the bounds' maximum, w: cos theta_o
+    float4 axis;  // xyz: the cone's unit axis, w: cos theta_e
+    uint4 info;   // x: the first child, or for a leaf its light (an index into the
+                  // light list); y: 1 for a leaf; z: 1 if light leaves on both sides
+} LightTreeNode;
 
 // One shape of the flat structure: its AABB and its run of triangles.
 typedef struct T0_ALIGN16 ShapeRecord {
@@ -201,6 +218,9 @@ typedef struct SceneView {
     // a row (x: the rows' CDF through it) (environment.h).
     T0_GLOBAL const float4* environment;
     t0_u32 distant_count;  // the lights list's distant lights, first in it
+    // Only with T0_FEATURE_LIGHT_TREE: the tree over the lights that are
+    // not distant, its root first.
+    T0_GLOBAL const LightTreeNode* light_nodes;
 } SceneView;
 
 // Per-frame settings of the render.
@@ -219,6 +239,7 @@ T0_STATIC_ASSERT_SIZE(MaterialRecord, 48);
 T0_STATIC_ASSERT_SIZE(BvhNode, 256);
 T0_STATIC_ASSERT_SIZE(TrianglePacket, 176);
 T0_STATIC_ASSERT_SIZE(LightRecord, 80);
+T0_STATIC_ASSERT_SIZE(LightTreeNode, 64);
 T0_STATIC_ASSERT_SIZE(VertexNormals, 48);
 T0_STATIC_ASSERT_SIZE(TriangleUVs, 32);
 T0_STATIC_ASSERT_SIZE(TextureRecord, 16);
