@@ -62,6 +62,7 @@ struct Config {
     std::string accel = "auto";
     std::string integrator = "naive";
     std::string sampler = "random";
+    std::string light_sampler = "auto";
     int max_depth = 0;  // 0: the scene's
     std::string label;
 };
@@ -109,17 +110,23 @@ Config parse_config(const std::string& spec) {
             c.integrator = value;
         } else if (key == "sampler" && (value == "random" || value == "sobol")) {
             c.sampler = value;
-        } else if (key == "backend" || key == "accel" || key == "integrator" || key == "sampler") {
+        } else if (key == "light_sampler" &&
+                   (value == "power" || value == "tree" || value == "auto")) {
+            c.light_sampler = value;
+        } else if (key == "backend" || key == "accel" || key == "integrator" || key == "sampler" ||
+                   key == "light_sampler") {
             throw UsageError(where + ": unknown value '" + value + "'");
         } else {
             throw UsageError("--config " + spec + ": unknown key '" + key +
-                             "' (expected backend, accel, max_depth, integrator, sampler)");
+                             "' (expected backend, accel, max_depth, integrator, sampler, "
+                             "light_sampler)");
         }
     }
     c.label = c.backend + (c.accel == "auto" ? "" : " " + c.accel) +
               (c.max_depth > 0 ? " depth " + std::to_string(c.max_depth) : "") +
               (c.integrator == "naive" ? "" : " " + c.integrator) +
-              (c.sampler == "random" ? "" : " " + c.sampler);
+              (c.sampler == "random" ? "" : " " + c.sampler) +
+              (c.light_sampler == "auto" ? "" : " lights by " + c.light_sampler);
 #ifndef TRAC0R_HAVE_OPENCL
     if (c.backend == "opencl") {
         throw UsageError("--config " + spec + ": this build has no OpenCL backend");
@@ -138,8 +145,9 @@ Options parse_options(int argc, char** argv) {
     cl.repeated("--config", "SPEC",
                 "a configuration, repeatable (default: backend=cpu): comma-separated key=value "
                 "of backend=cpu|opencl, accel=flat|bvh|auto, max_depth=N, integrator=naive|nee, "
-                "sampler=random|sobol (default: the library's, cpu, auto, the scene's depth, "
-                "naive, random), each key at most once\ne.g. --config backend=opencl --config "
+                "sampler=random|sobol, light_sampler=power|tree|auto (default: the library's, "
+                "cpu, auto, the scene's depth, naive, random, auto), each key at most once\ne.g. "
+                "--config backend=opencl --config "
                 "backend=cpu,max_depth=2",
                 [&o](const std::string& v) { o.configs.push_back(parse_config(v)); });
     cl.integer("--max-spp", &o.max_spp, 1, 1L << 24, "last checkpoint (default 1024)");
@@ -414,6 +422,7 @@ int run(const Options& o) {
         pack.accel = parse_accel(c.accel);
         pack.integrator = parse_integrator(c.integrator);
         pack.sampler = parse_sampler(c.sampler);
+        pack.light_sampler = parse_light_sampler(c.light_sampler);
         std::unique_ptr<Renderer> r(new Renderer(s, make_backend(c.backend), 1, pack));
         // One frame first, then thrown away: the OpenCL program build and
         // first-touch allocations are not render time. Frames are seeded by
