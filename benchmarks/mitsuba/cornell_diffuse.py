@@ -234,6 +234,22 @@ def camera_to_world(camera):
     return m
 
 
+def sensor_dict(mi, camera, width, height, sampler, spp):
+    """trac0r's pinhole camera and 1-pixel box filter as Mitsuba's sensor."""
+    return {
+        "type": "perspective",
+        "fov_axis": "y",
+        "fov": float(camera.get("vertical_fov", 53.13)),
+        "near_clip": 1e-4,
+        "far_clip": 1e5,
+        "to_world": mi.ScalarTransform4f(camera_to_world(camera).tolist()),
+        "film": {"type": "hdrfilm", "width": width, "height": height,
+                 "pixel_format": "rgb", "component_format": "float32",
+                 "rfilter": {"type": "box"}, "sample_border": False},
+        "sampler": {"type": sampler, "sample_count": spp},
+    }
+
+
 def build_scene_dict(mi, scene_path, mesh_dir, width, height, sampler, spp, max_depth,
                      rr_depth, samples_per_pass):
     with open(scene_path) as f:
@@ -251,18 +267,7 @@ def build_scene_dict(mi, scene_path, mesh_dir, width, height, sampler, spp, max_
     scene = {
         "type": "scene",
         "integrator": integrator,
-        "sensor": {
-            "type": "perspective",
-            "fov_axis": "y",
-            "fov": float(camera.get("vertical_fov", 53.13)),
-            "near_clip": 1e-4,
-            "far_clip": 1e5,
-            "to_world": mi.ScalarTransform4f(camera_to_world(camera).tolist()),
-            "film": {"type": "hdrfilm", "width": width, "height": height,
-                     "pixel_format": "rgb", "component_format": "float32",
-                     "rfilter": {"type": "box"}, "sample_border": False},
-            "sampler": {"type": sampler, "sample_count": spp},
-        },
+        "sensor": sensor_dict(mi, camera, width, height, sampler, spp),
     }
 
     def rgb(c):
@@ -356,17 +361,7 @@ def main():
                         "the full spp (the timed render then compiles nothing), or none")
     args = p.parse_args()
 
-    if args.variant.startswith("llvm") and not os.environ.get("DRJIT_LIBLLVM_PATH"):
-        for lib in ("/usr/lib/x86_64-linux-gnu/libLLVM-19.so",
-                    "/usr/lib/x86_64-linux-gnu/libLLVM.so"):
-            if os.path.exists(lib):
-                os.environ["DRJIT_LIBLLVM_PATH"] = lib
-                break
-    import mitsuba as mi
-    mi.set_variant(args.variant)
-    import drjit as dr
-    if args.threads is not None:
-        dr.set_thread_count(args.threads)
+    mi, dr = load_mitsuba(args.variant, args.threads)
     register_emitter_surface(mi, dr)
 
     with open(args.scene) as f:
@@ -385,9 +380,39 @@ def main():
             args.max_depth, args.rr_depth, spp_pass))
         load_s = time.perf_counter() - t0
 
+    print("mitsuba %s %s, %dx%d, spp per pass: %s, sampler %s, seed %d, threads %s"
+          % (mi.__version__, args.variant, width, height,
+             spp_pass if spp_pass > 0 else "Mitsuba's choice", args.sampler,
+             args.seed, dr.thread_count()))
+    print("scene load: %.3f s" % load_s)
+    image = timed_render(mi, dr, scene, args.spp, args.seed, args.warmup)
+    write_outputs(mi, args.output, image)
+
+
+def load_mitsuba(variant, threads=None):
+    """Imports Mitsuba and drjit with `variant` set; an LLVM variant needs
+    libLLVM (DRJIT_LIBLLVM_PATH, set here when unset and a known file
+    exists)."""
+    if variant.startswith("llvm") and not os.environ.get("DRJIT_LIBLLVM_PATH"):
+        for lib in ("/usr/lib/x86_64-linux-gnu/libLLVM-19.so",
+                    "/usr/lib/x86_64-linux-gnu/libLLVM.so"):
+            if os.path.exists(lib):
+                os.environ["DRJIT_LIBLLVM_PATH"] = lib
+                break
+    import mitsuba as mi
+    mi.set_variant(variant)
+    import drjit as dr
+    if threads is not None:
+        dr.set_thread_count(threads)
+    return mi, dr
+
+
+def timed_render(mi, dr, scene, spp, seed, warmup="1spp"):
+    """Renders `scene` at `spp` and prints the timings (see the module's
+    text); returns the image, an (height, width, 3) float32 array."""
     dr.set_flag(dr.JitFlag.KernelHistory, True)
     warm_s = None
-    warm_spp = {"1spp": 1, "full": args.spp, "none": 0}[args.warmup]
+    warm_spp = {"1spp": 1, "full": spp, "none": 0}[warmup]
     if warm_spp:
         # Compiles the kernels, with another seed. The render kernel's code
         # depends on the film size and the spp (its hash changes with them;
@@ -395,13 +420,13 @@ def main():
         # makes the timed render a certain cache hit; with "1spp" the
         # compile time left in it is reported (kernel history) and taken out.
         t0 = time.perf_counter()
-        dr.eval(mi.render(scene, spp=warm_spp, seed=args.seed + 0x7FFFFFFF))
+        dr.eval(mi.render(scene, spp=warm_spp, seed=seed + 0x7FFFFFFF))
         dr.sync_thread()
         warm_s = time.perf_counter() - t0
     dr.kernel_history_clear()
     cpu0 = time.process_time()
     t0 = time.perf_counter()
-    img = mi.render(scene, spp=args.spp, seed=args.seed)
+    img = mi.render(scene, spp=spp, seed=seed)
     dr.eval(img)
     dr.sync_thread()
     render_s = time.perf_counter() - t0
@@ -412,22 +437,11 @@ def main():
     misses = sum(1 for k in history if not k.get("cache_hit", True))
 
     image = np.array(img, dtype=np.float32)[:, :, :3]
-    for out in args.output:
-        if out.lower().endswith(".pfm"):
-            write_pfm(out, image)
-        elif out.lower().endswith(".png"):
-            write_png(mi, out, image)
-        else:
-            raise SystemExit(out + ": expected .pfm or .png")
-
     # The stratified sampler rounds the count up to a square power of two.
     spp = scene.sensors()[0].sampler().sample_count()
+    height, width = image.shape[:2]
     samples = width * height * spp
-    print("mitsuba %s %s, %dx%d, %d spp (per pass: %s), sampler %s, seed %d, threads %s"
-          % (mi.__version__, args.variant, width, height, spp,
-             spp_pass if spp_pass > 0 else "Mitsuba's choice", args.sampler,
-             args.seed, dr.thread_count()))
-    print("scene load: %.3f s" % load_s)
+    print("%d spp" % spp)
     if warm_s is not None:
         print("warm-up render (%d spp): %.3f s" % (warm_spp, warm_s))
     print("render: %.3f s wall, %.3f s CPU of this process, %.2f Msamples/s"
@@ -437,6 +451,17 @@ def main():
     print("render without compiling: %.3f s wall, %.2f Msamples/s"
           % (render_s - compile_s, samples / (render_s - compile_s) / 1e6))
     print("mean RGB: %.6f %.6f %.6f" % tuple(image.reshape(-1, 3).mean(axis=0)))
+    return image
+
+
+def write_outputs(mi, outputs, image):
+    for out in outputs:
+        if out.lower().endswith(".pfm"):
+            write_pfm(out, image)
+        elif out.lower().endswith(".png"):
+            write_png(mi, out, image)
+        else:
+            raise SystemExit(out + ": expected .pfm or .png")
 
 
 if __name__ == "__main__":
