@@ -33,16 +33,18 @@ const double camera_height = 3.0;
 // A diffuse floor (y = 0, 40 m square) seen from straight above by a
 // camera at height 3 with a 60 degree view: image right is +x, image up
 // is -z. Nothing else, so what a path finds after its first bounce is
-// black: the floor's radiance is its direct light alone.
-Scene floor_scene() {
+// black: the floor's radiance is its direct light alone. Every length
+// times `unit` (a power of two: the same floats, scaled).
+Scene floor_scene(float unit = 1.0f) {
     Scene scene;
     Material floor;
     floor.name = "floor";
     floor.type = MaterialType::diffuse;
     floor.color = glm::vec3(albedo);
     scene.materials = {floor};
-    scene.shapes.push_back(make_plane(glm::vec3(0.0f), glm::vec3(0.0f), glm::vec2(40.0f), 0));
-    scene.camera.position = glm::vec3(0.0f, static_cast<float>(camera_height), 0.0f);
+    scene.shapes.push_back(
+        make_plane(glm::vec3(0.0f), glm::vec3(0.0f), glm::vec2(40.0f * unit), 0));
+    scene.camera.position = glm::vec3(0.0f, static_cast<float>(camera_height) * unit, 0.0f);
     scene.camera.direction = glm::vec3(0.0f, -1.0f, 0.0f);
     scene.camera.world_up = glm::vec3(0.0f, 0.0f, -1.0f);
     scene.camera.vertical_fov = 60.0f;
@@ -128,21 +130,26 @@ double spot_falloff(double cos_angle, double angle_degrees, double blend) {
 // Pixel jitter with 64 Sobol points over a smooth function is exact to far
 // below 0.5 %; what remains is float rounding.
 TEST_CASE("a point lamp lights a diffuse plane as rho/pi I cos / r^2", "[lamps]") {
-    Scene scene = floor_scene();
-    const glm::dvec3 light(0.3, 1.0, -0.2);
-    const double intensity = 2.0;
-    scene.lamps.push_back(point_lamp(glm::vec3(light), static_cast<float>(intensity)));
-    Renderer r = render(scene, 64);
-    REQUIRE((r.packed().features & T0_FEATURE_LAMPS) != 0u);
-    require_closed_form(r.image(),
-                        expected_image(scene,
-                                       [&](glm::dvec3 p) {
-                                           const glm::dvec3 to = light - p;
-                                           const double r2 = glm::dot(to, to);
-                                           const double cos_theta = to.y / std::sqrt(r2);
-                                           return albedo / pi * intensity * cos_theta / r2;
-                                       }),
-                        0.005);
+    // Also a scene 2^-50 the size (packed at another scale, PackedScene::
+    // scale), with the intensity times 2^-100: the same image.
+    for (const float unit : {1.0f, std::ldexp(1.0f, -50)}) {
+        Scene scene = floor_scene(unit);
+        const glm::dvec3 light(0.3, 1.0, -0.2);
+        const double intensity = 2.0;
+        scene.lamps.push_back(point_lamp(glm::vec3(light) * unit,
+                                         static_cast<float>(intensity) * unit * unit));
+        Renderer r = render(scene, 64);
+        REQUIRE((r.packed().features & T0_FEATURE_LAMPS) != 0u);
+        CAPTURE(unit, r.packed().scale);
+        REQUIRE((unit == 1.0f) == (r.packed().scale == 1.0f));
+        const auto radiance = [&](glm::dvec3 p) {
+            const glm::dvec3 to = light - p;
+            const double r2 = glm::dot(to, to);
+            const double cos_theta = to.y / std::sqrt(r2);
+            return albedo / pi * intensity * cos_theta / r2;
+        };
+        require_closed_form(r.image(), expected_image(floor_scene(), radiance), 0.005);
+    }
 }
 
 TEST_CASE("a spot lamp is a point lamp times its falloff, dark outside its cone", "[lamps]") {

@@ -132,7 +132,7 @@ TEST_CASE(
                     CAPTURE(m.type.x, pick, u1, u2);
                     const glm::vec3 radiance =
                         kernel::sample_light(&glossy_view, &m, incoming, up, up, position, 1.0f,
-                                             pick, glm::vec2(u1, u2));
+                                             pick, 0.0f, glm::vec2(u1, u2));
                     REQUIRE(finite(radiance));
                     REQUIRE(radiance.x >= 0.0f);
                     REQUIRE(radiance.y >= 0.0f);

@@ -19,6 +19,9 @@ const double pi = 3.14159265358979323846;
 struct Candidate {
     kernel::LightRecord record;
     double power;
+    // The light tree's weight (light_tree.h): its peak intensity, W/sr
+    // (a surface's along its normal, radiance x area, on either side).
+    double intensity = 0.0;
 };
 
 double luminance(const glm::vec3& c) { return kernel::luminance(c); }
@@ -127,10 +130,11 @@ Candidate lamp_light(const Lamp& lamp, float scale, double radius) {
     // A point lamp's irradiance, intensity / r^2, stays the same in the
     // packed scene's coordinates, r times scale, with the intensity times
     // scale^2.
-    const float scale2 = scale * scale;
+    const double scale2 = static_cast<double>(scale) * scale;
     c.record.a = glm::vec4(lamp.position * scale, 0.0f);
-    c.record.b = glm::vec4(amount * scale2, 0.0f);
+    c.record.b = glm::vec4(amount * static_cast<float>(scale2), 0.0f);
     c.power = luminance(amount) * scale2 * 2.0;  // 4 pi I / 2 pi
+    c.intensity = luminance(amount) * scale2;
     if (lamp.type == LampType::point) {
         c.record.ids = glm::uvec4(0u, T0_LIGHT_POINT, 0u, 0u);
         return c;
@@ -197,6 +201,7 @@ void pack_lights(const Scene& scene, PackedScene& packed,
             c.record = kernel::LightRecord{};
             c.record.ids = glm::uvec4(i, T0_LIGHT_TRIANGLE, 0u, 0u);
             c.power = p;
+            c.intensity = p / sides;
             lights.push_back(c);
         }
     }
@@ -224,11 +229,11 @@ void pack_lights(const Scene& scene, PackedScene& packed,
     if (positioned > 0 &&
         (sampler == LightSampler::tree ||
          (sampler == LightSampler::automatic && positioned >= light_tree_min_lights))) {
-        std::vector<double> power;
+        std::vector<double> intensity;
         for (const Candidate& c : lights) {
-            power.push_back(c.power);
+            intensity.push_back(c.intensity);
         }
-        build_light_tree(packed, power);
+        build_light_tree(packed, intensity);
         packed.features |= T0_FEATURE_LIGHT_TREE;
     }
 }

@@ -47,7 +47,7 @@ Cone cone_union(const Cone& a, const Cone& b) {
 struct Bounds {
     glm::dvec3 lo{std::numeric_limits<double>::max()};
     glm::dvec3 hi{-std::numeric_limits<double>::max()};
-    double power = 0.0;
+    double power = 0.0;  // the peak intensities' sum (light_tree.h: importance)
     Cone normals;        // theta_o
     double cos_e = 1.0;  // how far past the normals light leaves
     bool two_sided = false;
@@ -156,13 +156,13 @@ struct Builder {
 
 }  // namespace
 
-void build_light_tree(PackedScene& packed, const std::vector<double>& power) {
+void build_light_tree(PackedScene& packed, const std::vector<double>& intensity) {
     Builder b{packed, {}, {}};
     std::vector<std::uint32_t> lights;
     b.leaves.resize(packed.lights.size());
     b.centre.resize(packed.lights.size());
     for (std::uint32_t i = packed.distant_count; i < packed.lights.size(); ++i) {
-        b.leaves[i] = light_bounds(packed, packed.lights[i], power[i]);
+        b.leaves[i] = light_bounds(packed, packed.lights[i], intensity[i]);
         b.centre[i] = 0.5 * (b.leaves[i].lo + b.leaves[i].hi);
         lights.push_back(i);
     }

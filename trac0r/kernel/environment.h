@@ -68,13 +68,18 @@ T0_INLINE float3 environment_radiance(const SceneView* scene, T0_GLOBAL const Li
     return xyz(scene->environment[environment_texel(light, environment_from_world(light, d))]);
 }
 
+// sin(theta) of a unit direction of the map's frame, from x and z (not
+// from y: near a pole 1 - y^2 rounds to zero while x and z do not), the
+// same for a sampled direction and for one a ray finds.
+T0_INLINE float environment_sin_theta(float3 m) { return sqrt(m.x * m.x + m.z * m.z); }
+
 // The density per solid angle with which environment_sample picks world
 // direction d: the texel's density per u and v over the solid angle per u
 // and v, 2 pi^2 sin(theta).
 T0_INLINE float environment_pdf(const SceneView* scene, T0_GLOBAL const LightRecord* light,
                                 float3 d) {
     const float3 m = environment_from_world(light, d);
-    const float sin_theta = sqrt(fmax(0.0f, 1.0f - m.y * m.y));
+    const float sin_theta = environment_sin_theta(m);
     if (!(sin_theta > 0.0f)) {
         return 0.0f;
     }
@@ -131,9 +136,10 @@ T0_INLINE EnvironmentSample environment_sample(const SceneView* scene,
     EnvironmentSample s;
     s.direction = environment_to_world(light, m);
     s.radiance = xyz(scene->environment[texel]);
-    s.pdf = theta.s > 0.0f
-                ? p_row * p_column * (float)width * (float)height / (2.0f * T0_PI * T0_PI * theta.s)
-                : 0.0f;
+    const float sin_theta = environment_sin_theta(environment_from_world(light, s.direction));
+    s.pdf = sin_theta > 0.0f ? p_row * p_column * (float)width * (float)height /
+                                   (2.0f * T0_PI * T0_PI * sin_theta)
+                             : 0.0f;
     return s;
 }
 

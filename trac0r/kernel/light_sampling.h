@@ -132,25 +132,28 @@ T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord
 // shading normal the material is evaluated with, facing_geometric the
 // triangle's normal on the incoming side (the side the light must be on,
 // and the shadow ray leaves from); both the same for a flat triangle.
-// magnitude is hit_magnitude of position; u_pick chooses the light and u
-// the point on it (or the direction to it).
+// magnitude is hit_magnitude of position; u_pick chooses the light (with
+// the light tree: a distant one or the tree, and u_tree the way down it)
+// and u the point on it (or the direction to it).
 T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
                               float3 incoming, float3 facing_normal, float3 facing_geometric,
-                              float3 position, float magnitude, float u_pick, float2 u) {
+                              float3 position, float magnitude, float u_pick, float u_tree,
+                              float2 u) {
     T0_GLOBAL const LightRecord* light;
     float pick;           // the light's probability
     float pick_per_area;  // for a triangle, over its area
     const float distant =
         T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE) ? distant_share(scene) : 1.0f;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE) && u_pick >= distant) {
-        const LightPick tree = light_tree_pick(scene, position, facing_normal,
-                                               (u_pick - distant) / (1.0f - distant));
+        const LightPick tree = light_tree_pick(scene, position, facing_normal, u_tree);
         if (!(tree.pmf > 0.0f)) {
             return float3_splat(0.0f);
         }
         light = &scene->lights[tree.light];
         pick = (1.0f - distant) * tree.pmf;
-        pick_per_area = pick / (0.5f * scene->triangles[light->ids.x].normal.w);
+        pick_per_area = light->ids.y == T0_LIGHT_TRIANGLE
+                            ? pick / (0.5f * scene->triangles[light->ids.x].normal.w)
+                            : 0.0f;
     } else {
         light = &scene->lights[pick_light(scene, u_pick)];
         pick = light->cdf.y;

@@ -9,6 +9,7 @@
 #ifndef TRAC0R_KERNEL_LIGHT_TREE_H
 #define TRAC0R_KERNEL_LIGHT_TREE_H
 
+#include "sampler.h"
 #include "types.h"
 
 T0_NAMESPACE_BEGIN
@@ -25,9 +26,15 @@ T0_INLINE float sin_sub_clamped(float sin_a, float cos_a, float sin_b, float cos
 
 T0_INLINE float safe_sqrt(float x) { return sqrt(fmax(x, 0.0f)); }
 
+// The largest importance: the sum of two stays finite, so that a choice
+// between them is never inf / inf (a lamp of intensity 1e30 right at p).
+#define T0_LIGHT_IMPORTANCE_MAX 1e30f
+
 // An upper bound, up to a common factor, on what the lights under `node`
 // can bring to a surface at p with normal n (either side): zero only
-// where they bring nothing.
+// where they bring nothing. node->lo.w is their peak intensity (W/sr
+// along the normal for a surface, L x area), not their power: the cones
+// bound the directions.
 T0_INLINE float light_importance(T0_GLOBAL const LightTreeNode* node, float3 p, float3 n) {
     const float3 lo = xyz(node->lo);
     const float3 hi = xyz(node->hi);
@@ -37,7 +44,7 @@ T0_INLINE float light_importance(T0_GLOBAL const LightTreeNode* node, float3 p, 
     const float distance2 = dot(to_p, to_p);
     // Inside the bounds' sphere, every direction: no bound on the angles.
     if (!(distance2 > radius2)) {
-        return node->lo.w / fmax(radius2, 1e-30f);
+        return fmin(node->lo.w / fmax(radius2, 1e-30f), T0_LIGHT_IMPORTANCE_MAX);
     }
     const float3 wi = to_p / sqrt(distance2);
     float cos_w = dot(xyz(node->axis), wi);
@@ -61,7 +68,8 @@ T0_INLINE float light_importance(T0_GLOBAL const LightTreeNode* node, float3 p, 
     const float cos_i = fabs(dot(wi, n));
     const float sin_i = safe_sqrt(1.0f - cos_i * cos_i);
     const float cos_surface = cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
-    return fmax(node->lo.w * cos_light * cos_surface / distance2, 0.0f);
+    return fmin(fmax(node->lo.w * cos_light * cos_surface / distance2, 0.0f),
+                T0_LIGHT_IMPORTANCE_MAX);
 }
 
 typedef struct LightPick {
@@ -69,8 +77,13 @@ typedef struct LightPick {
     float pmf;     // its probability; 0: nothing to pick
 } LightPick;
 
-// Down the tree from the root by u in [0, 1), reused at each level.
+// Down the tree from the root: the first level chooses by u in [0, 1),
+// each level below by a number of its own, hashed from u's bits and the
+// level, so that every choice has a float's 24 bits (u stretched from
+// level to level would run out of them after a dozen levels, and picks
+// would stray from the probabilities MIS computes).
 T0_INLINE LightPick light_tree_pick(const SceneView* scene, float3 p, float3 n, float u) {
+    const t0_u32 bits = (t0_u32)(u * 16777216.0f);
     LightPick pick;
     pick.light = 0u;
     pick.pmf = 1.0f;
@@ -89,13 +102,14 @@ T0_INLINE LightPick light_tree_pick(const SceneView* scene, float3 p, float3 n, 
             break;
         }
         const float p0 = i0 / total;
+        if (depth > 0) {
+            u = unit_float(hash32(bits + (t0_u32)depth * 0x9E3779B9u));
+        }
         if (u < p0) {
             node = first;
-            u = fmin(u / p0, 0.99999994f);
             pick.pmf *= p0;
         } else {
             node = first + 1u;
-            u = fmin((u - p0) / (1.0f - p0), 0.99999994f);
             pick.pmf *= i1 / total;
         }
     }

@@ -28,6 +28,10 @@
 //   + T0_DIM_ROULETTE     Russian roulette (1-D)
 //   + T0_DIM_MATERIAL     the scattered direction (2-D; glass chooses
 //                         reflection or refraction with the first)
+//   T0_DIM_LIGHT_TREE(depth)  the walk down the light tree (1-D), drawn only
+//                    with T0_FEATURE_LIGHT_TREE; negative (-2 - depth), out
+//                    of the way of the path's, so scenes without the tree
+//                    draw exactly what they drew before it existed.
 #ifndef TRAC0R_KERNEL_SAMPLER_H
 #define TRAC0R_KERNEL_SAMPLER_H
 
@@ -44,6 +48,7 @@ T0_NAMESPACE_BEGIN
 #define T0_DIM_MATERIAL 3
 #define T0_DIMS_PER_VERTEX 4
 #define T0_DIM(depth, slot) (1 + (depth)*T0_DIMS_PER_VERTEX + (slot))
+#define T0_DIM_LIGHT_TREE(depth) (-2 - (depth))
 
 typedef struct Sampler {
     Rng rng;       // random: the pixel's generator for this frame

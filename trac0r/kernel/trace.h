@@ -206,9 +206,12 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
             material_samples_lights(scene, m)) {
             const float u_pick = vertex_1d(sampler, draws.light_pick);
             const float2 u_point = vertex_2d(sampler, draws.light_point);
+            const float u_tree = T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)
+                                     ? sample_1d(sampler, T0_DIM_LIGHT_TREE(depth))
+                                     : 0.0f;
             radiance += throughput * texture *
                         sample_light(scene, m, ray.direction, facing_normal, facing_geometric,
-                                     position, magnitude, u_pick, u_point);
+                                     position, magnitude, u_pick, u_tree, u_point);
             lights_sampled = 1;
             if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)) {
                 sampled_from = position;

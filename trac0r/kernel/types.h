@@ -76,7 +76,8 @@ typedef struct T0_ALIGN16 TriangleRecord {
 //                the angle where the soft edge begins (lamps.h, spot_falloff).
 //   sun:         a.xyz unit direction towards the sun; b.xyz its radiance, or for a
 //                delta sun (angle 0) its irradiance (W/m^2); c.x sin^2 of its
-//                angular radius (0: delta), c.y the solid angle of its disc.
+//                angular radius (0: delta), c.y the solid angle of its disc,
+//                c.z 1 - cos of its angular radius.
 //   environment: a.x, a.y cos and sin of the rotation about +y; ids.z, ids.w the
 //                map's width and height (SceneView.environment).
 typedef struct T0_ALIGN16 LightRecord {
