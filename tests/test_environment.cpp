@@ -16,6 +16,7 @@
 #include "trac0r/kernel/accumulate.h"
 #include "trac0r/kernel/environment.h"
 #include "trac0r/kernel/sampling.h"
+#include "trac0r/lights.h"
 #include "trac0r/opencl_backend.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene.h"
@@ -24,6 +25,7 @@
 #include "test_support.h"
 
 #include <cmath>
+#include <iterator>
 #include <memory>
 #include <random>
 #include <string>
@@ -460,6 +462,25 @@ TEST_CASE("environment maps load from .exr and .hdr files, as the scene names th
         parse_scene(scene_with(R"("environment": {"map": "sky.hdr"})"), "scene.json", dir.path());
     REQUIRE(hdr.environment.width == 16);
     REQUIRE(hdr.environment.texels.at(3) == glm::vec3(0.5f, 1.0f, 0.25f));
+    // What cannot be a map: one message naming the file and the texel or
+    // the reason.
+    image.at(3, 2) = glm::vec3(0.5f, -0.25f, 1.0f);
+    dir.write("negative.exr", "");
+    write_exr(dir.path() + "/negative.exr", image);
+    CHECK_THROWS_WITH(read_environment_map(dir.path() + "/negative.exr"),
+                      Contains("negative.exr: environment map texel (3, 2) has a negative value "
+                               "in channel G"));
+    std::string truncated;
+    {
+        std::ifstream in(dir.path() + "/sky.hdr", std::ios::binary);
+        truncated.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    dir.write("cut.hdr", truncated.substr(0, truncated.size() / 2));
+    CHECK_THROWS_WITH(read_environment_map(dir.path() + "/cut.hdr"),
+                      Contains("cut.hdr: cannot read environment map"));
+    dir.write("text.exr", "not an image at all");
+    CHECK_THROWS_WITH(read_environment_map(dir.path() + "/text.exr"),
+                      Contains("text.exr: cannot read environment map: not an OpenEXR file"));
 }
 
 TEST_CASE("bad environments and lights get one message naming the key", "[environment][lamps]") {

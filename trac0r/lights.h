@@ -58,10 +58,10 @@ const long long max_environment_texels = 1ll << 25;
 const int max_environment_side = 16384;
 
 // Reads an environment map: .exr (tinyexr, the library's OpenEXR reader)
-// or .hdr (Radiance RGBE, through stb_image), by the extension in any
-// case. Throws std::runtime_error naming the file: unreadable, another
-// format, too large, or a texel that is negative or not finite (with its
-// position).
+// or .hdr (Radiance RGBE, flat or run-length encoded: lights.cpp's own
+// reader), by the extension in any case. Throws std::runtime_error naming
+// the file: unreadable, another format, too large, truncated, or a texel
+// that is negative or not finite (with its position).
 Environment read_environment_map(const std::string& path);
 
 }  // namespace trac0r

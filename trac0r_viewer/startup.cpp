@@ -185,7 +185,9 @@ void print_lights(const trac0r::Scene& scene, const trac0r::PackedScene& p) {
         scene.materials.begin(), scene.materials.end(), [](const trac0r::Material& m) {
             return !m.two_sided && m.emittance > 0.0f;
         }));
-    std::fprintf(stderr, "light list: %zu lights picked by power (%s)%s\n", p.lights.size(),
+    const bool tree = (p.features & T0_FEATURE_LIGHT_TREE) != 0u;
+    std::fprintf(stderr, "light list: %zu lights, picked by %s (shares of power: %s)%s\n",
+                 p.lights.size(), tree ? "a light tree (distant lights by power)" : "power",
                  list.empty() ? "none" : list.c_str(),
                  one_sided > 0 ? (", " + std::to_string(one_sided) +
                                   " one-sided emitting material(s)").c_str()
@@ -353,6 +355,14 @@ std::unique_ptr<trac0r::Renderer> Startup::make_renderer(const Options& options)
                      "%s: warning: nothing emits light (no material with an emittance and a "
                      "colour above 0 is used, and there is no environment or lamp that is not "
                      "black), so the image will be black\n",
+                     program_name());
+        warned_dark_ = true;
+    } else if ((renderer->packed().features & T0_FEATURE_LAMPS) != 0u &&
+               pack.integrator == trac0r::Integrator::naive && !warned_dark_ && speaks_) {
+        std::fprintf(stderr,
+                     "%s: warning: the naive integrator finds light by scattering alone, so "
+                     "point and spot lamps and a sun of angle 0 stay dark (use --integrator "
+                     "nee)\n",
                      program_name());
         warned_dark_ = true;
     }
