@@ -251,34 +251,19 @@ TEST_CASE("the map's samples follow its density (chi-square over solid-angle cel
         const int cp = std::min(cells_phi - 1, static_cast<int>(phi / (2.0 * pi) * cells_phi));
         observed[static_cast<std::size_t>(cz * cells_phi + cp)] += 1.0;
     }
-    // Cells expecting fewer than 5 samples pooled into one.
-    double chi2 = 0.0, pooled_expected = 0.0, pooled_observed = 0.0, total = 0.0;
-    int cells = 0;
-    for (std::size_t i = 0; i < expected.size(); ++i) {
-        const double e = expected[i] * samples;
-        total += expected[i];
-        if (e < 5.0) {
-            pooled_expected += e;
-            pooled_observed += observed[i];
-            continue;
-        }
-        chi2 += (observed[i] - e) * (observed[i] - e) / e;
-        ++cells;
-    }
-    if (pooled_expected >= 5.0) {
-        chi2 += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) /
-                pooled_expected;
-        ++cells;
+    double total = 0.0;
+    std::vector<double> expected_counts;
+    for (double p : expected) {
+        total += p;
+        expected_counts.push_back(p * samples);
     }
     REQUIRE(total == Approx(1.0).epsilon(5e-3));
-    // The chi-square quantile at 1 - 1e-4 for cells - 1 degrees of freedom,
-    // by Wilson and Hilferty's cube-root normal approximation (z = 3.719).
-    const double dof = cells - 1;
-    const double q = 2.0 / (9.0 * dof);
-    const double critical = dof * std::pow(1.0 - q + 3.719 * std::sqrt(q), 3.0);
-    CAPTURE(chi2, dof, critical);
-    REQUIRE(cells > 200);
-    REQUIRE(chi2 < critical);
+    // At 1 - 1e-4 (test_support.h's chi_square), cells expecting fewer
+    // than 5 samples pooled.
+    const ChiSquare chi2 = chi_square(expected_counts, observed);
+    CAPTURE(chi2.value, chi2.cells, chi2.critical);
+    REQUIRE(chi2.cells > 200);
+    REQUIRE(chi2.value < chi2.critical);
 }
 
 TEST_CASE("the map faces as documented: right half towards +x, top up, middle ahead",
@@ -362,9 +347,8 @@ Scene outdoor_scene(int width, int height) {
 
 }  // namespace
 
-// As test_nee's comparison of the integrators: 4 x 4 blocks and the whole
-// image, |a - b| <= k sqrt(se_a^2 + se_b^2) with k from bonferroni_k at a
-// family-wise false alarm rate of 1e-3.
+// As test_nee's comparison of the integrators (require_same_block_means):
+// 4 x 4 blocks and the whole image.
 TEST_CASE(
     "light sampling with MIS and scattering alone converge to the same image under a "
     "map and a sun disc",
@@ -375,21 +359,9 @@ TEST_CASE(
     Renderer naive = render(scene, 1024, Integrator::naive, 202);
     REQUIRE((nee.packed().features & (T0_FEATURE_ENVIRONMENT | T0_FEATURE_LAMPS)) ==
             (T0_FEATURE_ENVIRONMENT | T0_FEATURE_LAMPS));
-    std::vector<BlockMean> a = block_means(nee.accumulator(), width, height, 4, 4);
-    std::vector<BlockMean> b = block_means(naive.accumulator(), width, height, 4, 4);
-    a.push_back(block_means(nee.accumulator(), width, height, width, height).at(0));
-    b.push_back(block_means(naive.accumulator(), width, height, width, height).at(0));
-    const double k = bonferroni_k(static_cast<int>(a.size()), 1e-3);
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        const double se = std::sqrt(a[i].variance + b[i].variance);
-        CAPTURE(a[i].x, a[i].y, a[i].mean, b[i].mean, se, k);
-        REQUIRE(std::fabs(a[i].mean - b[i].mean) <= k * se);
-    }
     // Teeth: over the whole image, a bias of 5 % is outside the tolerance.
-    const double image_tolerance =
-        k * std::sqrt(a.back().variance + b.back().variance) / a.back().mean;
-    CAPTURE(image_tolerance);
-    REQUIRE(image_tolerance < 0.05);
+    REQUIRE(require_same_block_means(nee.accumulator(), naive.accumulator(), width, height, 4) <
+            0.05);
 }
 
 TEST_CASE("an environment map renders alike on OpenCL and the CPU", "[environment][opencl]") {
@@ -402,11 +374,7 @@ TEST_CASE("an environment map renders alike on OpenCL and the CPU", "[environmen
     const Image a = render(scene, 8, Integrator::nee).image();
     const Image b =
         render(scene, 8, Integrator::nee, 5, std::make_unique<OpenClBackend>(0)).image();
-    int close = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        const glm::vec3 d = glm::abs(a.pixels[i] - b.pixels[i]);
-        close += d.x + d.y + d.z <= 1e-3f * (1.0f + a.pixels[i].x + a.pixels[i].y + a.pixels[i].z);
-    }
+    const int close = close_pixel_count(a, b);
     CAPTURE(close, a.pixels.size());
     REQUIRE(close >= static_cast<int>(0.95 * a.pixels.size()));
 }

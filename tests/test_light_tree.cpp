@@ -171,36 +171,22 @@ TEST_CASE("the tree's pick probabilities sum to one, match its picks, and miss n
             observed[i] += 1.0;
         }
         REQUIRE(mismatched == 0);
-        double chi2 = 0.0, pooled_e = std::fmax(0.0, 1.0 - sum) * picks, pooled_o = failed;
-        int cells = 0;
-        for (std::size_t i = 0; i < count; ++i) {
-            const double e = pmf[i] * picks;
-            if (e < 5.0) {
-                pooled_e += e;
-                pooled_o += observed[i];
-                continue;
-            }
-            chi2 += (observed[i] - e) * (observed[i] - e) / e;
-            ++cells;
+        std::vector<double> expected;
+        for (double probability : pmf) {
+            expected.push_back(probability * picks);
         }
-        if (pooled_e >= 5.0) {
-            chi2 += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e;
-            ++cells;
-        }
-        // The quantile at 1 - 1e-4 of chi-square with cells - 1 degrees of
-        // freedom (Wilson and Hilferty, z = 3.719).
-        const double dof = cells - 1;
-        const double q = 2.0 / (9.0 * dof);
-        const double critical = dof * std::pow(1.0 - q + 3.719 * std::sqrt(q), 3.0);
-        CAPTURE(chi2, dof, critical);
-        REQUIRE(cells > 20);
-        REQUIRE(chi2 < critical);
+        expected.push_back(std::fmax(0.0, 1.0 - sum) * picks);
+        observed.push_back(failed);
+        // At 1 - 1e-4 (test_support.h's chi_square).
+        const ChiSquare chi2 = chi_square(expected, observed);
+        CAPTURE(chi2.value, chi2.cells, chi2.critical);
+        REQUIRE(chi2.cells > 20);
+        REQUIRE(chi2.value < chi2.critical);
     }
 }
 
-// As test_nee's comparison of the integrators: 4 x 4 blocks and the whole
-// image within k standard errors, k from bonferroni_k at a family-wise
-// false alarm rate of 1e-3.
+// As test_nee's comparison of the integrators (require_same_block_means):
+// 4 x 4 blocks and the whole image.
 TEST_CASE("next-event estimation with the light tree converges to picking by power",
           "[light_tree][nee]") {
     const int width = 32, height = 24;
@@ -218,20 +204,7 @@ TEST_CASE("next-event estimation with the light tree converges to picking by pow
     };
     const std::vector<kernel::AccumPixel> tree = render(LightSampler::tree, 31);
     const std::vector<kernel::AccumPixel> power = render(LightSampler::power, 32);
-    std::vector<BlockMean> a = block_means(tree, width, height, 4, 4);
-    std::vector<BlockMean> b = block_means(power, width, height, 4, 4);
-    a.push_back(block_means(tree, width, height, width, height).at(0));
-    b.push_back(block_means(power, width, height, width, height).at(0));
-    const double k = bonferroni_k(static_cast<int>(a.size()), 1e-3);
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        const double se = std::sqrt(a[i].variance + b[i].variance);
-        CAPTURE(a[i].x, a[i].y, a[i].mean, b[i].mean, se, k);
-        REQUIRE(std::fabs(a[i].mean - b[i].mean) <= k * se);
-    }
-    const double image_tolerance =
-        k * std::sqrt(a.back().variance + b.back().variance) / a.back().mean;
-    CAPTURE(image_tolerance);
-    REQUIRE(image_tolerance < 0.05);
+    REQUIRE(require_same_block_means(tree, power, width, height, 4) < 0.05);
 }
 
 TEST_CASE("the light tree renders alike on OpenCL and the CPU", "[light_tree][opencl]") {
@@ -247,11 +220,7 @@ TEST_CASE("the light tree renders alike on OpenCL and the CPU", "[light_tree][op
     }
     const Image a = cpu.image();
     const Image b = gpu.image();
-    int close = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        const glm::vec3 d = glm::abs(a.pixels[i] - b.pixels[i]);
-        close += d.x + d.y + d.z <= 1e-3f * (1.0f + a.pixels[i].x + a.pixels[i].y + a.pixels[i].z);
-    }
+    const int close = close_pixel_count(a, b);
     CAPTURE(close, a.pixels.size());
     REQUIRE(close >= static_cast<int>(0.95 * a.pixels.size()));
 }

@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 
+#include "trac0r/image_io.h"
 #include "trac0r/kernel/types.h"
 #include "trac0r/opencl_backend.h"
 #include "trac0r/packed_scene.h"
@@ -147,6 +148,80 @@ inline double bonferroni_k(int comparisons, double family_false_alarm) {
         }
     }
     return hi;
+}
+
+// Two renders of one image, seeds apart, compared per block x block block
+// and over the whole image: |a - b| <= k sqrt(se_a^2 + se_b^2), with k
+// from bonferroni_k over all these comparisons at a family-wise false
+// alarm rate of 1e-3 (k = 4.3 for the 49 comparisons of 4x4 blocks of a
+// 32 x 24 image). Returns the whole image's tolerance relative to its
+// mean, which the caller requires small, so that the comparison has teeth.
+inline double require_same_block_means(const std::vector<kernel::AccumPixel>& accum_a,
+                                       const std::vector<kernel::AccumPixel>& accum_b, int width,
+                                       int height, int block) {
+    std::vector<BlockMean> a = block_means(accum_a, width, height, block, block);
+    std::vector<BlockMean> b = block_means(accum_b, width, height, block, block);
+    a.push_back(block_means(accum_a, width, height, width, height).at(0));
+    b.push_back(block_means(accum_b, width, height, width, height).at(0));
+    const double k = bonferroni_k(static_cast<int>(a.size()), 1e-3);
+    double worst_z = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const double se = std::sqrt(a[i].variance + b[i].variance);
+        const double difference = std::fabs(a[i].mean - b[i].mean);
+        CAPTURE(a[i].x, a[i].y, a[i].mean, b[i].mean, se, k);
+        REQUIRE(difference <= k * se);
+        worst_z = std::fmax(worst_z, difference / se);
+    }
+    const double tolerance = k * std::sqrt(a.back().variance + b.back().variance) / a.back().mean;
+    CAPTURE(k, worst_z, tolerance);
+    return tolerance;
+}
+
+// How many pixels of two renders with the same random numbers (CPU and
+// OpenCL) agree to float rounding: the channels' differences summed
+// within 1e-3 of one plus the first's channel sum. A path that a last-bit
+// difference turns differs outright, so callers require most, not all.
+inline int close_pixel_count(const Image& a, const Image& b) {
+    int close = 0;
+    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+        const glm::vec3 d = glm::abs(a.pixels[i] - b.pixels[i]);
+        close += d.x + d.y + d.z <= 1e-3f * (1.0f + a.pixels[i].x + a.pixels[i].y + a.pixels[i].z);
+    }
+    return close;
+}
+
+// Pearson's chi-square of observed counts against expected ones, the cells
+// expecting fewer than 5 pooled into one, and its quantile at 1 - 1e-4
+// for cells - 1 degrees of freedom by Wilson and Hilferty's cube-root
+// normal approximation (z = 3.719).
+struct ChiSquare {
+    double value;
+    int cells;
+    double critical;
+};
+
+inline ChiSquare chi_square(const std::vector<double>& expected,
+                            const std::vector<double>& observed) {
+    ChiSquare c{0.0, 0, 0.0};
+    double pooled_expected = 0.0, pooled_observed = 0.0;
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+        if (expected[i] < 5.0) {
+            pooled_expected += expected[i];
+            pooled_observed += observed[i];
+            continue;
+        }
+        c.value += (observed[i] - expected[i]) * (observed[i] - expected[i]) / expected[i];
+        ++c.cells;
+    }
+    if (pooled_expected >= 5.0) {
+        c.value += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) /
+                   pooled_expected;
+        ++c.cells;
+    }
+    const double dof = c.cells - 1;
+    const double q = 2.0 / (9.0 * dof);
+    c.critical = dof * std::pow(1.0 - q + 3.719 * std::sqrt(q), 3.0);
+    return c;
 }
 
 // A directory under /tmp holding files written by a test; removed after.
