@@ -337,9 +337,10 @@ def write_png(mi, path, image):
     mi.Bitmap(bytes_, pixel_format=mi.Bitmap.PixelFormat.RGB).write(path)
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--scene", default=DEFAULT_SCENE)
+def add_common_arguments(p, default_scene):
+    """The options every script here takes: scene, size, samples, output,
+    Mitsuba's variant, threads, depths."""
+    p.add_argument("--scene", default=default_scene)
     p.add_argument("--spp", type=int, default=64)
     p.add_argument("--width", type=int, default=None)
     p.add_argument("--height", type=int, default=None)
@@ -353,6 +354,11 @@ def main():
     p.add_argument("--variant", default="llvm_ad_rgb")
     p.add_argument("--max-depth", type=int, default=None, help="default: the scene's")
     p.add_argument("--rr-depth", type=int, default=5, help="Mitsuba's default, 5")
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    add_common_arguments(p, DEFAULT_SCENE)
     p.add_argument("--samples-per-pass", type=int, default=0,
                    help="spp per Mitsuba pass (default 0: Mitsuba chooses, as it "
                         "recommends; it splits a render whose wavefront is too large)")

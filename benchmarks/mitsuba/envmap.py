@@ -205,19 +205,7 @@ def check_mapping(mi, dr, scene_path, upsample, count=200000):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--scene", default=DEFAULT_SCENE)
-    p.add_argument("--spp", type=int, default=64)
-    p.add_argument("--width", type=int, default=None)
-    p.add_argument("--height", type=int, default=None)
-    p.add_argument("--sampler", choices=["independent", "multijitter", "stratified"],
-                   default="independent")
-    p.add_argument("--seed", type=int, default=1)
-    p.add_argument("--output", action="append", default=[],
-                   help=".pfm (linear) or .png (sRGB); may be repeated")
-    p.add_argument("--threads", type=int, default=None, help="drjit thread count")
-    p.add_argument("--variant", default="llvm_ad_rgb")
-    p.add_argument("--max-depth", type=int, default=None, help="default: the scene's")
-    p.add_argument("--rr-depth", type=int, default=5, help="Mitsuba's default, 5")
+    cd.add_common_arguments(p, DEFAULT_SCENE)
     p.add_argument("--upsample", type=int, default=4,
                    help="the map given to Mitsuba is this many times as fine, sampled "
                         "from trac0r's nearest-texel lookup (1: the map as it is)")
