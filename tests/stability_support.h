@@ -32,7 +32,14 @@ inline kernel::Hit nearest_hit(const kernel::SceneView* view, kernel::Ray ray) {
 
 inline Material make_material(MaterialType type, glm::vec3 color, float emittance = 0.0f,
                               float roughness = 0.0f, float ior = 1.5f) {
-    return Material{to_string(type), type, color, emittance, roughness, ior};
+    Material m;
+    m.name = to_string(type);
+    m.type = type;
+    m.color = color;
+    m.emittance = emittance;
+    m.roughness = roughness;
+    m.ior = ior;
+    return m;
 }
 
 // The camera at `position` looking along `direction` with `vertical_fov`

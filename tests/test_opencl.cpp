@@ -40,8 +40,9 @@ TEST_CASE("an OpenCL device is present", "[opencl]") {
 
 TEST_CASE("the kernel builds as OpenCL C for every scene's feature mask, warning-free",
           "[opencl]") {
-    const char* scenes[] = {"cornell.json",   "cornell_diffuse.json", "furnace.json",
-                            "mesh_demo.json", "mtl_demo.json",        "smooth_demo.json"};
+    const char* scenes[] = {"cornell.json",  "cornell_diffuse.json", "furnace.json",
+                            "mesh_demo.json", "mtl_demo.json",       "smooth_demo.json",
+                            "materials_demo.json"};
     for (const char* name : scenes) {
         CAPTURE(name);
         const Scene scene = load_test_scene(name, 8, 8);
@@ -210,6 +211,11 @@ TEST_CASE("OpenCL and CPU images through a thin lens agree", "[opencl][camera]")
 TEST_CASE("OpenCL and CPU images of a smooth-shaded mesh agree", "[opencl][smooth]") {
     compare_backends("smooth_demo.json", Accel::bvh);
     compare_backends("smooth_demo.json", Accel::flat, SamplerKind::sobol);
+}
+
+TEST_CASE("OpenCL and CPU images of the microfacet materials agree",
+          "[opencl][microfacet]") {
+    compare_backends("materials_demo.json", Accel::bvh, SamplerKind::sobol);
 }
 
 TEST_CASE("furnace on the OpenCL backend", "[opencl][furnace]") {

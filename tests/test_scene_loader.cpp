@@ -422,7 +422,8 @@ TEST_CASE("scene errors: unknown names and types", "[scene_loader]") {
                       "materials: \"white\")"));
     CHECK_THAT(scene_error(with_material(R"("m": {"type": "metal", "color": [1, 1, 1]})")),
                Equals("test.json: /materials/m/type: expected one of \"emissive\", \"diffuse\", "
-                      "\"glass\", \"glossy\", got \"metal\""));
+                      "\"glass\", \"glossy\", \"conductor\", \"plastic\", "
+                      "\"principled\", got \"metal\""));
     CHECK_THAT(scene_error(with_shape(R"({"type": "sphere", "radius": 1, "material": "white"})")),
                StartsWith("test.json: /shapes/0/type: expected one of \"plane\", \"box\", "
                           "\"icosphere\", \"mesh\", got \"sphere\""));
@@ -1384,4 +1385,21 @@ TEST_CASE("a camera block loads over a scene's; bad ones are one message", "[sce
     CHECK(message(R"({"camera": {"positon": [0, 0, 0]}})").find("positon") != std::string::npos);
     CHECK(message(R"({"render": {"width": 8}})").find("render") != std::string::npos);
     CHECK(message("[1, 2]").find("cam.json") == 0);
+}
+
+TEST_CASE("scene errors: the microfacet materials' keys", "[scene_loader][microfacet]") {
+    CHECK_THAT(scene_error(with_material(
+                   R"("m": {"type": "conductor", "color": [1, 1, 1], "roughness": 1.5})")),
+               StartsWith("test.json: /materials/m/roughness: expected a number in [0, 1]"));
+    CHECK_THAT(scene_error(with_material(R"("m": {"type": "conductor", "metal": "brass"})")),
+               Equals("test.json: /materials/m/metal: expected one of \"gold\", \"silver\", "
+                      "\"copper\", \"aluminium\", \"chromium\", \"tungsten\", got \"brass\""));
+    CHECK_THAT(scene_error(with_material(
+                   R"("m": {"type": "plastic", "color": [1, 1, 1], "metal": "gold"})")),
+               StartsWith("test.json: /materials/m/metal: unknown key in a plastic material"));
+    CHECK_THAT(scene_error(with_material(R"("m": {"type": "principled", "color": [1, 1, 1],
+                                                 "metallic": -0.5})")),
+               StartsWith("test.json: /materials/m/metallic: expected a number in [0, 1]"));
+    CHECK_THAT(scene_error(with_material(R"("m": {"type": "conductor"})")),
+               StartsWith("test.json: /materials/m/color: required key is missing"));
 }

@@ -16,6 +16,9 @@ enum class MaterialType : unsigned {
     diffuse = T0_MATERIAL_DIFFUSE,    // Lambertian, BRDF color/pi; may also emit
     glass = T0_MATERIAL_GLASS,        // smooth dielectric with Fresnel, tinted by color
     glossy = T0_MATERIAL_GLOSSY,      // the thesis' roughness cone around the mirror direction
+    conductor = T0_MATERIAL_CONDUCTOR,    // GGX metal: colour as F0, or a named metal
+    plastic = T0_MATERIAL_PLASTIC,        // a Lambertian base under a GGX dielectric coat
+    principled = T0_MATERIAL_PRINCIPLED,  // glTF 2.0's metallic-roughness BRDF
 };
 
 // The most a material may emit in a channel (colour times emittance): a
@@ -29,8 +32,18 @@ struct Material {
     MaterialType type = MaterialType::diffuse;
     glm::vec3 color{0.8f};
     float emittance = 0.0f;
+    // glossy: the cone's width; the microfacet types and glass: GGX's
+    // roughness (alpha = roughness^2; glass of roughness 0 is the thesis'
+    // smooth glass).
     float roughness = 0.0f;
     float ior = 1.5f;
+    // A conductor's named metal (metal_index): its measured complex index,
+    // times color; "" for Schlick's Fresnel with color as F0.
+    std::string metal;
+    // principled: glTF's metallicFactor and KHR_materials_specular's
+    // specularFactor.
+    float metallic = 0.0f;
+    float specular = 1.0f;
     // A base-colour texture multiplying color (diffuse and glossy only):
     // an index into the scene's textures (Scene::textures, or
     // MeshParts::textures for a mesh file's materials); -1 for none.
@@ -41,11 +54,35 @@ struct Material {
     bool two_sided = true;
 };
 
-// Whether a material of this type takes a base-colour texture (diffuse
-// and glossy ones).
+// Whether a material of this type takes a base-colour texture (all but
+// emissive and glass).
 inline bool takes_texture(MaterialType type) {
-    return type == MaterialType::diffuse || type == MaterialType::glossy;
+    return type != MaterialType::emissive && type != MaterialType::glass;
 }
+
+// Whether the type is one of the GGX microfacet ones (kernel/rough_materials.h).
+inline bool is_microfacet(MaterialType type) {
+    return type == MaterialType::conductor || type == MaterialType::plastic ||
+           type == MaterialType::principled;
+}
+
+// A measured metal: its complex index of refraction eta + i k in the red,
+// green and blue channels.
+struct Metal {
+    const char* name;
+    glm::vec3 eta;
+    glm::vec3 k;
+};
+
+// The metals a conductor may name: gold, silver, copper, aluminium,
+// chromium, tungsten. Returns nullptr for another name.
+const Metal* find_metal(const std::string& name);
+std::vector<std::string> metal_names();
+
+// The scale of plastic's diffuse term, 1 / (ior^2 (1 - F_dr)), where F_dr
+// is the coat's diffuse reflectance from inside (the hemispherical average
+// of the dielectric Fresnel reflectance, integrated numerically).
+float plastic_diffuse_scale(float ior);
 
 // "emissive", "diffuse", "glass", "glossy" (the scene format's names) and
 // back; parse_material_type throws std::invalid_argument.

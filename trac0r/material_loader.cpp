@@ -10,44 +10,84 @@ using namespace json_diagnostics;
 
 namespace {
 
-// What each type of material reads besides "type": a colour and one
-// parameter, in the schema table above. A key of another type (roughness
-// on a diffuse material) is an error, not ignored.
-struct MaterialKeys {
+// What each type of material reads besides "type", "color" and the keys
+// below: one row per number it takes, in the schema table
+// (scene_loader.cpp). A key of another type (roughness on a diffuse
+// material) is an error, not ignored.
+struct MaterialKey {
     MaterialType type;
-    NumberRule color_rule;
-    const char* parameter;  // the parameter's key
-    NumberRule parameter_rule;
-    bool parameter_required;  // else optional, its default Material's
-    float Material::*field;   // where the parameter goes
+    const char* key;
+    NumberRule rule;
+    bool required;   // else optional, with the default below
+    float fallback;  // the default
+    float Material::*field;
 };
 
-const MaterialKeys material_keys[] = {
-    {MaterialType::emissive, NumberRule::non_negative, "emittance", NumberRule::positive, true,
+const MaterialKey material_keys[] = {
+    {MaterialType::emissive, "emittance", NumberRule::positive, true, 0.0f, &Material::emittance},
+    {MaterialType::diffuse, "emittance", NumberRule::non_negative, false, 0.0f,
      &Material::emittance},
-    {MaterialType::diffuse, NumberRule::unit_interval, "emittance", NumberRule::non_negative, false,
-     &Material::emittance},
-    {MaterialType::glass, NumberRule::unit_interval, "ior", NumberRule::positive, false,
-     &Material::ior},
-    {MaterialType::glossy, NumberRule::unit_interval, "roughness", NumberRule::unit_interval, false,
+    {MaterialType::glass, "ior", NumberRule::positive, false, 1.5f, &Material::ior},
+    {MaterialType::glass, "roughness", NumberRule::unit_interval, false, 0.0f,
      &Material::roughness},
+    {MaterialType::glossy, "roughness", NumberRule::unit_interval, false, 0.0f,
+     &Material::roughness},
+    {MaterialType::conductor, "roughness", NumberRule::unit_interval, false, 0.0f,
+     &Material::roughness},
+    {MaterialType::plastic, "roughness", NumberRule::unit_interval, false, 0.0f,
+     &Material::roughness},
+    {MaterialType::plastic, "ior", NumberRule::positive, false, 1.5f, &Material::ior},
+    // Blender's Principled BSDF's defaults (glTF's are metallic 1, roughness
+    // 1: a file's materials always give theirs).
+    {MaterialType::principled, "roughness", NumberRule::unit_interval, false, 0.5f,
+     &Material::roughness},
+    {MaterialType::principled, "metallic", NumberRule::unit_interval, false, 0.0f,
+     &Material::metallic},
+    {MaterialType::principled, "ior", NumberRule::positive, false, 1.5f, &Material::ior},
+    {MaterialType::principled, "specular", NumberRule::unit_interval, false, 1.0f,
+     &Material::specular},
 };
+
+// The colour's rule: emitted radiance may exceed 1, reflectances may not.
+NumberRule color_rule(MaterialType type) {
+    return type == MaterialType::emissive ? NumberRule::non_negative : NumberRule::unit_interval;
+}
+
+// A conductor's "metal": one of the names find_metal knows.
+void read_metal(const ObjectReader& o, Material& m) {
+    if (!o.has("metal")) {
+        return;
+    }
+    const std::vector<std::string> names = metal_names();
+    m.metal = read_choice(o["metal"], o.at("metal"), names);
+}
 
 void read_material_parameters(const ObjectReader& o, Material& m) {
-    const MaterialKeys& keys =
-        *std::find_if(std::begin(material_keys), std::end(material_keys),
-                      [&](const MaterialKeys& k) { return k.type == m.type; });
-    std::vector<std::string> allowed = {"type", "color", keys.parameter};
-    if (keys.field == &Material::emittance) {
+    std::vector<std::string> allowed = {"type", "color"};
+    for (const MaterialKey& k : material_keys) {
+        if (k.type == m.type) {
+            allowed.push_back(k.key);
+        }
+    }
+    if (m.type == MaterialType::emissive || m.type == MaterialType::diffuse) {
         allowed.push_back("two_sided");
+    }
+    if (m.type == MaterialType::conductor) {
+        allowed.push_back("metal");
     }
     o.allow_only(allowed, with_article(to_string(m.type)) + " material");
     m.two_sided = o.optional_bool("two_sided", true);
-    m.color = o.required_vec3("color", keys.color_rule);
-    float& parameter = m.*keys.field;
-    parameter = keys.parameter_required
-                    ? o.required_float(keys.parameter, keys.parameter_rule)
-                    : o.optional_float(keys.parameter, keys.parameter_rule, parameter);
+    read_metal(o, m);
+    // A named metal's colour is a factor on its measured reflectance: white
+    // unless given.
+    m.color = m.metal.empty() ? o.required_vec3("color", color_rule(m.type))
+                              : o.optional_vec3("color", color_rule(m.type), glm::vec3(1.0f));
+    for (const MaterialKey& k : material_keys) {
+        if (k.type == m.type) {
+            m.*k.field = k.required ? o.required_float(k.key, k.rule)
+                                    : o.optional_float(k.key, k.rule, k.fallback);
+        }
+    }
 }
 
 void check_emission(const ObjectReader& o, const Material& m) {
@@ -88,6 +128,5 @@ std::vector<Material> read_materials(const json& value, const Location& at) {
     }
     return materials;
 }
-
 
 }  // namespace trac0r

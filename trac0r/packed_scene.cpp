@@ -21,37 +21,70 @@ kernel::TriangleRecord pack_triangle(const Triangle& t, unsigned material, unsig
     return kernel::make_triangle_record(t.v0, t.v1, t.v2, t.normal, 2.0f * t.area, material, shape);
 }
 
+// The kernel's type: glass of roughness > 0 is rough glass.
+unsigned kernel_material_type(const Material& m) {
+    if (m.type == MaterialType::glass && m.roughness > 0.0f) {
+        return T0_MATERIAL_ROUGH_GLASS;
+    }
+    return static_cast<unsigned>(m.type);
+}
+
 kernel::MaterialRecord pack_material(const Material& m) {
-    kernel::MaterialRecord r = kernel::make_material_record(static_cast<unsigned>(m.type), m.color,
+    kernel::MaterialRecord r = kernel::make_material_record(kernel_material_type(m), m.color,
                                                             m.emittance, m.roughness, m.ior);
     r.type.z = m.two_sided ? 0u : 1u;
+    if (m.type == MaterialType::conductor && !m.metal.empty()) {
+        const Metal* metal = find_metal(m.metal);
+        if (metal != nullptr) {
+            r.type.w = 1u;
+            r.eta = glm::vec4(metal->eta, 0.0f);
+            r.k = glm::vec4(metal->k, 0.0f);
+        }
+    }
+    if (m.type == MaterialType::plastic) {
+        r.eta.w = plastic_diffuse_scale(m.ior);
+    }
+    if (m.type == MaterialType::principled) {
+        r.color.w = m.metallic;
+        r.eta.x = m.specular;
+    }
     return r;
 }
 
-std::uint32_t material_feature(MaterialType type) {
-    switch (type) {
-    case MaterialType::emissive:
+std::uint32_t material_feature(const Material& m) {
+    switch (kernel_material_type(m)) {
+    case T0_MATERIAL_EMISSIVE:
         return T0_FEATURE_EMISSIVE;
-    case MaterialType::diffuse:
+    case T0_MATERIAL_DIFFUSE:
         return T0_FEATURE_DIFFUSE;
-    case MaterialType::glass:
+    case T0_MATERIAL_GLASS:
         return T0_FEATURE_GLASS;
-    case MaterialType::glossy:
+    case T0_MATERIAL_GLOSSY:
         return T0_FEATURE_GLOSSY;
+    case T0_MATERIAL_CONDUCTOR:
+        return T0_FEATURE_CONDUCTOR;
+    case T0_MATERIAL_PLASTIC:
+        return T0_FEATURE_PLASTIC;
+    case T0_MATERIAL_PRINCIPLED:
+        return T0_FEATURE_PRINCIPLED;
+    case T0_MATERIAL_ROUGH_GLASS:
+        return T0_FEATURE_ROUGH_GLASS;
     }
     return 0;
 }
 
 const char* const feature_bit_names[T0_FEATURE_COUNT] = {
     "emissive", "diffuse", "glass",   "glossy",      "emittance", "flat",      "bvh",       "nee",
-    "sobol",    "smooth",  "texture", "environment", "lamps",     "one_sided", "light_tree"};
+    "sobol",    "smooth",  "texture", "environment", "lamps",     "one_sided", "light_tree",
+    "conductor", "plastic", "principled", "rough_glass"};
 
 // What this build's kernel can do at all.
 const std::uint32_t implemented_features =
     T0_FEATURE_EMISSIVE | T0_FEATURE_DIFFUSE | T0_FEATURE_GLASS | T0_FEATURE_GLOSSY |
     T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT | T0_FEATURE_BVH | T0_FEATURE_NEE | T0_FEATURE_SOBOL |
     T0_FEATURE_SMOOTH | T0_FEATURE_TEXTURE | T0_FEATURE_ENVIRONMENT | T0_FEATURE_LAMPS |
-    T0_FEATURE_ONE_SIDED | T0_FEATURE_LIGHT_TREE;
+    T0_FEATURE_ONE_SIDED | T0_FEATURE_LIGHT_TREE | T0_FEATURE_CONDUCTOR | T0_FEATURE_PLASTIC |
+    T0_FEATURE_PRINCIPLED | T0_FEATURE_ROUGH_GLASS;
 
 }  // namespace
 
@@ -324,7 +357,7 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
         if (!material_used[m]) {
             continue;
         }
-        packed.features |= material_feature(material.type);
+        packed.features |= material_feature(material);
         if (material.emittance > 0.0f &&
             std::max({material.color.x, material.color.y, material.color.z}) > 0.0f) {
             packed.features |= T0_FEATURE_EMITTANCE;

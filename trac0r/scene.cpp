@@ -68,6 +68,10 @@ std::uint64_t scene_digest(const Scene& scene) {
         h.value(m.ior);
         h.value(m.texture);
         h.value(static_cast<int>(m.two_sided));
+        h.value(m.metal.size());
+        h.bytes(m.metal.data(), m.metal.size());
+        h.value(m.metallic);
+        h.value(m.specular);
     }
     h.value(scene.shapes.size());
     for (const Shape& s : scene.shapes) {

@@ -24,13 +24,20 @@
 // | render.view            | string  | standard/filmic (view_transform.h)      | standard        |
 // | materials              | object  | required, non-empty: name -> material   |                 |
 // | material.type          | string  | required: emissive/diffuse/glass/glossy |                 |
-// | material.color         | [3]     | required; in [0, 1] (emissive: >= 0)    |                 |
+// |                        |         | /conductor/plastic/principled           |                 |
+// | material.color         | [3]     | required; in [0, 1] (emissive: >= 0;    |                 |
+// |                        |         | a conductor with "metal": optional)     | [1, 1, 1]       |
 // | material.emittance     | number  | emissive: required, > 0                 |                 |
 // |                        |         | diffuse: optional, >= 0                 | 0               |
 // |                        |         | colour x emittance <= 1e30 per channel  |                 |
-// | material.roughness     | number  | glossy only, in [0, 1]                  | 0               |
+// | material.roughness     | number  | glossy, glass, conductor, plastic,      | 0               |
+// |                        |         | principled; in [0, 1]                   | (principled 0.5)|
 // | material.two_sided     | boolean | emissive, diffuse: emits from both sides | true           |
-// | material.ior           | number  | glass only, > 0                         | 1.5             |
+// | material.ior           | number  | glass, plastic, principled; > 0         | 1.5             |
+// | material.metal         | string  | conductor: gold/silver/copper/aluminium | none (Schlick)  |
+// |                        |         | /chromium/tungsten                      |                 |
+// | material.metallic      | number  | principled, in [0, 1]                   | 0               |
+// | material.specular      | number  | principled, in [0, 1]                   | 1               |
 // | shapes                 | array   | required, non-empty                     |                 |
 // | shape.type             | string  | required: plane/box/icosphere/mesh      |                 |
 // | shape.material         | string  | required, a name in materials           |                 |

@@ -967,6 +967,8 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
         w.f32(m.ior);
         w.i32(m.texture);
         w.u8(m.two_sided ? 1 : 0);
+        w.f32(m.metallic);
+        w.f32(m.specular);
     }
     w.u64(files.textures.size());
     for (const Texture& t : files.textures) {
@@ -1046,7 +1048,7 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         part_materials.push_back(id);
         mesh.parts.push_back(std::move(p));
     }
-    const std::size_t material_count = r.count(8 + 4 + 12 + 12 + 4 + 1, "materials");
+    const std::size_t material_count = r.count(8 + 4 + 12 + 12 + 4 + 1 + 8, "materials");
     for (std::size_t i = 0; i < material_count; ++i) {
         Material m;
         m.name = r.text("bytes of a material's name");
@@ -1054,7 +1056,9 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         if (type != static_cast<std::uint32_t>(MaterialType::emissive) &&
             type != static_cast<std::uint32_t>(MaterialType::diffuse) &&
             type != static_cast<std::uint32_t>(MaterialType::glass) &&
-            type != static_cast<std::uint32_t>(MaterialType::glossy)) {
+            type != static_cast<std::uint32_t>(MaterialType::glossy) &&
+            type != static_cast<std::uint32_t>(MaterialType::plastic) &&
+            type != static_cast<std::uint32_t>(MaterialType::principled)) {
             throw WireError("a material of unknown type " + std::to_string(type));
         }
         m.type = static_cast<MaterialType>(type);
@@ -1064,7 +1068,11 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         m.ior = r.get<float>();
         m.texture = r.get<std::int32_t>();
         m.two_sided = r.get<std::uint8_t>() != 0;
+        m.metallic = r.get<float>();
+        m.specular = r.get<float>();
         if (!(std::min({m.color.x, m.color.y, m.color.z}) >= 0.0f) || !(peak(m.color) <= 1.0f) ||
+            !(m.metallic >= 0.0f && m.metallic <= 1.0f) ||
+            !(m.specular >= 0.0f && m.specular <= 1.0f) ||
             !(m.emittance >= 0.0f && m.emittance <= max_emitted_radiance) ||
             !(m.roughness >= 0.0f && m.roughness <= 1.0f) ||
             !(m.ior > 0.0f && std::isfinite(m.ior))) {

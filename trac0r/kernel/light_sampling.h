@@ -72,15 +72,28 @@ T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const Tr
     return area_to_solid_angle(pdf_area, distance * distance, cos_light);
 }
 
+// Whether a direction lies on one side of the shading normal and on the
+// other of the triangle (with vertex normals): a light sample there would
+// pass through the surface it is meant to reflect off, or refract back.
+T0_INLINE int on_other_side(float3 direction, float3 facing_normal, float3 facing_geometric) {
+    return (dot(direction, facing_geometric) > 0.0f) != (dot(direction, facing_normal) > 0.0f);
+}
+
+// The side of the triangle a ray in `direction` leaves from (rough glass
+// samples lights through the surface too).
+T0_INLINE float3 leaving_side(float3 direction, float3 facing_geometric) {
+    return dot(direction, facing_geometric) > 0.0f ? facing_geometric : -facing_geometric;
+}
+
 // Next-event estimation of a light that is not a triangle (lamps.h): the
 // sample's radiance through the material, if nothing is in between; with
 // its MIS weight where the light has an area (the sun's disc, the
 // environment), in full for a delta light. pick is the light's
 // probability.
 T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord* light, float pick,
-                             T0_GLOBAL const MaterialRecord* m, float3 incoming,
-                             float3 facing_normal, float3 facing_geometric, float3 position,
-                             float magnitude, float2 u) {
+                             T0_GLOBAL const MaterialRecord* m, Surface surface,
+                             float3 incoming, float3 facing_normal, float3 facing_geometric,
+                             float3 position, float magnitude, float2 u) {
     LightSample ls;
     const t0_u32 kind = light->ids.y;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT) && kind == T0_LIGHT_ENVIRONMENT) {
@@ -93,14 +106,17 @@ T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord
     if (!(ls.radiance.x > 0.0f || ls.radiance.y > 0.0f || ls.radiance.z > 0.0f)) {
         return float3_splat(0.0f);
     }
-    const MaterialEval e = eval_material(scene, m, incoming, facing_normal, ls.direction);
+    const MaterialEval e =
+        eval_material(scene, m, surface, incoming, facing_normal, ls.direction);
     if (!(e.pdf > 0.0f)) {
         return float3_splat(0.0f);
     }
-    if (T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) && !(dot(ls.direction, facing_geometric) > 0.0f)) {
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) &&
+        on_other_side(ls.direction, facing_normal, facing_geometric)) {
         return float3_splat(0.0f);
     }
-    const float3 origin = offset_ray_origin(position, facing_geometric, magnitude);
+    const float3 origin =
+        offset_ray_origin(position, leaving_side(ls.direction, facing_geometric), magnitude);
     Ray shadow_ray;
     float shadow_length = T0_NO_HIT;
     if (ls.distance < T0_NO_HIT) {
@@ -136,7 +152,8 @@ T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord
 // the light tree: a distant one or the tree, and u_tree the way down it)
 // and u the point on it (or the direction to it).
 T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                              float3 incoming, float3 facing_normal, float3 facing_geometric,
+                              Surface surface, float3 incoming, float3 facing_normal,
+                              float3 facing_geometric,
                               float3 position, float magnitude, float u_pick, float u_tree,
                               float2 u) {
     T0_GLOBAL const LightRecord* light;
@@ -162,8 +179,8 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     if ((T0_HAS_FEATURE(scene, T0_FEATURE_LAMPS) ||
          T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT)) &&
         light->ids.y != T0_LIGHT_TRIANGLE) {
-        return sample_lamp(scene, light, pick, m, incoming, facing_normal, facing_geometric,
-                           position, magnitude, u);
+        return sample_lamp(scene, light, pick, m, surface, incoming, facing_normal,
+                           facing_geometric, position, magnitude, u);
     }
     T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->ids.x];
     float b1 = 0.0f;
@@ -180,12 +197,13 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     const float3 direction = to_light / distance;
     const float3 light_normal = xyz(tri->normal);
     const float cos_light = fabs(dot(direction, light_normal));
-    const MaterialEval e = eval_material(scene, m, incoming, facing_normal, direction);
+    const MaterialEval e = eval_material(scene, m, surface, incoming, facing_normal, direction);
     if (!(cos_light > 0.0f) || !(e.pdf > 0.0f)) {
         return float3_splat(0.0f);  // edge-on, or outside the material's lobe
     }
-    if (T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) && !(dot(direction, facing_geometric) > 0.0f)) {
-        return float3_splat(0.0f);  // in the shading normal's lobe, behind the triangle
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) &&
+        on_other_side(direction, facing_normal, facing_geometric)) {
+        return float3_splat(0.0f);  // in the shading normal's lobe, across the triangle
     }
     T0_GLOBAL const MaterialRecord* emitter = &scene->materials[tri->ids.x];
     if (T0_HAS_FEATURE(scene, T0_FEATURE_ONE_SIDED) && material_one_sided(emitter) &&
@@ -196,7 +214,8 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     // towards the other, so neither surface can block it.
     const float3 light_side = dot(direction, light_normal) < 0.0f ? light_normal : -light_normal;
     const float3 target = offset_ray_origin(point, light_side, hit_magnitude(tri, point));
-    const float3 origin = offset_ray_origin(position, facing_geometric, magnitude);
+    const float3 origin =
+        offset_ray_origin(position, leaving_side(direction, facing_geometric), magnitude);
     const float3 shadow = target - origin;
     const float shadow_length = length(shadow);
     if (!(shadow_length > 0.0f)) {

@@ -1,4 +1,5 @@
-// The four materials: what they emit and how they scatter.
+// The materials: what they emit and how they scatter; the thesis' four
+// here, the microfacet ones in rough_materials.h.
 //
 // A scatter sample returns the new direction, the weight f cos / pdf, the
 // pdf, and says when it failed (weight zero), never a NaN. It is made from
@@ -6,35 +7,28 @@
 #ifndef TRAC0R_KERNEL_MATERIAL_H
 #define TRAC0R_KERNEL_MATERIAL_H
 
+#include "rough_materials.h"
 #include "sampling.h"
+#include "scatter.h"
 #include "types.h"
 
 T0_NAMESPACE_BEGIN
 
-typedef struct ScatterSample {
-    float3 direction;
-    float3 weight;  // f cos / pdf; zero when the sample failed
-    float pdf;      // zero for delta (mirror and glass) directions
-    int is_delta;
-} ScatterSample;
-
-T0_INLINE ScatterSample scatter_failed(void) {
-    ScatterSample s;
-    s.direction = make_float3(0.0f, 0.0f, 1.0f);
-    s.weight = float3_splat(0.0f);
-    s.pdf = 0.0f;
-    s.is_delta = 0;
-    return s;
-}
-
 // A material as the kernels read it. Roughness r (0..1) makes the glossy
-// lobe a cone of half-angle r pi/2 about the mirror direction.
+// lobe a cone of half-angle r pi/2 about the mirror direction, and the
+// microfacet types' GGX alpha r^2. A conductor's index, plastic's diffuse
+// scale and principled's specular factor the host sets (packed_scene.cpp).
 T0_INLINE MaterialRecord make_material_record(t0_u32 type, float3 color, float emittance,
                                               float roughness, float ior) {
     MaterialRecord r;
     r.color = make_float4(color.x, color.y, color.z, 0.0f);
-    r.params = make_float4(emittance, roughness, ior, cone_sin2(roughness * 0.5f * T0_PI));
+    const float shape = type == T0_MATERIAL_GLOSSY || type <= T0_MATERIAL_GLASS
+                            ? cone_sin2(roughness * 0.5f * T0_PI)
+                            : ggx_alpha(roughness);
+    r.params = make_float4(emittance, roughness, ior, shape);
     r.type = make_uint4(type, 0u, 0u, 0u);
+    r.eta = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+    r.k = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
     return r;
 }
 
@@ -60,38 +54,6 @@ T0_INLINE float3 material_emission_seen(const SceneView* scene, T0_GLOBAL const 
         return float3_splat(0.0f);
     }
     return material_emission(m);
-}
-
-T0_INLINE float3 reflect_direction(float3 d, float3 n) { return d - n * (2.0f * dot(d, n)); }
-
-// cos^2 of the refraction angle (Snell's law); <= 0 is total internal
-// reflection. Written (1 - eta^2) + (eta cos_i)^2, not 1 - eta^2 (1 - cos_i^2):
-// equal in exact arithmetic, but only this form is exact for eta = 1, where
-// 1 - cos_i^2 rounds to 1 below cos_i = 2.4e-4 and an index-matched
-// interface would reflect totally near grazing.
-T0_INLINE float refracted_cos2(float cos_i, float eta) {
-    const float eta_cos_i = eta * cos_i;
-    return (1.0f - eta * eta) + eta_cos_i * eta_cos_i;
-}
-
-// Unpolarised Fresnel reflectance of a dielectric interface.
-// cos_i: cosine of the incident angle (>= 0); eta = eta_incident/eta_transmitted.
-// Returns 1 for total internal reflection and at exactly grazing incidence.
-T0_INLINE float fresnel_dielectric(float cos_i, float eta) {
-    cos_i = fmin(fmax(cos_i, 0.0f), 1.0f);
-    const float cos2_t = refracted_cos2(cos_i, eta);
-    if (!(cos2_t > 0.0f)) {
-        return 1.0f;
-    }
-    const float cos_t = sqrt(cos2_t);
-    const float perp_den = eta * cos_i + cos_t;
-    const float parallel_den = cos_i + eta * cos_t;
-    if (!(perp_den > 0.0f) || !(parallel_den > 0.0f)) {
-        return 1.0f;
-    }
-    const float r_perp = (eta * cos_i - cos_t) / perp_den;
-    const float r_parallel = (cos_i - eta * cos_t) / parallel_den;
-    return 0.5f * (r_perp * r_perp + r_parallel * r_parallel);
 }
 
 // Lambertian: BRDF colour/pi, cosine-weighted sampling, so the weight is the
@@ -154,21 +116,6 @@ T0_INLINE ScatterSample scatter_glass(T0_GLOBAL const MaterialRecord* m, float3 
     return s;
 }
 
-// Next-event estimation asks the other way round: given a direction (to a
-// point on a light), how much does the material scatter into it, and how
-// likely would its own sampling have been to pick it.
-typedef struct MaterialEval {
-    float3 f_cos;  // BSDF x cosine toward the direction; zero outside the lobe
-    float pdf;     // density (solid angle) of scatter_material picking it
-} MaterialEval;
-
-T0_INLINE MaterialEval eval_failed(void) {
-    MaterialEval e;
-    e.f_cos = float3_splat(0.0f);
-    e.pdf = 0.0f;
-    return e;
-}
-
 // Glossy cones narrower than this (sin^2 of the half-angle: about 0.6
 // degrees, roughness 0.0064) count as mirrors for next-event estimation:
 // a light sample would almost never land in them, and the cone test is at
@@ -204,9 +151,49 @@ T0_INLINE MaterialEval eval_glossy(T0_GLOBAL const MaterialRecord* m, float3 inc
     return e;
 }
 
+// Whether the type is one of rough_materials.h's (a GGX lobe).
+T0_INLINE int material_is_microfacet(t0_u32 type) {
+    return type >= T0_MATERIAL_CONDUCTOR && type <= T0_MATERIAL_ROUGH_GLASS;
+}
+
+// Any microfacet type in the scene.
+#define T0_FEATURES_MICROFACET                                                                     \
+    (T0_FEATURE_CONDUCTOR | T0_FEATURE_PLASTIC | T0_FEATURE_PRINCIPLED | T0_FEATURE_ROUGH_GLASS)
+
+// The inputs of a hit's material (scatter.h): the texture, where the
+// material has one, is the base colour's factor for the microfacet types.
+T0_INLINE Surface make_surface(T0_GLOBAL const MaterialRecord* m, float3 texture, int front) {
+    Surface s;
+    s.base = xyz(m->color) * texture;
+    s.alpha = m->params.w;
+    s.metallic = m->color.w;
+    s.front = front;
+    return s;
+}
+
+// The factor a hit's texture puts on the whole sample: the thesis' four
+// take it so (bit for bit as before the microfacet types); those take it
+// in their base colour instead (make_surface).
+T0_INLINE float3 texture_outside(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
+                                 float3 texture) {
+    if (T0_HAS_FEATURE(scene, T0_FEATURES_MICROFACET) && material_is_microfacet(m->type.x)) {
+        return float3_splat(1.0f);
+    }
+    return texture;
+}
+
+// Whether the material picks between lobes with a number of its own
+// (sampler.h's T0_DIM_LOBE): rough glass, plastic, principled.
+T0_INLINE int material_draws_lobe(const SceneView* scene, T0_GLOBAL const MaterialRecord* m) {
+    const t0_u32 type = m->type.x;
+    return T0_HAS_FEATURE(scene, T0_FEATURES_MICROFACET) && material_is_microfacet(type) &&
+           type != T0_MATERIAL_CONDUCTOR;
+}
+
 // Whether next-event estimation samples lights at a hit on this material:
-// diffuse and rough glossy surfaces; not emitters (paths end there), glass
-// or mirror-like glossy (delta lobes that a light sample never lands in).
+// diffuse, rough glossy and the microfacet surfaces; not emitters (paths
+// end there), glass or mirror-like glossy (delta lobes that a light sample
+// never lands in).
 T0_INLINE int material_samples_lights(const SceneView* scene, T0_GLOBAL const MaterialRecord* m) {
     const t0_u32 type = m->type.x;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_DIFFUSE) && type == T0_MATERIAL_DIFFUSE) {
@@ -215,11 +202,60 @@ T0_INLINE int material_samples_lights(const SceneView* scene, T0_GLOBAL const Ma
     if (T0_HAS_FEATURE(scene, T0_FEATURE_GLOSSY) && type == T0_MATERIAL_GLOSSY) {
         return glossy_cone_sin2(m) >= T0_GLOSSY_LIGHT_SAMPLING_MIN_SIN2;
     }
+    if (T0_HAS_FEATURE(scene, T0_FEATURES_MICROFACET) && material_is_microfacet(type)) {
+        return 1;
+    }
     return 0;
 }
 
+// A microfacet material's f cos and density toward `direction`, in the
+// frame of the facing normal.
+T0_INLINE MaterialEval eval_microfacet(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
+                                       Surface surface, float3 incoming, float3 facing_normal,
+                                       float3 direction) {
+    const t0_u32 type = m->type.x;
+    const Frame f = frame_from_normal(facing_normal);
+    const float3 wo = frame_to_local(f, -incoming);
+    const float3 wi = frame_to_local(f, direction);
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_CONDUCTOR) && type == T0_MATERIAL_CONDUCTOR) {
+        return eval_conductor(m, surface, wo, wi);
+    }
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_ROUGH_GLASS) && type == T0_MATERIAL_ROUGH_GLASS) {
+        return eval_rough_glass(m, surface, wo, wi);
+    }
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_PLASTIC) && type == T0_MATERIAL_PLASTIC) {
+        return eval_two_lobe(m, surface, wo, wi);
+    }
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_PRINCIPLED) && type == T0_MATERIAL_PRINCIPLED) {
+        return eval_two_lobe(m, surface, wo, wi);
+    }
+    return eval_failed();
+}
+
+T0_INLINE ScatterSample scatter_microfacet(const SceneView* scene,
+                                           T0_GLOBAL const MaterialRecord* m, Surface surface,
+                                           float3 incoming, float3 facing_normal, float2 u,
+                                           float u_lobe) {
+    const t0_u32 type = m->type.x;
+    const Frame f = frame_from_normal(facing_normal);
+    const float3 wo = frame_to_local(f, -incoming);
+    ScatterSample s = scatter_failed();
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_CONDUCTOR) && type == T0_MATERIAL_CONDUCTOR) {
+        s = scatter_conductor_local(m, surface, wo, u);
+    } else if (T0_HAS_FEATURE(scene, T0_FEATURE_ROUGH_GLASS) && type == T0_MATERIAL_ROUGH_GLASS) {
+        s = scatter_rough_glass_local(m, surface, wo, u, u_lobe);
+    } else if (T0_HAS_FEATURE(scene, T0_FEATURE_PLASTIC) && type == T0_MATERIAL_PLASTIC) {
+        s = scatter_two_lobe_local(m, surface, wo, u, u_lobe);
+    } else if (T0_HAS_FEATURE(scene, T0_FEATURE_PRINCIPLED) && type == T0_MATERIAL_PRINCIPLED) {
+        s = scatter_two_lobe_local(m, surface, wo, u, u_lobe);
+    }
+    s.direction = frame_to_world(f, s.direction);
+    return s;
+}
+
 T0_INLINE MaterialEval eval_material(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                                     float3 incoming, float3 facing_normal, float3 direction) {
+                                     Surface surface, float3 incoming, float3 facing_normal,
+                                     float3 direction) {
     const t0_u32 type = m->type.x;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_DIFFUSE) && type == T0_MATERIAL_DIFFUSE) {
         return eval_diffuse(m, facing_normal, direction);
@@ -227,12 +263,17 @@ T0_INLINE MaterialEval eval_material(const SceneView* scene, T0_GLOBAL const Mat
     if (T0_HAS_FEATURE(scene, T0_FEATURE_GLOSSY) && type == T0_MATERIAL_GLOSSY) {
         return eval_glossy(m, incoming, facing_normal, direction);
     }
+    if (T0_HAS_FEATURE(scene, T0_FEATURES_MICROFACET) && material_is_microfacet(type)) {
+        return eval_microfacet(scene, m, surface, incoming, facing_normal, direction);
+    }
     return eval_failed();  // delta lobes and emitters
 }
 
+// u picks the direction (glass: u.x reflection or refraction), u_lobe the
+// lobe of the materials that draw one (material_draws_lobe).
 T0_INLINE ScatterSample scatter_material(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                                         float3 incoming, float3 outward_normal,
-                                         float3 facing_normal, float2 u) {
+                                         Surface surface, float3 incoming, float3 outward_normal,
+                                         float3 facing_normal, float2 u, float u_lobe) {
     const t0_u32 type = m->type.x;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_DIFFUSE) && type == T0_MATERIAL_DIFFUSE) {
         return scatter_diffuse(m, facing_normal, u);
@@ -242,6 +283,9 @@ T0_INLINE ScatterSample scatter_material(const SceneView* scene, T0_GLOBAL const
     }
     if (T0_HAS_FEATURE(scene, T0_FEATURE_GLOSSY) && type == T0_MATERIAL_GLOSSY) {
         return scatter_glossy(m, incoming, facing_normal, u);
+    }
+    if (T0_HAS_FEATURE(scene, T0_FEATURES_MICROFACET) && material_is_microfacet(type)) {
+        return scatter_microfacet(scene, m, surface, incoming, facing_normal, u, u_lobe);
     }
     return scatter_failed();  // emissive: a pure emitter ends the path
 }

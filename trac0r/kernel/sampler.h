@@ -32,6 +32,9 @@
 //                    with T0_FEATURE_LIGHT_TREE; negative (-2 - depth), out
 //                    of the way of the path's, so scenes without the tree
 //                    draw exactly what they drew before it existed.
+//   T0_DIM_LOBE(depth)  which lobe of a microfacet material (1-D: rough
+//                    glass, plastic, principled); negative too, below the
+//                    tree's for any depth a path may reach.
 #ifndef TRAC0R_KERNEL_SAMPLER_H
 #define TRAC0R_KERNEL_SAMPLER_H
 
@@ -49,6 +52,7 @@ T0_NAMESPACE_BEGIN
 #define T0_DIMS_PER_VERTEX 4
 #define T0_DIM(depth, slot) (1 + (depth)*T0_DIMS_PER_VERTEX + (slot))
 #define T0_DIM_LIGHT_TREE(depth) (-2 - (depth))
+#define T0_DIM_LOBE(depth) (-(1 << 20) - (depth))
 
 typedef struct Sampler {
     Rng rng;       // random: the pixel's generator for this frame

@@ -186,13 +186,17 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         }
         const float3 position = hit_position(tri, hit);
         const float magnitude = hit_magnitude(tri, position);
-        // A base-colour texture multiplies the material's colour, which
-        // both the light sample and the scattered ray's weight are linear
-        // in (their densities do not depend on it).
+        // A base-colour texture multiplies the material's colour: for the
+        // thesis' four, which both the light sample and the scattered ray's
+        // weight are linear in (their densities do not depend on it), as a
+        // factor on both; the microfacet types take it in the surface's
+        // base colour.
         float3 texture = float3_splat(1.0f);
         if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) {
             texture = surface_texture(scene, m, hit);
         }
+        const Surface surface = make_surface(m, texture, front);
+        texture = texture_outside(scene, m, texture);
 
         // Sample a light (next-event estimation), before the roulette: the
         // light sample is this vertex's and counts whether or not the path
@@ -210,8 +214,9 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
                                      ? sample_1d(sampler, T0_DIM_LIGHT_TREE(depth))
                                      : 0.0f;
             radiance += throughput * texture *
-                        sample_light(scene, m, ray.direction, facing_normal, facing_geometric,
-                                     position, magnitude, u_pick, u_tree, u_point);
+                        sample_light(scene, m, surface, ray.direction, facing_normal,
+                                     facing_geometric, position, magnitude, u_pick, u_tree,
+                                     u_point);
             lights_sampled = 1;
             if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)) {
                 sampled_from = position;
@@ -228,8 +233,10 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         const float2 u = m->type.x == T0_MATERIAL_GLASS
                              ? make_float2(vertex_1d(sampler, draws.material.x), 0.0f)
                              : vertex_2d(sampler, draws.material);
+        const float u_lobe =
+            material_draws_lobe(scene, m) ? sample_1d(sampler, T0_DIM_LOBE(depth)) : 0.0f;
         const ScatterSample s =
-            scatter_material(scene, m, ray.direction, shading, facing_normal, u);
+            scatter_material(scene, m, surface, ray.direction, shading, facing_normal, u, u_lobe);
         if (!(s.weight.x > 0.0f || s.weight.y > 0.0f || s.weight.z > 0.0f)) {
             break;
         }

@@ -12,6 +12,10 @@
 #define T0_MATERIAL_DIFFUSE 2u
 #define T0_MATERIAL_GLASS 3u
 #define T0_MATERIAL_GLOSSY 4u
+#define T0_MATERIAL_CONDUCTOR 5u   // GGX metal (rough_materials.h)
+#define T0_MATERIAL_PLASTIC 6u     // a diffuse base under a GGX dielectric coat
+#define T0_MATERIAL_PRINCIPLED 7u  // glTF 2.0's metallic-roughness BRDF
+#define T0_MATERIAL_ROUGH_GLASS 8u // glass of roughness > 0: GGX reflection and refraction
 
 // The feature mask: what a packed scene uses. The OpenCL program is built
 // with T0_FEATURES defined to the mask, so code behind a bit the scene does
@@ -31,7 +35,11 @@
 #define T0_FEATURE_LAMPS (1u << 12)        // point, spot and sun lights (lamps.h)
 #define T0_FEATURE_ONE_SIDED (1u << 13)    // emitters that emit from their front only
 #define T0_FEATURE_LIGHT_TREE (1u << 14)   // lights picked by a tree (light_tree.h)
-#define T0_FEATURE_COUNT 15
+#define T0_FEATURE_CONDUCTOR (1u << 15)
+#define T0_FEATURE_PLASTIC (1u << 16)
+#define T0_FEATURE_PRINCIPLED (1u << 17)
+#define T0_FEATURE_ROUGH_GLASS (1u << 18)
+#define T0_FEATURE_COUNT 19
 
 T0_NAMESPACE_BEGIN
 
@@ -169,10 +177,17 @@ typedef struct T0_ALIGN16 TextureRecord {
 } TextureRecord;
 
 typedef struct T0_ALIGN16 MaterialRecord {
-    float4 color;   // xyz: colour (albedo, or emitted colour), w: unused
+    float4 color;   // xyz: colour (albedo, emitted colour, a conductor's F0, or
+                    // a principled material's base colour), w: metallic
     float4 params;  // x: emittance, y: roughness, z: ior, w: glossy_cone_sin2
+                    // (glossy) or GGX alpha (the microfacet types)
     uint4 type;     // x: T0_MATERIAL_*, y: base-colour texture + 1 (0: none),
-                    // z: 1 for an emitter that emits from its front only
+                    // z: 1 for an emitter that emits from its front only,
+                    // w: 1 for a conductor of complex index (eta, k)
+    float4 eta;     // conductor: xyz the real part of the index; plastic: w the
+                    // diffuse term's scale 1 / (ior^2 (1 - internal reflectance));
+                    // principled: x glTF's specular factor
+    float4 k;       // conductor: xyz the imaginary part of the index
 } MaterialRecord;
 
 // The camera as the kernel needs it: an orthonormal frame and the image
@@ -236,7 +251,7 @@ T0_NAMESPACE_END
 T0_NAMESPACE_BEGIN
 T0_STATIC_ASSERT_SIZE(TriangleRecord, 80);
 T0_STATIC_ASSERT_SIZE(ShapeRecord, 48);
-T0_STATIC_ASSERT_SIZE(MaterialRecord, 48);
+T0_STATIC_ASSERT_SIZE(MaterialRecord, 80);
 T0_STATIC_ASSERT_SIZE(BvhNode, 256);
 T0_STATIC_ASSERT_SIZE(TrianglePacket, 176);
 T0_STATIC_ASSERT_SIZE(LightRecord, 80);
