@@ -180,7 +180,7 @@ TEST_CASE("the other shipped scenes have their expected contents", "[scene_loade
         const Scene scene = load_scene_file(scenes_dir + "/mtl_demo.json");
         REQUIRE(scene.shapes.size() == 9);
         const char* const names[3] = {"brick", "gold", "glow"};
-        const MaterialType types[3] = {MaterialType::diffuse, MaterialType::glossy,
+        const MaterialType types[3] = {MaterialType::diffuse, MaterialType::conductor,
                                        MaterialType::emissive};
         const std::size_t triangles[3] = {4, 6, 2};
         for (std::size_t k = 0; k < 3; ++k) {
@@ -805,13 +805,33 @@ TEST_CASE("OBJ meshes: materials from the MTL files, split by usemtl", "[scene_l
         CHECK(glass.ior == 1.45f);
         CHECK(glass.color == glm::vec3(0.9f, 0.9f, 1.0f));
         const Material& chrome = material_of(4);
-        CHECK(chrome.type == MaterialType::glossy);
+        CHECK(chrome.type == MaterialType::conductor);
         CHECK(chrome.color == glm::vec3(0.9f));
-        CHECK(chrome.roughness == Approx(std::sqrt(2.0 / 1002.0) / 1.5707963).epsilon(1e-5));
+        CHECK(chrome.roughness == 0.0f);  // Ns 1000: 1 - sqrt(1000 / 1000)
         CHECK(scene.materials.size() == 5);
         for (const Shape& shape : scene.shapes) {
             CHECK(shape.source == dir.path() + "/m.obj");
         }
+    }
+    SECTION("MTL highlights become plastic, the PBR extension principled") {
+        dir.write("p.mtl", "newmtl shiny\nKd 0.2 0.3 0.4\nKs 0.5 0.5 0.5\nNs 250\nNi 1.4\nillum 2\n"
+                           "newmtl pbr\nKd 0.6 0.5 0.4\nPr 0.35\nPm 0.8\n"
+                           "newmtl bad\nKd 0.6 0.5 0.4\nPr 1.5\n");
+        dir.write("m.obj", "mtllib p.mtl\n" + quad + "usemtl shiny\nf 1 2 3\nusemtl pbr\nf 1 3 4\n");
+        const Scene scene = load_scene_file(mesh_scene(""));
+        REQUIRE(scene.shapes.size() == 2);
+        const Material& shiny = scene.materials[static_cast<std::size_t>(scene.shapes[0].material)];
+        CHECK(shiny.type == MaterialType::plastic);
+        CHECK(shiny.color == glm::vec3(0.2f, 0.3f, 0.4f));
+        CHECK(shiny.roughness == Approx(0.5).epsilon(1e-6));  // 1 - sqrt(250 / 1000)
+        CHECK(shiny.ior == 1.4f);
+        const Material& pbr = scene.materials[static_cast<std::size_t>(scene.shapes[1].material)];
+        CHECK(pbr.type == MaterialType::principled);
+        CHECK(pbr.roughness == 0.35f);
+        CHECK(pbr.metallic == 0.8f);
+        dir.write("m.obj", "mtllib p.mtl\n" + quad + "usemtl bad\nf 1 2 3\n");
+        CHECK_THAT(scene_file_error(mesh_scene("")),
+                   Contains("material 'bad': Pr 1.5: expected it in [0, 1]"));
     }
     SECTION("every file of an mtllib line is read") {
         dir.write("a.mtl", "newmtl one\nKd 0.1 0.2 0.3\n");
@@ -953,9 +973,12 @@ TEST_CASE("PLY and glTF 2.0 meshes, with their normals and materials", "[scene_l
         const Material& copper =
             scene.materials[static_cast<std::size_t>(scene.shapes[0].material)];
         CHECK(copper.name == "copper");
-        CHECK(copper.type == MaterialType::glossy);
+        CHECK(copper.type == MaterialType::principled);
         CHECK(copper.color == glm::vec3(0.9f, 0.5f, 0.2f));
         CHECK(copper.roughness == 0.3f);
+        CHECK(copper.metallic == 1.0f);
+        CHECK(copper.ior == 1.5f);
+        CHECK(copper.specular == 1.0f);
         const Material& glow = scene.materials[static_cast<std::size_t>(scene.shapes[1].material)];
         CHECK(glow.type == MaterialType::emissive);
         CHECK(glow.emittance == 1.0f);

@@ -5,6 +5,7 @@
 #include <assimp/GltfMaterial.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
@@ -25,6 +26,22 @@ glm::vec3 unit_colour(const std::string& where, const char* key, const glm::vec3
         throw std::runtime_error(where + text);
     }
     return c;
+}
+
+// A number in [0, 1] that `key` of the file's material `where` gives.
+float unit_number(const std::string& where, const char* key, float value) {
+    if (!(value >= 0.0f && value <= 1.0f)) {
+        char text[96];
+        std::snprintf(text, sizeof text, "%s %g: expected it in [0, 1]", key, value);
+        throw std::runtime_error(where + text);
+    }
+    return value;
+}
+
+// GGX roughness for a Phong exponent Ns, as Blender's OBJ importer maps
+// it: 1 - sqrt(Ns / 1000), Ns clamped to [0, 1000].
+float roughness_from_ns(float ns) {
+    return 1.0f - std::sqrt(std::min(std::max(ns, 0.0f), 1000.0f) / 1000.0f);
 }
 
 // An emissive material of emission e (each channel in [0,
@@ -66,13 +83,25 @@ Material material_from_mtl(const tinyobj::material_t& m, const std::string& file
         out.type = MaterialType::glass;
         out.color = peak(tf) > 0.0f ? unit_colour(where, "Tf", tf) : glm::vec3(1.0f);
         out.ior = m.ior > 1.0f ? m.ior : 1.5f;
+    } else if (m.roughness > 0.0f || m.metallic > 0.0f || !m.roughness_texname.empty() ||
+               !m.metallic_texname.empty()) {
+        // The PBR extension (Pr, Pm): glTF's model, as Blender reads it.
+        out.type = MaterialType::principled;
+        out.color = unit_colour(where, "Kd", kd);
+        out.roughness = unit_number(where, "Pr", m.roughness);
+        out.metallic = unit_number(where, "Pm", m.metallic);
     } else if (m.illum == 3 || m.illum == 5 || m.illum == 8) {
-        out.type = MaterialType::glossy;
+        // Reflection on: a metal of colour Ks (else Kd), as Blender makes
+        // illum 3 metallic.
+        out.type = MaterialType::conductor;
         out.color = peak(ks) > 0.0f ? unit_colour(where, "Ks", ks) : unit_colour(where, "Kd", kd);
-        // The Phong lobe of exponent Ns is about sqrt(2 / (Ns + 2)) radians
-        // wide; roughness 1 is a cone of pi/2.
-        const float width = std::sqrt(2.0f / (std::max(m.shininess, 0.0f) + 2.0f));
-        out.roughness = std::min(1.0f, width / 1.5707963f);
+        out.roughness = roughness_from_ns(m.shininess);
+    } else if (peak(ks) > 0.0f && m.illum == 2) {
+        // Highlights on: a coated (plastic) surface of colour Kd.
+        out.type = MaterialType::plastic;
+        out.color = unit_colour(where, "Kd", kd);
+        out.roughness = roughness_from_ns(m.shininess);
+        out.ior = m.ior > 1.0f ? m.ior : 1.5f;
     } else {
         out.type = MaterialType::diffuse;
         out.color = unit_colour(where, "Kd", kd);
@@ -97,9 +126,9 @@ bool is_default_material(const aiMaterial& m) {
 }
 
 // One of the renderer's materials for a glTF (or other assimp) material:
-// emissive where it emits, glass where it transmits or is not opaque,
-// glossy where it is metal (metallic >= 0.5, roughness as the file's),
-// else diffuse of its base colour.
+// emissive where it emits, (rough) glass where it transmits or is not
+// opaque, else principled: its base colour, metallic, roughness, ior and
+// specular factor.
 Material material_from_assimp(const aiMaterial& m, const std::string& file) {
     aiString name;
     m.Get(AI_MATKEY_NAME, name);
@@ -130,17 +159,16 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
         out.type = MaterialType::glass;
         out.color = unit_colour(where, "base colour", colour);
         out.ior = ior > 1.0f ? ior : 1.5f;
-    } else if (metallic >= 0.5f) {
-        out.type = MaterialType::glossy;
-        out.color = unit_colour(where, "base colour", colour);
-        if (!(roughness >= 0.0f && roughness <= 1.0f)) {
-            throw std::runtime_error(where + "roughness " + std::to_string(roughness) +
-                                     ": expected it in [0, 1]");
-        }
-        out.roughness = roughness;
+        out.roughness = unit_number(where, "roughness", roughness);
     } else {
-        out.type = MaterialType::diffuse;
+        // glTF 2.0's metallic-roughness (Appendix B), with KHR_materials_ior
+        // and KHR_materials_specular's factor.
+        out.type = MaterialType::principled;
         out.color = unit_colour(where, "base colour", colour);
+        out.roughness = unit_number(where, "roughness", roughness);
+        out.metallic = unit_number(where, "metallic", metallic);
+        out.ior = ior > 0.0f && std::isfinite(ior) ? ior : 1.5f;
+        out.specular = unit_number(where, "specular", property(m, AI_MATKEY_SPECULAR_FACTOR, 1.0f));
     }
     // An emitter of a glTF file emits from its front alone unless the
     // material is doubleSided (glTF 2.0, 3.9.5), which assimp reports as
@@ -157,20 +185,20 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
 }
 
 // The base-colour texture an MTL material names, for the material `out`
-// made of it: map_Kd for a diffuse one, and for a glossy one the map of
-// the colour it took (map_Ks with Ks, else map_Kd); "" for none. *key is
-// the statement's name, for messages.
+// made of it: for a glossy or conductor one the map of the colour it took
+// (map_Ks with Ks, else map_Kd), map_Kd for the others that take a
+// texture; "" for none. *key is the statement's name, for messages.
 std::string mtl_texture_name(const tinyobj::material_t& m, const Material& out, const char** key) {
     *key = "map_Kd";
-    if (out.type == MaterialType::diffuse) {
-        return m.diffuse_texname;
-    }
-    if (out.type == MaterialType::glossy) {
+    if (out.type == MaterialType::glossy || out.type == MaterialType::conductor) {
         const bool from_ks = m.specular[0] > 0.0f || m.specular[1] > 0.0f || m.specular[2] > 0.0f;
         if (from_ks) {
             *key = "map_Ks";
             return m.specular_texname;
         }
+        return m.diffuse_texname;
+    }
+    if (takes_texture(out.type)) {
         return m.diffuse_texname;
     }
     return "";

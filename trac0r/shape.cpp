@@ -897,6 +897,7 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
             type != static_cast<std::uint32_t>(MaterialType::diffuse) &&
             type != static_cast<std::uint32_t>(MaterialType::glass) &&
             type != static_cast<std::uint32_t>(MaterialType::glossy) &&
+            type != static_cast<std::uint32_t>(MaterialType::conductor) &&
             type != static_cast<std::uint32_t>(MaterialType::plastic) &&
             type != static_cast<std::uint32_t>(MaterialType::principled)) {
             throw WireError("a material of unknown type " + std::to_string(type));
