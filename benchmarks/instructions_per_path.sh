@@ -24,7 +24,7 @@ OMP_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file="$out" "$viewer
     --output "$out.png" >/dev/null 2>&1
 callgrind_annotate --inclusive=yes "$out" 2>/dev/null |
     awk -v paths=$((400 * 300 * spp)) -v scene="$scene" -v accel="$accel" '
-        /CpuBackend::render_frame\(.*omp_fn/ { gsub(",", "", $1); n = $1 }
+        /CpuBackend::render_frame.*omp_fn/ { gsub(",", "", $1); n = $1 }
         END {
             if (n == 0) { print "instructions_per_path.sh: no render_frame in the profile" > "/dev/stderr"; exit 1 }
             printf "%s, %s: %.0f instructions a path\n", scene, accel, n / paths
