@@ -78,21 +78,17 @@ float3 incoming_at(double theta) {
                        static_cast<float>(-std::cos(theta)));
 }
 
-kernel::Surface surface_of(const Case& c) {
-    return kernel::make_surface(&c.m, float3(1.0f), c.front);
-}
-
 kernel::ScatterSample sample(const kernel::SceneView& view, const Case& c, float3 incoming,
                              kernel::Rng* rng) {
     const kernel::float2 u = kernel::rng_float2(rng);
     const float u_lobe = kernel::rng_float(rng);
     const float3 outward = c.front ? up : -up;
-    return kernel::scatter_material(&view, &c.m, surface_of(c), incoming, outward, up, u, u_lobe);
+    return kernel::scatter_material(&view, &c.m, float3(1.0f), c.front, incoming, outward, up, u, u_lobe);
 }
 
 kernel::MaterialEval eval(const kernel::SceneView& view, const Case& c, float3 incoming,
                           float3 direction) {
-    return kernel::eval_material(&view, &c.m, surface_of(c), incoming, up, direction);
+    return kernel::eval_material(&view, &c.m, float3(1.0f), c.front, incoming, up, direction);
 }
 
 float3 direction_of(double cos_theta, double phi) {
@@ -249,7 +245,7 @@ TEST_CASE("microfacet eval is reciprocal", "[kernel][material][microfacet]") {
                     Case other = c;
                     other.front = 1 - c.front;
                     const kernel::MaterialEval e =
-                        kernel::eval_material(&view, &other.m, surface_of(other), -wi, -up, wo);
+                        kernel::eval_material(&view, &other.m, float3(1.0f), other.front, -wi, -up, wo);
                     f_backward = e.f_cos.x / std::fabs(wo.z);
                     const double ior = c.m.params.z;
                     const double eta_wo_side = c.front ? 1.0 : ior;

@@ -31,6 +31,7 @@
 #define T0_CONSTANT __constant
 #define T0_INLINE inline __attribute__((always_inline))
 #define T0_FORCE_INLINE T0_INLINE
+#define T0_OUT_OF_LINE T0_INLINE
 #define T0_ALIGN16
 #define T0_NAMESPACE_BEGIN
 #define T0_NAMESPACE_END
@@ -79,6 +80,10 @@ T0_INLINE t0_u32 buffer_uint_component(__global const uint4* v, int k) {
 // Inlined even where the compiler would not: the sampler's draws, whose
 // chains of multiplies overlap only when they sit side by side.
 #define T0_FORCE_INLINE inline __attribute__((always_inline))
+// Kept out of line on the CPU: a rarely taken branch's body (the
+// microfacet materials) that would otherwise make its caller too large
+// to inline where the common branches run.
+#define T0_OUT_OF_LINE inline __attribute__((noinline))
 #define T0_HAVE_DOUBLE 1
 #define T0_ALIGN16 alignas(16)
 #define T0_NAMESPACE_BEGIN \

@@ -79,9 +79,13 @@ T0_INLINE int on_other_side(float3 direction, float3 facing_normal, float3 facin
     return (dot(direction, facing_geometric) > 0.0f) != (dot(direction, facing_normal) > 0.0f);
 }
 
-// The side of the triangle a ray in `direction` leaves from (rough glass
-// samples lights through the surface too).
-T0_INLINE float3 leaving_side(float3 direction, float3 facing_geometric) {
+// The side of the triangle a light sample's ray in `direction` leaves
+// from: the incoming side, but for rough glass, which samples lights
+// through the surface too.
+T0_INLINE float3 leaving_side(const SceneView* scene, float3 direction, float3 facing_geometric) {
+    if (!T0_HAS_FEATURE(scene, T0_FEATURE_ROUGH_GLASS)) {
+        return facing_geometric;
+    }
     return dot(direction, facing_geometric) > 0.0f ? facing_geometric : -facing_geometric;
 }
 
@@ -91,7 +95,7 @@ T0_INLINE float3 leaving_side(float3 direction, float3 facing_geometric) {
 // environment), in full for a delta light. pick is the light's
 // probability.
 T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord* light, float pick,
-                             T0_GLOBAL const MaterialRecord* m, Surface surface,
+                             T0_GLOBAL const MaterialRecord* m, float3 texture, int front,
                              float3 incoming, float3 facing_normal, float3 facing_geometric,
                              float3 position, float magnitude, float2 u) {
     LightSample ls;
@@ -107,7 +111,7 @@ T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord
         return float3_splat(0.0f);
     }
     const MaterialEval e =
-        eval_material(scene, m, surface, incoming, facing_normal, ls.direction);
+        eval_material(scene, m, texture, front, incoming, facing_normal, ls.direction);
     if (!(e.pdf > 0.0f)) {
         return float3_splat(0.0f);
     }
@@ -115,8 +119,8 @@ T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord
         on_other_side(ls.direction, facing_normal, facing_geometric)) {
         return float3_splat(0.0f);
     }
-    const float3 origin =
-        offset_ray_origin(position, leaving_side(ls.direction, facing_geometric), magnitude);
+    const float3 origin = offset_ray_origin(
+        position, leaving_side(scene, ls.direction, facing_geometric), magnitude);
     Ray shadow_ray;
     float shadow_length = T0_NO_HIT;
     if (ls.distance < T0_NO_HIT) {
@@ -152,8 +156,8 @@ T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord
 // the light tree: a distant one or the tree, and u_tree the way down it)
 // and u the point on it (or the direction to it).
 T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                              Surface surface, float3 incoming, float3 facing_normal,
-                              float3 facing_geometric,
+                              float3 texture, int front, float3 incoming,
+                              float3 facing_normal, float3 facing_geometric,
                               float3 position, float magnitude, float u_pick, float u_tree,
                               float2 u) {
     T0_GLOBAL const LightRecord* light;
@@ -179,7 +183,7 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     if ((T0_HAS_FEATURE(scene, T0_FEATURE_LAMPS) ||
          T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT)) &&
         light->ids.y != T0_LIGHT_TRIANGLE) {
-        return sample_lamp(scene, light, pick, m, surface, incoming, facing_normal,
+        return sample_lamp(scene, light, pick, m, texture, front, incoming, facing_normal,
                            facing_geometric, position, magnitude, u);
     }
     T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->ids.x];
@@ -197,7 +201,8 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     const float3 direction = to_light / distance;
     const float3 light_normal = xyz(tri->normal);
     const float cos_light = fabs(dot(direction, light_normal));
-    const MaterialEval e = eval_material(scene, m, surface, incoming, facing_normal, direction);
+    const MaterialEval e =
+        eval_material(scene, m, texture, front, incoming, facing_normal, direction);
     if (!(cos_light > 0.0f) || !(e.pdf > 0.0f)) {
         return float3_splat(0.0f);  // edge-on, or outside the material's lobe
     }
@@ -215,7 +220,7 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     const float3 light_side = dot(direction, light_normal) < 0.0f ? light_normal : -light_normal;
     const float3 target = offset_ray_origin(point, light_side, hit_magnitude(tri, point));
     const float3 origin =
-        offset_ray_origin(position, leaving_side(direction, facing_geometric), magnitude);
+        offset_ray_origin(position, leaving_side(scene, direction, facing_geometric), magnitude);
     const float3 shadow = target - origin;
     const float shadow_length = length(shadow);
     if (!(shadow_length > 0.0f)) {

@@ -210,10 +210,11 @@ T0_INLINE int material_samples_lights(const SceneView* scene, T0_GLOBAL const Ma
 
 // A microfacet material's f cos and density toward `direction`, in the
 // frame of the facing normal.
-T0_INLINE MaterialEval eval_microfacet(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                                       Surface surface, float3 incoming, float3 facing_normal,
-                                       float3 direction) {
+T0_OUT_OF_LINE MaterialEval eval_microfacet(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
+                                       float3 texture, int front, float3 incoming,
+                                       float3 facing_normal, float3 direction) {
     const t0_u32 type = m->type.x;
+    const Surface surface = make_surface(m, texture, front);
     const Frame f = frame_from_normal(facing_normal);
     const float3 wo = frame_to_local(f, -incoming);
     const float3 wi = frame_to_local(f, direction);
@@ -232,11 +233,12 @@ T0_INLINE MaterialEval eval_microfacet(const SceneView* scene, T0_GLOBAL const M
     return eval_failed();
 }
 
-T0_INLINE ScatterSample scatter_microfacet(const SceneView* scene,
-                                           T0_GLOBAL const MaterialRecord* m, Surface surface,
-                                           float3 incoming, float3 facing_normal, float2 u,
-                                           float u_lobe) {
+T0_OUT_OF_LINE ScatterSample scatter_microfacet(const SceneView* scene,
+                                           T0_GLOBAL const MaterialRecord* m, float3 texture,
+                                           int front, float3 incoming, float3 facing_normal,
+                                           float2 u, float u_lobe) {
     const t0_u32 type = m->type.x;
+    const Surface surface = make_surface(m, texture, front);
     const Frame f = frame_from_normal(facing_normal);
     const float3 wo = frame_to_local(f, -incoming);
     ScatterSample s = scatter_failed();
@@ -254,8 +256,8 @@ T0_INLINE ScatterSample scatter_microfacet(const SceneView* scene,
 }
 
 T0_INLINE MaterialEval eval_material(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                                     Surface surface, float3 incoming, float3 facing_normal,
-                                     float3 direction) {
+                                     float3 texture, int front, float3 incoming,
+                                     float3 facing_normal, float3 direction) {
     const t0_u32 type = m->type.x;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_DIFFUSE) && type == T0_MATERIAL_DIFFUSE) {
         return eval_diffuse(m, facing_normal, direction);
@@ -264,15 +266,19 @@ T0_INLINE MaterialEval eval_material(const SceneView* scene, T0_GLOBAL const Mat
         return eval_glossy(m, incoming, facing_normal, direction);
     }
     if (T0_HAS_FEATURE(scene, T0_FEATURES_MICROFACET) && material_is_microfacet(type)) {
-        return eval_microfacet(scene, m, surface, incoming, facing_normal, direction);
+        return eval_microfacet(scene, m, texture, front, incoming, facing_normal, direction);
     }
     return eval_failed();  // delta lobes and emitters
 }
 
-// u picks the direction (glass: u.x reflection or refraction), u_lobe the
-// lobe of the materials that draw one (material_draws_lobe).
+// texture is the hit's texture (one where none) and front whether the ray
+// arrived at the triangle's outer side: the microfacet types' inputs
+// (make_surface). u picks the direction (glass: u.x reflection or
+// refraction), u_lobe the lobe of the materials that draw one
+// (material_draws_lobe).
 T0_INLINE ScatterSample scatter_material(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                                         Surface surface, float3 incoming, float3 outward_normal,
+                                         float3 texture, int front, float3 incoming,
+                                         float3 outward_normal,
                                          float3 facing_normal, float2 u, float u_lobe) {
     const t0_u32 type = m->type.x;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_DIFFUSE) && type == T0_MATERIAL_DIFFUSE) {
@@ -285,7 +291,7 @@ T0_INLINE ScatterSample scatter_material(const SceneView* scene, T0_GLOBAL const
         return scatter_glossy(m, incoming, facing_normal, u);
     }
     if (T0_HAS_FEATURE(scene, T0_FEATURES_MICROFACET) && material_is_microfacet(type)) {
-        return scatter_microfacet(scene, m, surface, incoming, facing_normal, u, u_lobe);
+        return scatter_microfacet(scene, m, texture, front, incoming, facing_normal, u, u_lobe);
     }
     return scatter_failed();  // emissive: a pure emitter ends the path
 }

@@ -195,8 +195,12 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) {
             texture = surface_texture(scene, m, hit);
         }
-        const Surface surface = make_surface(m, texture, front);
-        texture = texture_outside(scene, m, texture);
+        // The factor on the whole sample (the thesis' four take the
+        // texture so; the microfacet types inside, from `texture`).
+        float3 tint = texture;
+        if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) {
+            tint = texture_outside(scene, m, texture);
+        }
 
         // Sample a light (next-event estimation), before the roulette: the
         // light sample is this vertex's and counts whether or not the path
@@ -213,8 +217,8 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
             const float u_tree = T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)
                                      ? sample_1d(sampler, T0_DIM_LIGHT_TREE(depth))
                                      : 0.0f;
-            radiance += throughput * texture *
-                        sample_light(scene, m, surface, ray.direction, facing_normal,
+            radiance += throughput * tint *
+                        sample_light(scene, m, texture, front, ray.direction, facing_normal,
                                      facing_geometric, position, magnitude, u_pick, u_tree,
                                      u_point);
             lights_sampled = 1;
@@ -236,7 +240,8 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         const float u_lobe =
             material_draws_lobe(scene, m) ? sample_1d(sampler, T0_DIM_LOBE(depth)) : 0.0f;
         const ScatterSample s =
-            scatter_material(scene, m, surface, ray.direction, shading, facing_normal, u, u_lobe);
+            scatter_material(scene, m, texture, front, ray.direction, shading, facing_normal, u,
+                             u_lobe);
         if (!(s.weight.x > 0.0f || s.weight.y > 0.0f || s.weight.z > 0.0f)) {
             break;
         }
@@ -248,7 +253,7 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
                 (dot(s.direction, facing_normal) > 0.0f)) {
             break;
         }
-        throughput *= s.weight * texture;
+        throughput *= s.weight * tint;
         scatter_pdf = s.pdf;
 
         // Continue from just off the surface, on the side the new ray leaves.
