@@ -341,21 +341,21 @@ TEST_CASE("scatter_material dispatches on the type and the feature mask", "[kern
     rng_seed(&rng, 54);
 
     scene.features = T0_FEATURE_DIFFUSE | T0_FEATURE_EMISSIVE;
-    CHECK(scatter_material(&scene, &diffuse, float3_splat(1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).weight == color);
+    CHECK(scatter_material(&scene, &diffuse, float3_splat(1.0f), make_float2(1.0f, 1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).weight == color);
     // A pure emitter ends the path: a failed sample.
-    CHECK(scatter_material(&scene, &lamp, float3_splat(1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).weight == float3_splat(0.0f));
+    CHECK(scatter_material(&scene, &lamp, float3_splat(1.0f), make_float2(1.0f, 1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).weight == float3_splat(0.0f));
     // Glass (ior 1: straight through) and a mirror, each told apart by its
     // direction.
     const MaterialRecord air = make_material(T0_MATERIAL_GLASS, color, 0.0f, 0.0f, 1.0f);
     const MaterialRecord mirror = make_material(T0_MATERIAL_GLOSSY, color, 0.0f, 0.0f, 1.0f);
     scene.features = T0_FEATURE_GLASS | T0_FEATURE_GLOSSY;
-    CHECK(same_direction(scatter_material(&scene, &air, float3_splat(1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).direction, in));
-    CHECK(same_direction(scatter_material(&scene, &mirror, float3_splat(1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).direction,
+    CHECK(same_direction(scatter_material(&scene, &air, float3_splat(1.0f), make_float2(1.0f, 1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).direction, in));
+    CHECK(same_direction(scatter_material(&scene, &mirror, float3_splat(1.0f), make_float2(1.0f, 1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).direction,
                          reflect_direction(in, n)));
     // A type the mask leaves out is not scattered.
     scene.features = T0_FEATURE_GLASS;
-    CHECK(scatter_material(&scene, &diffuse, float3_splat(1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).weight == float3_splat(0.0f));
-    CHECK(scatter_material(&scene, &mirror, float3_splat(1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).weight == float3_splat(0.0f));
+    CHECK(scatter_material(&scene, &diffuse, float3_splat(1.0f), make_float2(1.0f, 1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).weight == float3_splat(0.0f));
+    CHECK(scatter_material(&scene, &mirror, float3_splat(1.0f), make_float2(1.0f, 1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).weight == float3_splat(0.0f));
     scene.features = T0_FEATURE_DIFFUSE;
-    CHECK(scatter_material(&scene, &air, float3_splat(1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).weight == float3_splat(0.0f));
+    CHECK(scatter_material(&scene, &air, float3_splat(1.0f), make_float2(1.0f, 1.0f), 1, in, n, n, rng_float2(&rng), 0.0f).weight == float3_splat(0.0f));
 }

@@ -241,14 +241,14 @@ TEST_CASE("eval_material agrees with scatter_material's directions, weights and 
         double worst_pdf_error = 0.0, worst_f_cos_error = 0.0;
         for (int i = 0; i < n; ++i) {
             const kernel::ScatterSample s =
-                kernel::scatter_material(&scene, &m, float3(1.0f), 1,
+                kernel::scatter_material(&scene, &m, float3(1.0f), kernel::float2(1.0f), 1,
                                          incoming, normal, normal, kernel::rng_float2(&rng), 0.0f);
             if (!(s.weight.x > 0.0f)) {
                 continue;
             }
             ++succeeded;
             const kernel::MaterialEval e =
-                kernel::eval_material(&scene, &m, float3(1.0f), 1, incoming,
+                kernel::eval_material(&scene, &m, float3(1.0f), kernel::float2(1.0f), 1, incoming,
                                       normal, s.direction);
             worst_pdf_error = std::fmax(worst_pdf_error, std::fabs(e.pdf / s.pdf - 1.0));
             for (int channel = 0; channel < 3; ++channel) {
@@ -280,7 +280,7 @@ TEST_CASE("eval_material agrees with scatter_material's directions, weights and 
                             static_cast<float>(sin_t * std::sin(phi)), static_cast<float>(cos_t));
             const float3 d = glm::normalize(kernel::frame_to_world(frame, local));
             const double value =
-                kernel::eval_material(&scene, &m, float3(1.0f), 1, incoming,
+                kernel::eval_material(&scene, &m, float3(1.0f), kernel::float2(1.0f), 1, incoming,
                                       normal, d)
                     .pdf *
                 solid_angle;

@@ -83,13 +83,13 @@ kernel::ScatterSample sample(const kernel::SceneView& view, const Case& c, float
     const kernel::float2 u = kernel::rng_float2(rng);
     const float u_lobe = kernel::rng_float(rng);
     const float3 outward = c.front ? up : -up;
-    return kernel::scatter_material(&view, &c.m, float3(1.0f), c.front, incoming, outward, up, u,
+    return kernel::scatter_material(&view, &c.m, float3(1.0f), kernel::float2(1.0f), c.front, incoming, outward, up, u,
                                     u_lobe);
 }
 
 kernel::MaterialEval eval(const kernel::SceneView& view, const Case& c, float3 incoming,
                           float3 direction) {
-    return kernel::eval_material(&view, &c.m, float3(1.0f), c.front, incoming, up, direction);
+    return kernel::eval_material(&view, &c.m, float3(1.0f), kernel::float2(1.0f), c.front, incoming, up, direction);
 }
 
 float3 direction_of(double cos_theta, double phi) {
@@ -246,7 +246,7 @@ TEST_CASE("microfacet eval is reciprocal", "[kernel][material][microfacet]") {
                     Case other = c;
                     other.front = 1 - c.front;
                     const kernel::MaterialEval e = kernel::eval_material(
-                        &view, &other.m, float3(1.0f), other.front, -wi, -up, wo);
+                        &view, &other.m, float3(1.0f), kernel::float2(1.0f), other.front, -wi, -up, wo);
                     f_backward = e.f_cos.x / std::fabs(wo.z);
                     const double ior = c.m.params.z;
                     const double eta_wo_side = c.front ? 1.0 : ior;

@@ -72,7 +72,7 @@ TEST_CASE(
                     for (float u2 : extremes) {
                         CAPTURE(m.type.x, m.params.y, m.params.z, in.x, in.y, in.z, side, u1, u2);
                         const kernel::ScatterSample s = kernel::scatter_material(
-                            &scene, &m, glm::vec3(1.0f), 1, in,
+                            &scene, &m, glm::vec3(1.0f), glm::vec2(1.0f), 1, in,
                             geometric, facing, glm::vec2(u1, u2), u1);
                         REQUIRE(finite_sample(s));
                         ++checked;
@@ -132,7 +132,7 @@ TEST_CASE(
                 for (float u2 : extremes) {
                     CAPTURE(m.type.x, pick, u1, u2);
                     const glm::vec3 radiance =
-                        kernel::sample_light(&glossy_view, &m, glm::vec3(1.0f), 1,
+                        kernel::sample_light(&glossy_view, &m, glm::vec3(1.0f), glm::vec2(1.0f), 1,
                                              incoming, up, up, position, 1.0f,
                                              pick, 0.0f, glm::vec2(u1, u2));
                     REQUIRE(finite(radiance));

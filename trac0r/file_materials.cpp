@@ -185,11 +185,15 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
 }
 
 // The base-colour texture an MTL material names, for the material `out`
-// made of it: for a glossy or conductor one the map of the colour it took
-// (map_Ks with Ks, else map_Kd), map_Kd for the others that take a
-// texture; "" for none. *key is the statement's name, for messages.
+// made of it: for an emitter its emission's (map_Ke), for a glossy or
+// conductor one the map of the colour it took (map_Ks with Ks, else
+// map_Kd), map_Kd for the others that take a texture; "" for none. *key is the statement's name, for messages.
 std::string mtl_texture_name(const tinyobj::material_t& m, const Material& out, const char** key) {
     *key = "map_Kd";
+    if (out.type == MaterialType::emissive) {
+        *key = "map_Ke";
+        return m.emissive_texname;
+    }
     if (out.type == MaterialType::glossy || out.type == MaterialType::conductor) {
         const bool from_ks = m.specular[0] > 0.0f || m.specular[1] > 0.0f || m.specular[2] > 0.0f;
         if (from_ks) {

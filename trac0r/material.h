@@ -44,10 +44,20 @@ struct Material {
     // specularFactor.
     float metallic = 0.0f;
     float specular = 1.0f;
-    // A base-colour texture multiplying color (diffuse and glossy only):
-    // an index into the scene's textures (Scene::textures, or
-    // MeshParts::textures for a mesh file's materials); -1 for none.
+    // A base-colour texture multiplying color (an emitter's: its emission
+    // texture; glass has none): an index into the scene's textures
+    // (Scene::textures, or MeshParts::textures for a mesh file's
+    // materials); -1 for none.
     int texture = -1;
+    // The microfacet types' data textures, indices as texture's: roughness
+    // times the roughness texture's green, metallic times the metallic
+    // texture's blue (glTF's metallicRoughnessTexture is both), and a
+    // tangent-space normal map (any type but emitters) of scale
+    // normal_scale.
+    int roughness_texture = -1;
+    int metallic_texture = -1;
+    int normal_texture = -1;
+    float normal_scale = 1.0f;
     // Whether an emitting material emits from both sides (the thesis'), or
     // only from the front: the side its triangles' counter-clockwise
     // winding faces, as OBJ and glTF define it.
@@ -55,10 +65,8 @@ struct Material {
 };
 
 // Whether a material of this type takes a base-colour texture (all but
-// emissive and glass).
-inline bool takes_texture(MaterialType type) {
-    return type != MaterialType::emissive && type != MaterialType::glass;
-}
+// glass; an emitter's multiplies its emission).
+inline bool takes_texture(MaterialType type) { return type != MaterialType::glass; }
 
 // Whether the type is one of the GGX microfacet ones (kernel/rough_materials.h).
 inline bool is_microfacet(MaterialType type) {

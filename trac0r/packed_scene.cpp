@@ -33,12 +33,13 @@ kernel::MaterialRecord pack_material(const Material& m) {
     kernel::MaterialRecord r = kernel::make_material_record(kernel_material_type(m), m.color,
                                                             m.emittance, m.roughness, m.ior);
     r.type.z = m.two_sided ? 0u : 1u;
+    r.k.w = m.normal_scale;
     if (m.type == MaterialType::conductor && !m.metal.empty()) {
         const Metal* metal = find_metal(m.metal);
         if (metal != nullptr) {
             r.type.w = 1u;
             r.eta = glm::vec4(metal->eta, 0.0f);
-            r.k = glm::vec4(metal->k, 0.0f);
+            r.k = glm::vec4(metal->k, 1.0f);
         }
     }
     if (m.type == MaterialType::plastic) {
@@ -204,9 +205,14 @@ void pack_normals(const std::vector<UsableTriangle>& usable,
 // texture (type.y, one past its index).
 void pack_textures(const Scene& scene, const std::vector<UsableTriangle>& usable,
                    const std::vector<std::uint32_t>& packed_index, PackedScene& packed) {
+    const auto valid = [&](int texture) {
+        return texture >= 0 && static_cast<std::size_t>(texture) < scene.textures.size();
+    };
     const auto textured_material = [&](const Material& m) {
-        return m.texture >= 0 && static_cast<std::size_t>(m.texture) < scene.textures.size() &&
-               takes_texture(m.type);
+        return (valid(m.texture) && takes_texture(m.type)) ||
+               (is_microfacet(m.type) &&
+                (valid(m.roughness_texture) || valid(m.metallic_texture))) ||
+               (m.type != MaterialType::emissive && valid(m.normal_texture));
     };
     const auto textured = [&](const UsableTriangle& u) {
         return u.uv != nullptr && textured_material(scene.materials[u.material]);
@@ -225,8 +231,20 @@ void pack_textures(const Scene& scene, const std::vector<UsableTriangle>& usable
     }
     for (std::size_t m = 0; m < scene.materials.size(); ++m) {
         const Material& material = scene.materials[m];
-        if (textured_material(material)) {
-            packed.materials[m].type.y = static_cast<std::uint32_t>(material.texture) + 1u;
+        const auto one_past = [&](int texture) {
+            return valid(texture) ? static_cast<std::uint32_t>(texture) + 1u : 0u;
+        };
+        kernel::MaterialRecord& record = packed.materials[m];
+        if (takes_texture(material.type)) {
+            record.type.y = one_past(material.texture);
+        }
+        if (is_microfacet(material.type)) {
+            record.maps.x = one_past(material.roughness_texture);
+            record.maps.y = one_past(material.metallic_texture);
+        }
+        if (material.type != MaterialType::emissive) {
+            record.maps.z = one_past(material.normal_texture);
+            record.k.w = material.normal_scale;
         }
     }
     packed.uvs.assign(usable.size(), kernel::TriangleUVs{});

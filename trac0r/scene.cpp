@@ -72,6 +72,10 @@ std::uint64_t scene_digest(const Scene& scene) {
         h.bytes(m.metal.data(), m.metal.size());
         h.value(m.metallic);
         h.value(m.specular);
+        h.value(m.roughness_texture);
+        h.value(m.metallic_texture);
+        h.value(m.normal_texture);
+        h.value(m.normal_scale);
     }
     h.value(scene.shapes.size());
     for (const Shape& s : scene.shapes) {

@@ -249,15 +249,21 @@ std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
                     } else {
                         part.shape.material = static_cast<int>(materials.size());
                         (*context.file_material_index)[key] = part.shape.material;
-                        if (m.texture >= 0) {
-                            int& index = texture_in_scene[static_cast<std::size_t>(m.texture)];
+                        // The mesh's textures this material uses, moved
+                        // into the scene's once each.
+                        for (int* texture : {&m.texture, &m.roughness_texture,
+                                             &m.metallic_texture, &m.normal_texture}) {
+                            if (*texture < 0) {
+                                continue;
+                            }
+                            int& index = texture_in_scene[static_cast<std::size_t>(*texture)];
                             if (index < 0) {
                                 index = static_cast<int>(textures.size());
                                 textures.push_back(
-                                    std::move(mesh.textures[static_cast<std::size_t>(m.texture)]));
+                                    std::move(mesh.textures[static_cast<std::size_t>(*texture)]));
                                 check_scene_texels(textures, path);
                             }
-                            m.texture = index;
+                            *texture = index;
                         }
                         materials.push_back(m);
                     }

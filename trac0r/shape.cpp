@@ -285,23 +285,31 @@ std::string texture_path_beside(const std::string& mtl_file, std::string name) {
     return (slash == std::string::npos ? "" : mtl_file.substr(0, slash + 1)) + name;
 }
 
-// The base-colour texture of an assimp material (glTF's baseColorTexture)
-// as an index into mesh.textures, or -1 for none: an image embedded in the
-// file (a .glb's buffer, a data URI: "*N") or a file beside it.
+// The texture of an assimp material of the first of `types` it has (for
+// the base colour glTF's baseColorTexture: BASE_COLOR, then DIFFUSE) as an
+// index into mesh.textures, or -1 for none: an image embedded in the file
+// (a .glb's buffer, a data URI: "*N") or a file beside it. `what` names it
+// in messages ("base colour").
 int assimp_texture(const aiScene& scene, const aiMaterial& m, const std::string& path,
-                   MeshParts& mesh, std::uint64_t texel_budget) {
+                   MeshParts& mesh, std::uint64_t texel_budget,
+                   std::initializer_list<aiTextureType> types, const char* what) {
     // What the file's textures so far leave of the scene's room.
     const std::uint64_t room = texel_budget - texel_count(mesh.textures);
     aiString name;
-    if (m.GetTexture(aiTextureType_BASE_COLOR, 0, &name) != AI_SUCCESS &&
-        m.GetTexture(aiTextureType_DIFFUSE, 0, &name) != AI_SUCCESS) {
+    bool found = false;
+    for (aiTextureType type : types) {
+        if (!found && m.GetTexture(type, 0, &name) == AI_SUCCESS) {
+            found = true;
+        }
+    }
+    if (!found) {
         return -1;
     }
     aiString material_name;
     m.Get(AI_MATKEY_NAME, material_name);
     const std::string file = name.C_Str();
     const std::string where = path + ": material '" + printable(material_name.C_Str(), 60) +
-                              "': base colour texture '" + printable(file, 200) + "'";
+                              "': " + what + " texture '" + printable(file, 200) + "'";
     const aiTexture* embedded = scene.GetEmbeddedTexture(name.C_Str());
     if (embedded != nullptr) {
         return texture_index(mesh, path + " " + file, [&] {
@@ -505,15 +513,32 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
             const std::size_t k = static_cast<std::size_t>(id);
             const std::string& file = k < reader.files.size() ? reader.files[k] : path;
             Material m = material_from_mtl(materials[k], file);
-            const char* key = "";
-            const std::string map = mtl_texture_name(materials[k], m, &key);
-            if (!map.empty()) {
+            // The texture a statement (key) of the material names, as
+            // an index into mesh.textures; -1 where it names none.
+            const auto load = [&](const std::string& map, const char* key) {
+                if (map.empty()) {
+                    return -1;
+                }
                 const std::string texture = texture_path_beside(file, map);
-                m.texture = texture_index(mesh, texture, [&] {
+                return texture_index(mesh, texture, [&] {
                     return load_texture_file(file + ": material '" + printable(m.name, 60) +
                                                  "': " + key + " '" + printable(map, 200) + "'",
                                              texture, texel_budget - texel_count(mesh.textures));
                 });
+            };
+            const tinyobj::material_t& mtl = materials[k];
+            const char* key = "";
+            const std::string map = mtl_texture_name(mtl, m, &key);
+            m.texture = load(map, key);
+            if (is_microfacet(m.type)) {
+                m.roughness_texture = load(mtl.roughness_texname, "map_Pr");
+                m.metallic_texture = load(mtl.metallic_texname, "map_Pm");
+            }
+            if (m.type != MaterialType::emissive) {
+                // A normal map: norm, or map_Bump as Blender reads it.
+                m.normal_texture = mtl.normal_texname.empty()
+                                       ? load(mtl.bump_texname, "map_Bump")
+                                       : load(mtl.normal_texname, "norm");
             }
             mesh.materials.push_back(m);
             return static_cast<int>(mesh.materials.size()) - 1;
@@ -762,8 +787,33 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
             return -1;
         }
         Material out = material_from_assimp(m, path);
-        if (takes_texture(out.type)) {
-            out.texture = assimp_texture(*scene, m, path, files, texel_budget);
+        if (out.type == MaterialType::emissive) {
+            out.texture = assimp_texture(*scene, m, path, files, texel_budget,
+                                         {aiTextureType_EMISSIVE}, "emissive");
+        } else if (takes_texture(out.type)) {
+            out.texture = assimp_texture(*scene, m, path, files, texel_budget,
+                                         {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE},
+                                         "base colour");
+        }
+        if (is_microfacet(out.type)) {
+            // glTF's metallicRoughnessTexture: roughness in green, metallic
+            // in blue, one image for both.
+            out.roughness_texture = assimp_texture(
+                *scene, m, path, files, texel_budget,
+                {aiTextureType_UNKNOWN, aiTextureType_DIFFUSE_ROUGHNESS, aiTextureType_METALNESS},
+                "metallic-roughness");
+            out.metallic_texture = out.roughness_texture;
+        }
+        if (out.type != MaterialType::emissive) {
+            out.normal_texture = assimp_texture(*scene, m, path, files, texel_budget,
+                                                {aiTextureType_NORMALS}, "normal");
+            float scale = 1.0f;
+            if (out.normal_texture >= 0 &&
+                m.Get(AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), scale) ==
+                    AI_SUCCESS &&
+                std::isfinite(scale)) {
+                out.normal_scale = scale;
+            }
         }
         files.materials.push_back(out);
         return static_cast<int>(files.materials.size()) - 1;
@@ -809,6 +859,10 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
         w.u8(m.two_sided ? 1 : 0);
         w.f32(m.metallic);
         w.f32(m.specular);
+        w.i32(m.roughness_texture);
+        w.i32(m.metallic_texture);
+        w.i32(m.normal_texture);
+        w.f32(m.normal_scale);
     }
     w.u64(files.textures.size());
     for (const Texture& t : files.textures) {
@@ -888,7 +942,7 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         part_materials.push_back(id);
         mesh.parts.push_back(std::move(p));
     }
-    const std::size_t material_count = r.count(8 + 4 + 12 + 12 + 4 + 1 + 8, "materials");
+    const std::size_t material_count = r.count(8 + 4 + 12 + 12 + 4 + 1 + 8 + 16, "materials");
     for (std::size_t i = 0; i < material_count; ++i) {
         Material m;
         m.name = r.text("bytes of a material's name");
@@ -911,6 +965,10 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         m.two_sided = r.get<std::uint8_t>() != 0;
         m.metallic = r.get<float>();
         m.specular = r.get<float>();
+        m.roughness_texture = r.get<std::int32_t>();
+        m.metallic_texture = r.get<std::int32_t>();
+        m.normal_texture = r.get<std::int32_t>();
+        m.normal_scale = r.get<float>();
         if (!(std::min({m.color.x, m.color.y, m.color.z}) >= 0.0f) || !(std::max({m.color.x, m.color.y, m.color.z}) <= 1.0f) ||
             !(m.metallic >= 0.0f && m.metallic <= 1.0f) ||
             !(m.specular >= 0.0f && m.specular <= 1.0f) ||
@@ -918,6 +976,10 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
             !(m.roughness >= 0.0f && m.roughness <= 1.0f) ||
             !(m.ior > 0.0f && std::isfinite(m.ior))) {
             throw WireError("material " + std::to_string(i) + " with a value out of range");
+        }
+        if (!std::isfinite(m.normal_scale) || m.roughness_texture < -1 ||
+            m.metallic_texture < -1 || m.normal_texture < -1) {
+            throw WireError("material " + std::to_string(i) + " with a bad map");
         }
         if (m.texture < -1 || (m.texture >= 0 && !takes_texture(m.type))) {
             throw WireError("material " + std::to_string(i) + " with texture " +
@@ -952,9 +1014,11 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         mesh.textures.push_back(std::move(t));
     }
     for (const Material& m : mesh.materials) {
-        if (m.texture >= static_cast<int>(mesh.textures.size())) {
-            throw WireError("a material of texture " + std::to_string(m.texture) + " of " +
-                            std::to_string(mesh.textures.size()));
+        for (int texture : {m.texture, m.roughness_texture, m.metallic_texture, m.normal_texture}) {
+            if (texture >= static_cast<int>(mesh.textures.size())) {
+                throw WireError("a material of texture " + std::to_string(texture) + " of " +
+                                std::to_string(mesh.textures.size()));
+            }
         }
     }
     if (r.get<std::uint32_t>() != wire_end || !r.done()) {

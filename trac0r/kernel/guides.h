@@ -75,8 +75,8 @@ T0_INLINE GuidePixel guide_ray(const SceneView* scene, CameraRecord camera, t0_u
         const float2 u =
             type == T0_MATERIAL_GLASS ? make_float2(0.99999994f, 0.0f) : make_float2(0.0f, 0.0f);
         const ScatterSample s =
-            scatter_material(scene, m, float3_splat(1.0f), front, ray.direction, shading,
-                             facing_normal, u, 0.0f);
+            scatter_material(scene, m, float3_splat(1.0f), make_float2(1.0f, 1.0f), front,
+                             ray.direction, shading, facing_normal, u, 0.0f);
         if (!(s.weight.x > 0.0f || s.weight.y > 0.0f || s.weight.z > 0.0f)) {
             return g;
         }

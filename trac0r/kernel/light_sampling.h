@@ -9,6 +9,7 @@
 #include "lamps.h"
 #include "light_tree.h"
 #include "material.h"
+#include "texture.h"
 #include "ray.h"
 #include "ray_offset.h"
 #include "sampling.h"
@@ -95,8 +96,8 @@ T0_INLINE float3 leaving_side(const SceneView* scene, float3 direction, float3 f
 // environment), in full for a delta light. pick is the light's
 // probability.
 T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord* light, float pick,
-                             T0_GLOBAL const MaterialRecord* m, float3 texture, int front,
-                             float3 incoming, float3 facing_normal, float3 facing_geometric,
+                             T0_GLOBAL const MaterialRecord* m, float3 texture, float2 rm,
+                             int front, float3 incoming, float3 facing_normal, float3 facing_geometric,
                              float3 position, float magnitude, float2 u) {
     LightSample ls;
     const t0_u32 kind = light->ids.y;
@@ -111,11 +112,11 @@ T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord
         return float3_splat(0.0f);
     }
     const MaterialEval e =
-        eval_material(scene, m, texture, front, incoming, facing_normal, ls.direction);
+        eval_material(scene, m, texture, rm, front, incoming, facing_normal, ls.direction);
     if (!(e.pdf > 0.0f)) {
         return float3_splat(0.0f);
     }
-    if (T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) &&
+    if ((T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) || T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) &&
         on_other_side(ls.direction, facing_normal, facing_geometric)) {
         return float3_splat(0.0f);
     }
@@ -156,7 +157,7 @@ T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord
 // the light tree: a distant one or the tree, and u_tree the way down it)
 // and u the point on it (or the direction to it).
 T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                              float3 texture, int front, float3 incoming,
+                              float3 texture, float2 rm, int front, float3 incoming,
                               float3 facing_normal, float3 facing_geometric,
                               float3 position, float magnitude, float u_pick, float u_tree,
                               float2 u) {
@@ -183,7 +184,7 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     if ((T0_HAS_FEATURE(scene, T0_FEATURE_LAMPS) ||
          T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT)) &&
         light->ids.y != T0_LIGHT_TRIANGLE) {
-        return sample_lamp(scene, light, pick, m, texture, front, incoming, facing_normal,
+        return sample_lamp(scene, light, pick, m, texture, rm, front, incoming, facing_normal,
                            facing_geometric, position, magnitude, u);
     }
     T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->ids.x];
@@ -202,11 +203,11 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     const float3 light_normal = xyz(tri->normal);
     const float cos_light = fabs(dot(direction, light_normal));
     const MaterialEval e =
-        eval_material(scene, m, texture, front, incoming, facing_normal, direction);
+        eval_material(scene, m, texture, rm, front, incoming, facing_normal, direction);
     if (!(cos_light > 0.0f) || !(e.pdf > 0.0f)) {
         return float3_splat(0.0f);  // edge-on, or outside the material's lobe
     }
-    if (T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) &&
+    if ((T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) || T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) &&
         on_other_side(direction, facing_normal, facing_geometric)) {
         return float3_splat(0.0f);  // in the shading normal's lobe, across the triangle
     }
@@ -231,7 +232,16 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
         return float3_splat(0.0f);
     }
     const float light_pdf = area_to_solid_angle(pick_per_area, distance2, cos_light);
-    const float3 emitted = material_emission(emitter);
+    float3 emitted = material_emission(emitter);
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE) && emitter->type.x == T0_MATERIAL_EMISSIVE &&
+        emitter->type.y != 0u) {
+        Hit at;
+        at.t = distance;
+        at.u = b1;
+        at.v = b2;
+        at.triangle = (int)light->ids.x;
+        emitted *= surface_texture(scene, emitter, at);  // its emission texture there
+    }
     return e.f_cos * emitted * (power_heuristic(light_pdf, e.pdf) / light_pdf);
 }
 

@@ -28,7 +28,8 @@ T0_INLINE MaterialRecord make_material_record(t0_u32 type, float3 color, float e
     r.params = make_float4(emittance, roughness, ior, shape);
     r.type = make_uint4(type, 0u, 0u, 0u);
     r.eta = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
-    r.k = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
+    r.k = make_float4(0.0f, 0.0f, 0.0f, 1.0f);
+    r.maps = make_uint4(0u, 0u, 0u, 0u);
     return r;
 }
 
@@ -162,11 +163,14 @@ T0_INLINE int material_is_microfacet(t0_u32 type) {
 
 // The inputs of a hit's material (scatter.h): the texture, where the
 // material has one, is the base colour's factor for the microfacet types.
-T0_INLINE Surface make_surface(T0_GLOBAL const MaterialRecord* m, float3 texture, int front) {
+// rm: the factors of the roughness and metallic textures at the hit
+// (texture.h's hit_roughness_metallic; one where there are none).
+T0_INLINE Surface make_surface(T0_GLOBAL const MaterialRecord* m, float3 texture, float2 rm,
+                               int front) {
     Surface s;
     s.base = xyz(m->color) * texture;
-    s.alpha = m->params.w;
-    s.metallic = m->color.w;
+    s.alpha = rm.x == 1.0f ? m->params.w : ggx_alpha(m->params.y * rm.x);
+    s.metallic = m->color.w * rm.y;
     s.front = front;
     return s;
 }
@@ -211,10 +215,11 @@ T0_INLINE int material_samples_lights(const SceneView* scene, T0_GLOBAL const Ma
 // A microfacet material's f cos and density toward `direction`, in the
 // frame of the facing normal.
 T0_OUT_OF_LINE MaterialEval eval_microfacet(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                                       float3 texture, int front, float3 incoming,
-                                       float3 facing_normal, float3 direction) {
+                                       float3 texture, float2 rm, int front,
+                                       float3 incoming, float3 facing_normal,
+                                       float3 direction) {
     const t0_u32 type = m->type.x;
-    const Surface surface = make_surface(m, texture, front);
+    const Surface surface = make_surface(m, texture, rm, front);
     const Frame f = frame_from_normal(facing_normal);
     const float3 wo = frame_to_local(f, -incoming);
     const float3 wi = frame_to_local(f, direction);
@@ -235,10 +240,10 @@ T0_OUT_OF_LINE MaterialEval eval_microfacet(const SceneView* scene, T0_GLOBAL co
 
 T0_OUT_OF_LINE ScatterSample scatter_microfacet(const SceneView* scene,
                                            T0_GLOBAL const MaterialRecord* m, float3 texture,
-                                           int front, float3 incoming, float3 facing_normal,
-                                           float2 u, float u_lobe) {
+                                           float2 rm, int front, float3 incoming,
+                                           float3 facing_normal, float2 u, float u_lobe) {
     const t0_u32 type = m->type.x;
-    const Surface surface = make_surface(m, texture, front);
+    const Surface surface = make_surface(m, texture, rm, front);
     const Frame f = frame_from_normal(facing_normal);
     const float3 wo = frame_to_local(f, -incoming);
     ScatterSample s = scatter_failed();
@@ -256,7 +261,7 @@ T0_OUT_OF_LINE ScatterSample scatter_microfacet(const SceneView* scene,
 }
 
 T0_INLINE MaterialEval eval_material(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                                     float3 texture, int front, float3 incoming,
+                                     float3 texture, float2 rm, int front, float3 incoming,
                                      float3 facing_normal, float3 direction) {
     const t0_u32 type = m->type.x;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_DIFFUSE) && type == T0_MATERIAL_DIFFUSE) {
@@ -266,19 +271,19 @@ T0_INLINE MaterialEval eval_material(const SceneView* scene, T0_GLOBAL const Mat
         return eval_glossy(m, incoming, facing_normal, direction);
     }
     if (T0_HAS_FEATURE(scene, T0_FEATURES_MICROFACET) && material_is_microfacet(type)) {
-        return eval_microfacet(scene, m, texture, front, incoming, facing_normal, direction);
+        return eval_microfacet(scene, m, texture, rm, front, incoming, facing_normal, direction);
     }
     return eval_failed();  // delta lobes and emitters
 }
 
-// texture is the hit's texture (one where none) and front whether the ray
-// arrived at the triangle's outer side: the microfacet types' inputs
-// (make_surface). u picks the direction (glass: u.x reflection or
+// texture is the hit's texture (one where none), rm its roughness and
+// metallic factors, and front whether the ray arrived at the triangle's
+// outer side: the microfacet types' inputs (make_surface). u picks the direction (glass: u.x reflection or
 // refraction), u_lobe the lobe of the materials that draw one
 // (material_draws_lobe).
 T0_INLINE ScatterSample scatter_material(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                                         float3 texture, int front, float3 incoming,
-                                         float3 outward_normal,
+                                         float3 texture, float2 rm, int front,
+                                         float3 incoming, float3 outward_normal,
                                          float3 facing_normal, float2 u, float u_lobe) {
     const t0_u32 type = m->type.x;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_DIFFUSE) && type == T0_MATERIAL_DIFFUSE) {
@@ -291,7 +296,8 @@ T0_INLINE ScatterSample scatter_material(const SceneView* scene, T0_GLOBAL const
         return scatter_glossy(m, incoming, facing_normal, u);
     }
     if (T0_HAS_FEATURE(scene, T0_FEATURES_MICROFACET) && material_is_microfacet(type)) {
-        return scatter_microfacet(scene, m, texture, front, incoming, facing_normal, u, u_lobe);
+        return scatter_microfacet(scene, m, texture, rm, front, incoming, facing_normal, u,
+                                  u_lobe);
     }
     return scatter_failed();  // emissive: a pure emitter ends the path
 }

@@ -1,7 +1,9 @@
-// Base-colour textures (T0_FEATURE_TEXTURE): a diffuse or glossy
-// surface's colour times its texture's, looked up bilinearly at the hit's
-// texture coordinates, repeating outside [0, 1). Texels are sRGB and are
-// made linear before they are filtered, as GPUs' sRGB textures do.
+// Textures (T0_FEATURE_TEXTURE): a surface's colour times its base-colour
+// texture's (an emitter's emission times its emission texture's), looked
+// up bilinearly at the hit's texture coordinates, repeating outside
+// [0, 1); colour texels are sRGB and are made linear before they are
+// filtered, as GPUs' sRGB textures do. The microfacet materials' data
+// textures (roughness, metallic, normal maps) are read as they are.
 #ifndef TRAC0R_KERNEL_TEXTURE_H
 #define TRAC0R_KERNEL_TEXTURE_H
 
@@ -80,10 +82,21 @@ T0_INLINE float repeat_coordinate(float t) {
     return f >= 0.0f && f < 1.0f ? f : 0.0f;
 }
 
+// A texel's value: its channels made linear from sRGB (colours), or as
+// they are, over 255 (data: roughness, metallic, normals).
+T0_INLINE float3 texel_value(T0_GLOBAL const t0_u32* texels, t0_u32 index, int srgb) {
+    if (srgb) {
+        return texel_linear(texels, index);
+    }
+    const t0_u32 p = texels[index];
+    return make_float3((float)(p & 255u), (float)((p >> 8) & 255u), (float)((p >> 16) & 255u)) *
+           (1.0f / 255.0f);
+}
+
 // texture at (u, v), bilinear between the four nearest texel centres,
-// repeating at the edges.
-T0_INLINE float3 texture_bilinear(T0_GLOBAL const t0_u32* texels, TextureRecord texture, float u,
-                                  float v) {
+// repeating at the edges; srgb as texel_value.
+T0_INLINE float3 texture_bilinear_as(T0_GLOBAL const t0_u32* texels, TextureRecord texture,
+                                     float u, float v, int srgb) {
     const t0_u32 first = texture.info.x;
     const t0_u32 w = texture.info.y;
     const t0_u32 h = texture.info.z;
@@ -99,11 +112,60 @@ T0_INLINE float3 texture_bilinear(T0_GLOBAL const t0_u32* texels, TextureRecord 
     const t0_u32 iy0 = y0 < 0.0f ? h - 1u : (t0_u32)y0;
     const t0_u32 ix1 = ix0 + 1u >= w ? 0u : ix0 + 1u;
     const t0_u32 iy1 = iy0 + 1u >= h ? 0u : iy0 + 1u;
-    const float3 top = texel_linear(texels, first + iy0 * w + ix0) * (1.0f - fx) +
-                       texel_linear(texels, first + iy0 * w + ix1) * fx;
-    const float3 bottom = texel_linear(texels, first + iy1 * w + ix0) * (1.0f - fx) +
-                          texel_linear(texels, first + iy1 * w + ix1) * fx;
+    const float3 top = texel_value(texels, first + iy0 * w + ix0, srgb) * (1.0f - fx) +
+                       texel_value(texels, first + iy0 * w + ix1, srgb) * fx;
+    const float3 bottom = texel_value(texels, first + iy1 * w + ix0, srgb) * (1.0f - fx) +
+                          texel_value(texels, first + iy1 * w + ix1, srgb) * fx;
     return top * (1.0f - fy) + bottom * fy;
+}
+
+T0_INLINE float3 texture_bilinear(T0_GLOBAL const t0_u32* texels, TextureRecord texture, float u,
+                                  float v) {
+    return texture_bilinear_as(texels, texture, u, v, 1);
+}
+
+// The hit's texture coordinates, if its triangle has them (returns 0
+// where it has none or they are not finite).
+T0_INLINE int hit_uv(const SceneView* scene, Hit hit, float2* uv) {
+    T0_GLOBAL const TriangleUVs* t = &scene->uvs[hit.triangle];
+    if (!(t->uv2.z > 0.0f)) {
+        return 0;
+    }
+    const float b0 = 1.0f - hit.u - hit.v;
+    const float u = t->uv01.x * b0 + t->uv01.z * hit.u + t->uv2.x * hit.v;
+    const float v = t->uv01.y * b0 + t->uv01.w * hit.u + t->uv2.y * hit.v;
+    if (!(is_finite_f(u) && is_finite_f(v))) {
+        return 0;
+    }
+    *uv = make_float2(u, v);
+    return 1;
+}
+
+// A data texture (index + 1, 0: none) at the hit: its channels over 255;
+// `fallback` where there is no texture or no coordinates.
+T0_INLINE float3 hit_data_texture(const SceneView* scene, t0_u32 texture, Hit hit,
+                                  float3 fallback) {
+    float2 uv;
+    if (texture == 0u || !hit_uv(scene, hit, &uv)) {
+        return fallback;
+    }
+    return texture_bilinear_as(scene->texels, scene->textures[texture - 1u], uv.x, uv.y, 0);
+}
+
+// The factors a metallic-roughness texture puts on a microfacet
+// material's roughness (x: the roughness texture's green) and metallic
+// (y: the metallic texture's blue), as glTF's metallicRoughnessTexture;
+// one where there is none.
+T0_INLINE float2 hit_roughness_metallic(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
+                                        Hit hit) {
+    float2 rm = make_float2(1.0f, 1.0f);
+    if (m->maps.x != 0u) {
+        rm.x = hit_data_texture(scene, m->maps.x, hit, float3_splat(1.0f)).y;
+    }
+    if (m->maps.y != 0u) {
+        rm.y = hit_data_texture(scene, m->maps.y, hit, float3_splat(1.0f)).z;
+    }
+    return rm;
 }
 
 // What a hit's material colour is multiplied by: its texture at the hit's

@@ -7,6 +7,7 @@
 #include "bundle.h"
 #include "light_sampling.h"
 #include "material.h"
+#include "normal_map.h"
 #include "ray.h"
 #include "ray_offset.h"
 #include "sampler.h"
@@ -159,10 +160,18 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
             shading = shading_normal(scene, hit, ray.direction, geometric_normal);
             facing_normal = front ? shading : -shading;
         }
+        if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE) && m->maps.z != 0u) {
+            shading = normal_mapped(scene, m, hit, ray.direction, geometric_normal, shading);
+            facing_normal = front ? shading : -shading;
+        }
 
         // Emit.
         if (T0_HAS_FEATURE(scene, T0_FEATURE_EMITTANCE)) {
             float3 emitted = throughput * material_emission_seen(scene, m, front);
+            if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE) && m->type.x == T0_MATERIAL_EMISSIVE &&
+                m->type.y != 0u) {
+                emitted *= surface_texture(scene, m, hit);  // its emission texture
+            }
             if (T0_HAS_FEATURE(scene, T0_FEATURE_NEE) && lights_sampled &&
                 tri->ids.z != T0_NO_LIGHT) {
                 emitted *= power_heuristic(scatter_pdf,
@@ -198,8 +207,12 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         // The factor on the whole sample (the thesis' four take the
         // texture so; the microfacet types inside, from `texture`).
         float3 tint = texture;
+        float2 rm = make_float2(1.0f, 1.0f);
         if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) {
             tint = texture_outside(scene, m, texture);
+            if (T0_HAS_FEATURE(scene, T0_FEATURES_MICROFACET) && material_is_microfacet(m->type.x)) {
+                rm = hit_roughness_metallic(scene, m, hit);
+            }
         }
 
         // Sample a light (next-event estimation), before the roulette: the
@@ -218,7 +231,7 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
                                      ? sample_1d(sampler, T0_DIM_LIGHT_TREE(depth))
                                      : 0.0f;
             radiance += throughput * tint *
-                        sample_light(scene, m, texture, front, ray.direction, facing_normal,
+                        sample_light(scene, m, texture, rm, front, ray.direction, facing_normal,
                                      facing_geometric, position, magnitude, u_pick, u_tree,
                                      u_point);
             lights_sampled = 1;
@@ -240,15 +253,15 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         const float u_lobe =
             material_draws_lobe(scene, m) ? sample_1d(sampler, T0_DIM_LOBE(depth)) : 0.0f;
         const ScatterSample s =
-            scatter_material(scene, m, texture, front, ray.direction, shading, facing_normal, u,
-                             u_lobe);
+            scatter_material(scene, m, texture, rm, front, ray.direction, shading, facing_normal,
+                             u, u_lobe);
         if (!(s.weight.x > 0.0f || s.weight.y > 0.0f || s.weight.z > 0.0f)) {
             break;
         }
         // With a shading normal, a direction the material scattered to one
         // side of it may lie on the other side of the triangle: absorbed,
         // not let through (a reflection stays on the incoming side).
-        if (T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) &&
+        if ((T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) || T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) &&
             (dot(s.direction, facing_geometric) > 0.0f) !=
                 (dot(s.direction, facing_normal) > 0.0f)) {
             break;

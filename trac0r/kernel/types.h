@@ -187,7 +187,10 @@ typedef struct T0_ALIGN16 MaterialRecord {
     float4 eta;     // conductor: xyz the real part of the index; plastic: w the
                     // diffuse term's scale 1 / (ior^2 (1 - internal reflectance));
                     // principled: x glTF's specular factor
-    float4 k;       // conductor: xyz the imaginary part of the index
+    float4 k;       // conductor: xyz the imaginary part of the index;
+                    // w: the normal map's scale (glTF normalTexture.scale)
+    uint4 maps;     // data textures + 1 (0: none; texture.h): x roughness (its
+                    // green), y metallic (its blue), z a tangent-space normal map
 } MaterialRecord;
 
 // The camera as the kernel needs it: an orthonormal frame and the image
@@ -251,7 +254,7 @@ T0_NAMESPACE_END
 T0_NAMESPACE_BEGIN
 T0_STATIC_ASSERT_SIZE(TriangleRecord, 80);
 T0_STATIC_ASSERT_SIZE(ShapeRecord, 48);
-T0_STATIC_ASSERT_SIZE(MaterialRecord, 80);
+T0_STATIC_ASSERT_SIZE(MaterialRecord, 96);
 T0_STATIC_ASSERT_SIZE(BvhNode, 256);
 T0_STATIC_ASSERT_SIZE(TrianglePacket, 176);
 T0_STATIC_ASSERT_SIZE(LightRecord, 80);

@@ -1,0 +1,319 @@
+// Textures beyond the base colour (kernel/normal_map.h, texture.h): a
+// tangent-space normal map turns the shading normal as a tilted plane's,
+// an emission texture scales what an emitter sends (seen and sampled),
+// and metallic-roughness textures scale those factors; on both backends,
+// and from an OBJ's MTL statements.
+#include "test_support.h"
+
+#include "trac0r/cpu_backend.h"
+#include "trac0r/kernel/accumulate.h"
+#include "trac0r/renderer.h"
+
+#include <cmath>
+#include <fstream>
+#include <memory>
+
+using namespace trac0r;
+
+namespace {
+
+const double pi = 3.14159265358979323846;
+const int side = 16;
+
+std::uint32_t rgba(unsigned r, unsigned g, unsigned b) {
+    return r | g << 8 | b << 16 | 0xff000000u;
+}
+
+// A texture of w x h texels, row by row from the top.
+Texture texture_of(int w, int h, const std::vector<std::uint32_t>& texels) {
+    Texture t;
+    t.source = "test";
+    t.width = w;
+    t.height = h;
+    t.texels = texels;
+    return t;
+}
+
+// A 4 m floor (y = 0) of material 0 with texture coordinates u = x / 4 +
+// 0.5, v = 0.5 - z / 4 (u along +x, v along -z), seen from straight above
+// (image right +x, image up -z), its direct light alone (max_depth 2).
+Scene floor_scene(const Material& floor) {
+    Scene scene;
+    scene.materials = {floor};
+    Shape plane = make_plane(glm::vec3(0.0f), glm::vec3(0.0f), glm::vec2(4.0f), 0);
+    for (const Triangle& t : plane.triangles) {
+        TriangleUv uv;
+        uv.present = true;
+        const glm::vec3 v[3] = {t.v0, t.v1, t.v2};
+        for (int k = 0; k < 3; ++k) {
+            uv.uv[k] = glm::vec2(v[k].x / 4.0f + 0.5f, 0.5f - v[k].z / 4.0f);
+        }
+        plane.uvs.push_back(uv);
+    }
+    scene.shapes.push_back(plane);
+    scene.camera.position = glm::vec3(0.0f, 1.0f, 0.0f);
+    scene.camera.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    scene.camera.world_up = glm::vec3(0.0f, 0.0f, -1.0f);
+    scene.camera.vertical_fov = 60.0f;
+    scene.render.width = side;
+    scene.render.height = side;
+    scene.render.max_depth = 2;
+    return scene;
+}
+
+Lamp sun_towards(glm::vec3 towards, float irradiance) {
+    Lamp sun;
+    sun.type = LampType::sun;
+    sun.direction = glm::normalize(towards);
+    sun.power = irradiance;
+    sun.angle = 0.0f;
+    return sun;
+}
+
+Image render(const Scene& scene, int frames, bool opencl = false) {
+    PackOptions options;
+    options.integrator = Integrator::nee;
+    options.sampler = SamplerKind::sobol;
+    std::unique_ptr<Backend> backend;
+    if (opencl) {
+        backend = std::make_unique<OpenClBackend>(0);
+    } else {
+        backend = std::make_unique<CpuBackend>();
+    }
+    Renderer r(scene, std::move(backend), 7, options);
+    for (int i = 0; i < frames; ++i) {
+        r.render_frame();
+    }
+    REQUIRE(r.stats().samples_dropped == 0);
+    return r.image();
+}
+
+double mean_red(const Image& image) {
+    double sum = 0.0;
+    for (const glm::vec3& p : image.pixels) {
+        sum += p.x;
+    }
+    return sum / static_cast<double>(image.pixels.size());
+}
+
+// A normal-map texel for the tangent-space normal n (unit, z > 0).
+std::uint32_t normal_texel(glm::dvec3 n) {
+    const auto byte = [](double c) {
+        return static_cast<unsigned>(std::lround((c + 1.0) * 127.5));
+    };
+    return rgba(byte(n.x), byte(n.y), byte(n.z));
+}
+
+void require_tilted_normal_map(bool opencl) {
+    // A diffuse floor under a sun from the direction (0.5, 1, 0) (normalised):
+    // flat, it reflects rho/pi E cos. Its normal map tilts the normal by
+    // 30 degrees towards +u (+x): it then reflects rho/pi E cos(theta')
+    // with theta' the angle between the sun and the tilted normal, as a
+    // plane tilted so would. The map's texel holds the normal to 1/255, so
+    // the tilt is 30 +- 0.3 degrees: 1 % on the expected radiance.
+    const double tilt = 30.0 * pi / 180.0;
+    const glm::dvec3 tangent_normal(std::sin(tilt), 0.0, std::cos(tilt));
+    const std::uint32_t texel = normal_texel(tangent_normal);
+    // The normal the texel holds, decoded as the kernel does.
+    const glm::dvec3 held = glm::normalize(glm::dvec3((texel & 255u) / 255.0 * 2.0 - 1.0,
+                                                      ((texel >> 8) & 255u) / 255.0 * 2.0 - 1.0,
+                                                      ((texel >> 16) & 255u) / 255.0 * 2.0 - 1.0));
+    const glm::dvec3 world_normal(held.x, held.z, -held.y);  // T = +x, B = -z (v), N = +y
+    const glm::dvec3 towards = glm::normalize(glm::dvec3(0.5, 1.0, 0.0));
+    const double irradiance = 2.0;
+    const double albedo = 0.5;
+    Material floor;
+    floor.name = "floor";
+    floor.color = glm::vec3(static_cast<float>(albedo));
+    Scene flat = floor_scene(floor);
+    flat.lamps.push_back(sun_towards(glm::vec3(towards), static_cast<float>(irradiance)));
+    Scene mapped = flat;
+    mapped.materials[0].normal_texture = 0;
+    mapped.textures.push_back(texture_of(2, 2, {texel, texel, texel, texel}));
+    REQUIRE((pack_scene(mapped).materials[0].maps.z) == 1u);
+    const double flat_expected = albedo / pi * irradiance * towards.y;
+    const double mapped_expected = albedo / pi * irradiance * glm::dot(world_normal, towards);
+    const double flat_got = mean_red(render(flat, 4, opencl));
+    const double mapped_got = mean_red(render(mapped, 4, opencl));
+    CAPTURE(flat_got, flat_expected, mapped_got, mapped_expected);
+    // The sun is a direction and the floor's light direct: every sample is
+    // the closed form, to float rounding.
+    REQUIRE(flat_got == Approx(flat_expected).epsilon(1e-4));
+    REQUIRE(mapped_got == Approx(mapped_expected).epsilon(1e-4));
+    REQUIRE(mapped_got > 1.1 * flat_got);  // tilted towards the sun: brighter (1.116)
+}
+
+}  // namespace
+
+TEST_CASE("a tilted normal map shades a flat floor as the tilted plane (CPU)", "[texture][maps]") {
+    require_tilted_normal_map(false);
+}
+
+TEST_CASE("a tilted normal map shades a flat floor as the tilted plane (OpenCL)",
+          "[texture][maps][opencl]") {
+    require_tilted_normal_map(true);
+}
+
+namespace {
+
+// A 1 m emitter at height 0.5 over the floor, facing down, with an
+// emission texture of one black and one white column (or none): half
+// its light, on average over it, both where the camera sees it and where
+// the floor's light samples land on it.
+Scene emitter_over_floor(bool textured) {
+    Material floor;
+    floor.name = "floor";
+    floor.color = glm::vec3(0.5f);
+    Scene scene = floor_scene(floor);
+    Material lamp;
+    lamp.name = "lamp";
+    lamp.type = MaterialType::emissive;
+    lamp.color = glm::vec3(1.0f);
+    lamp.emittance = 3.0f;
+    scene.materials.push_back(lamp);
+    Shape quad = make_plane(glm::vec3(0.0f, 0.5f, 0.0f), glm::vec3(3.14159265f, 0.0f, 0.0f),
+                            glm::vec2(1.0f), 1);
+    for (const Triangle& t : quad.triangles) {
+        TriangleUv uv;
+        uv.present = true;
+        const glm::vec3 v[3] = {t.v0, t.v1, t.v2};
+        for (int k = 0; k < 3; ++k) {
+            uv.uv[k] = glm::vec2(v[k].x + 0.5f, v[k].z + 0.5f);
+        }
+        quad.uvs.push_back(uv);
+    }
+    scene.shapes.push_back(quad);
+    if (textured) {
+        scene.materials[1].texture = 0;
+        scene.textures.push_back(texture_of(2, 1, {rgba(0, 0, 0), rgba(255, 255, 255)}));
+    }
+    scene.camera.position = glm::vec3(0.0f, 0.4f, 1.2f);
+    scene.camera.direction = glm::vec3(0.0f, -0.2f, -1.0f);
+    scene.camera.world_up = glm::vec3(0.0f, 1.0f, 0.0f);
+    scene.render.width = 24;
+    scene.render.height = 16;
+    return scene;
+}
+
+}  // namespace
+
+TEST_CASE("an emission texture scales what an emitter sends, seen and sampled", "[texture][maps]") {
+    // Bilinear between the two texel centres and repeating, the texture
+    // averages exactly 1/2 over the quad; the floor under it gets half the
+    // light. Tolerance: 5 standard errors of the block means (the floor's
+    // light samples land on black or white).
+    const Scene plain = emitter_over_floor(false);
+    const Scene textured = emitter_over_floor(true);
+    REQUIRE((pack_scene(textured).features & T0_FEATURE_TEXTURE) != 0u);
+    REQUIRE(pack_scene(textured).materials[1].type.y == 1u);
+    PackOptions options;
+    options.integrator = Integrator::nee;
+    options.sampler = SamplerKind::sobol;
+    Renderer a(plain, std::make_unique<CpuBackend>(), 3, options);
+    Renderer b(textured, std::make_unique<CpuBackend>(), 3, options);
+    const int frames = 256;
+    for (int i = 0; i < frames; ++i) {
+        a.render_frame();
+        b.render_frame();
+    }
+    double sum_a = 0.0, sum_b = 0.0, var_b = 0.0;
+    const auto& moments = b.accumulator();
+    for (std::size_t i = 0; i < a.image().pixels.size(); ++i) {
+        sum_a += kernel::luminance(a.image().pixels[i]);
+        sum_b += kernel::luminance(b.image().pixels[i]);
+        var_b += moments[i].moments.y / (frames - 1) / frames;
+    }
+    const double n = static_cast<double>(a.image().pixels.size());
+    const double se = std::sqrt(var_b) / n;
+    CAPTURE(sum_a / n, sum_b / n, se);
+    REQUIRE(std::fabs(sum_b / n - 0.5 * sum_a / n) <= 5.0 * se + 1e-6);
+}
+
+TEST_CASE("metallic-roughness textures scale the factors (green roughness, blue metallic)",
+          "[texture][maps]") {
+    // A principled floor of metallic factor 1 under the sun: a texture of
+    // blue 0 makes it a dielectric (as metallic 0 would), blue 255 keeps
+    // it metal; green scales roughness alike.
+    Material floor;
+    floor.name = "floor";
+    floor.type = MaterialType::principled;
+    floor.color = glm::vec3(0.9f, 0.6f, 0.3f);
+    floor.metallic = 1.0f;
+    floor.roughness = 0.6f;
+    Scene base = floor_scene(floor);
+    base.lamps.push_back(sun_towards(glm::vec3(0.3f, 1.0f, 0.2f), 2.0f));
+    base.camera.position = glm::vec3(0.0f, 0.3f, 0.0f);
+    const auto with_texture = [&](std::uint32_t texel) {
+        Scene s = base;
+        s.materials[0].roughness_texture = 0;
+        s.materials[0].metallic_texture = 0;
+        s.textures.push_back(texture_of(1, 1, {texel}));
+        return s;
+    };
+    const auto as_factors = [&](float metallic, float roughness) {
+        Scene s = base;
+        s.materials[0].metallic = metallic;
+        s.materials[0].roughness = roughness;
+        return s;
+    };
+    const Image metal = render(with_texture(rgba(0, 255, 255)), 8);
+    const Image dielectric = render(with_texture(rgba(0, 255, 0)), 8);
+    const Image half_rough = render(with_texture(rgba(0, 128, 255)), 8);
+    const int n = side * side;
+    // Close: the same paths, the factors through a bilinear lookup (float
+    // rounding of a 1 x 1 texture's weights).
+    CHECK(close_pixel_count(metal, render(as_factors(1.0f, 0.6f), 8)) >= n * 95 / 100);
+    CHECK(close_pixel_count(dielectric, render(as_factors(0.0f, 0.6f), 8)) >= n * 95 / 100);
+    CHECK(close_pixel_count(half_rough, render(as_factors(1.0f, 0.6f * 128.0f / 255.0f), 8)) >=
+          n * 95 / 100);
+    CHECK(close_pixel_count(metal, dielectric) < n / 2);
+}
+
+TEST_CASE("MTL map_Pr, map_Pm, norm and map_Ke become the material's textures",
+          "[texture][maps][scene_loader]") {
+    TempDir dir;
+    // 1 x 1 TGA images (stb_image reads them): uncompressed, 24-bit BGR.
+    const auto tga = [&](const std::string& name, unsigned r, unsigned g, unsigned b) {
+        const unsigned char header[18] = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 1, 0, 24, 0};
+        const unsigned char pixel[3] = {static_cast<unsigned char>(b),
+                                        static_cast<unsigned char>(g),
+                                        static_cast<unsigned char>(r)};
+        dir.write(name, std::string(reinterpret_cast<const char*>(header), sizeof header) +
+                            std::string(reinterpret_cast<const char*>(pixel), sizeof pixel));
+    };
+    tga("r.tga", 0, 200, 0);
+    tga("m.tga", 0, 0, 100);
+    tga("n.tga", 128, 128, 255);
+    tga("e.tga", 255, 0, 0);
+    dir.write("m.mtl",
+              "newmtl pbr\nKd 0.5 0.5 0.5\nPr 0.5\nPm 1\nmap_Pr r.tga\nmap_Pm m.tga\nnorm n.tga\n"
+              "newmtl glow\nKe 2 2 2\nmap_Ke e.tga\n");
+    dir.write("m.obj",
+              "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n"
+              "usemtl pbr\nf 1/1 2/2 3/3\nusemtl glow\nf 1/1 3/3 2/2\n");
+    const std::string json =
+        dir.write("s.json", R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},
+               "shapes": [{"type": "mesh", "file": "m.obj", "material": "white"}]})");
+    const Scene scene = load_scene_file(json);
+    REQUIRE(scene.shapes.size() == 2);
+    const Material& pbr = scene.materials[static_cast<std::size_t>(scene.shapes[0].material)];
+    CHECK(pbr.type == MaterialType::principled);
+    REQUIRE(pbr.roughness_texture >= 0);
+    REQUIRE(pbr.metallic_texture >= 0);
+    REQUIRE(pbr.normal_texture >= 0);
+    CHECK(scene.textures[static_cast<std::size_t>(pbr.roughness_texture)].texels[0] ==
+          rgba(0, 200, 0));
+    CHECK(scene.textures[static_cast<std::size_t>(pbr.metallic_texture)].texels[0] ==
+          rgba(0, 0, 100));
+    CHECK(scene.textures[static_cast<std::size_t>(pbr.normal_texture)].texels[0] ==
+          rgba(128, 128, 255));
+    const Material& glow = scene.materials[static_cast<std::size_t>(scene.shapes[1].material)];
+    CHECK(glow.type == MaterialType::emissive);
+    REQUIRE(glow.texture >= 0);
+    CHECK(scene.textures[static_cast<std::size_t>(glow.texture)].texels[0] == rgba(255, 0, 0));
+    const PackedScene packed = pack_scene(scene);
+    const auto& record = packed.materials[static_cast<std::size_t>(scene.shapes[0].material)];
+    CHECK(record.maps.x != 0u);
+    CHECK(record.maps.y != 0u);
+    CHECK(record.maps.z != 0u);
+}
