@@ -317,3 +317,128 @@ TEST_CASE("MTL map_Pr, map_Pm, norm and map_Ke become the material's textures",
     CHECK(record.maps.y != 0u);
     CHECK(record.maps.z != 0u);
 }
+
+namespace {
+
+// A checker of alpha 0 and 255 (2 x 2 texels; bilinear and repeating, it
+// is at least 1/2 on exactly half of each period).
+Texture alpha_checker() {
+    const std::uint32_t clear = 0x00ffffffu;
+    const std::uint32_t solid = 0xffffffffu;
+    return texture_of(2, 2, {clear, solid, solid, clear});
+}
+
+// A square of `side_length` at height y, of material `material`, whose
+// texture coordinates repeat `periods` times across it (u along x, v
+// along -z).
+Shape checker_quad(float y, float side_length, int material, float periods) {
+    Shape quad =
+        make_plane(glm::vec3(0.0f, y, 0.0f), glm::vec3(0.0f), glm::vec2(side_length), material);
+    for (const Triangle& t : quad.triangles) {
+        TriangleUv uv;
+        uv.present = true;
+        const glm::vec3 v[3] = {t.v0, t.v1, t.v2};
+        for (int k = 0; k < 3; ++k) {
+            uv.uv[k] = glm::vec2(v[k].x, -v[k].z) / side_length * periods;
+        }
+        quad.uvs.push_back(uv);
+    }
+    return quad;
+}
+
+// The camera at height `height` looking down with a 60-degree view: the
+// side of the square it sees at depth d is 2 d tan 30.
+void look_down(Scene& scene, float height) {
+    scene.camera.position = glm::vec3(0.0f, height, 0.0f);
+    scene.camera.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+    scene.camera.world_up = glm::vec3(0.0f, 0.0f, -1.0f);
+    scene.camera.vertical_fov = 60.0f;
+    scene.render.width = 32;
+    scene.render.height = 32;
+    scene.render.max_depth = 2;
+}
+
+const float tan30 = 0.57735027f;
+
+// A glowing floor (radiance 1) under a black quad at 0.5 that is a
+// cut-out (MASK) checker, or (blend) of uniform alpha 1/4, seen from 1
+// above: the camera's rays pass through the cut-outs.
+Scene glow_under_quad(bool blend) {
+    Scene scene;
+    Material glow;
+    glow.name = "glow";
+    glow.type = MaterialType::emissive;
+    glow.color = glm::vec3(1.0f);
+    glow.emittance = 1.0f;
+    Material black;
+    black.name = "black";
+    black.color = glm::vec3(0.0f);
+    if (blend) {
+        black.alpha_mode = AlphaMode::blend;
+        black.alpha = 0.25f;
+    } else {
+        black.alpha_mode = AlphaMode::mask;
+        black.alpha_texture = 0;
+        scene.textures.push_back(alpha_checker());
+    }
+    scene.materials = {glow, black};
+    scene.shapes.push_back(make_plane(glm::vec3(0.0f), glm::vec3(0.0f), glm::vec2(4.0f), 0));
+    // The view at depth 0.5 is 2 x 0.5 x tan 30 wide: 4 periods across it.
+    const float seen = 2.0f * 0.5f * tan30;
+    scene.shapes.push_back(checker_quad(0.5f, seen * 2.0f, 1, 8.0f));
+    look_down(scene, 1.0f);
+    return scene;
+}
+
+}  // namespace
+
+TEST_CASE("an alpha cut-out lets camera rays through half a checker (CPU and OpenCL)",
+          "[texture][maps][alpha]") {
+    // The view holds whole periods of the checker: exactly half of it is
+    // cut out, so the image's mean is 1/2 (the glow) to the pixels'
+    // sampling of the edges: 16 jittered samples a pixel over 32 x 32
+    // pixels, 0.01.
+    const Scene scene = glow_under_quad(false);
+    REQUIRE((pack_scene(scene).features & T0_FEATURE_ALPHA) != 0u);
+    for (bool opencl : {false, true}) {
+        CAPTURE(opencl);
+        const double mean = mean_red(render(scene, 16, opencl));
+        REQUIRE(mean == Approx(0.5).margin(0.01));
+    }
+}
+
+TEST_CASE("alpha BLEND is stochastic opacity: alpha 1/4 shows 3/4 of what is behind",
+          "[texture][maps][alpha]") {
+    // 64 frames of 32 x 32 pixels, each sample 0 or 1 with probability
+    // 3/4: standard error 0.0021; five of them.
+    const double mean = mean_red(render(glow_under_quad(true), 64));
+    REQUIRE(mean == Approx(0.75).margin(0.011));
+}
+
+TEST_CASE("an alpha cut-out lets shadow rays through: half the sun reaches the floor",
+          "[texture][maps][alpha]") {
+    // The sun straight above, the checker at 0.5 over a diffuse floor, the
+    // camera at 0.25 between them (its own rays meet no quad): the floor's
+    // shadow is the checker, whole periods of it in the view, so the
+    // image's mean is half the lit floor's rho/pi E.
+    Scene scene;
+    Material floor;
+    floor.name = "floor";
+    floor.color = glm::vec3(0.5f);
+    Material leaf;
+    leaf.name = "leaf";
+    leaf.color = glm::vec3(0.5f);
+    leaf.alpha_mode = AlphaMode::mask;
+    leaf.alpha_texture = 0;
+    scene.textures.push_back(alpha_checker());
+    scene.materials = {floor, leaf};
+    scene.shapes.push_back(make_plane(glm::vec3(0.0f), glm::vec3(0.0f), glm::vec2(4.0f), 0));
+    const float seen = 2.0f * 0.25f * tan30;
+    scene.shapes.push_back(checker_quad(0.5f, seen * 2.0f, 1, 8.0f));
+    scene.lamps.push_back(sun_towards(glm::vec3(0.0f, 1.0f, 0.0f), 2.0f));
+    look_down(scene, 0.25f);
+    const double lit = 0.5 / pi * 2.0;
+    const double mean = mean_red(render(scene, 16));
+    CAPTURE(mean, lit);
+    REQUIRE(mean == Approx(0.5 * lit).margin(0.01 * lit));
+}

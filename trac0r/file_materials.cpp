@@ -79,7 +79,8 @@ Material material_from_mtl(const tinyobj::material_t& m, const std::string& file
     Material out;
     if (peak(ke) > 0.0f) {
         out = emitter(where, "Ke", ke);
-    } else if (m.illum == 4 || m.illum == 6 || m.illum == 7 || m.illum == 9 || m.dissolve < 1.0f) {
+    } else if (m.illum == 4 || m.illum == 6 || m.illum == 7 || m.illum == 9 ||
+               (m.dissolve < 1.0f && m.alpha_texname.empty())) {
         out.type = MaterialType::glass;
         out.color = peak(tf) > 0.0f ? unit_colour(where, "Tf", tf) : glm::vec3(1.0f);
         out.ior = m.ior > 1.0f ? m.ior : 1.5f;
@@ -105,6 +106,12 @@ Material material_from_mtl(const tinyobj::material_t& m, const std::string& file
     } else {
         out.type = MaterialType::diffuse;
         out.color = unit_colour(where, "Kd", kd);
+    }
+    if (!m.alpha_texname.empty() && out.type != MaterialType::emissive) {
+        // map_d: an opacity map (its red), times d, as stochastic opacity.
+        out.alpha_mode = AlphaMode::blend;
+        out.alpha = unit_number(where, "d", m.dissolve);
+        out.alpha_channel = 0;
     }
     out.name = m.name;
     return out;
@@ -143,19 +150,25 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
     const float metallic = property(m, AI_MATKEY_METALLIC_FACTOR, 0.0f);
     const float roughness = property(m, AI_MATKEY_ROUGHNESS_FACTOR, 1.0f);
     const float transmission = property(m, AI_MATKEY_TRANSMISSION_FACTOR, 0.0f);
-    // glTF's alpha counts only where its alpha mode is BLEND (OPAQUE
-    // ignores it; MASK cuts out, which the renderer cannot).
+    // glTF's alpha: the base colour's (times its texture's, which
+    // shape.cpp adds), counted only in the modes MASK (a cut-out below
+    // the cutoff) and BLEND (stochastic opacity); OPAQUE ignores it.
     aiString alpha_mode;
-    const bool blend = m.Get(AI_MATKEY_GLTF_ALPHAMODE, alpha_mode) == AI_SUCCESS &&
-                       std::strcmp(alpha_mode.C_Str(), "BLEND") == 0;
-    const float opacity = blend ? property(m, AI_MATKEY_OPACITY, 1.0f) : 1.0f;
+    AlphaMode mode = AlphaMode::opaque;
+    if (m.Get(AI_MATKEY_GLTF_ALPHAMODE, alpha_mode) == AI_SUCCESS) {
+        if (std::strcmp(alpha_mode.C_Str(), "MASK") == 0) {
+            mode = AlphaMode::mask;
+        } else if (std::strcmp(alpha_mode.C_Str(), "BLEND") == 0) {
+            mode = AlphaMode::blend;
+        }
+    }
     const float ior = property(m, AI_MATKEY_REFRACTI, 1.5f);
     const glm::vec3 colour(base.r, base.g, base.b);
     const glm::vec3 emission = glm::vec3(emissive.r, emissive.g, emissive.b) * strength;
     Material out;
     if (peak(emission) > 0.0f) {
         out = emitter(where, "emissive", emission);
-    } else if (transmission > 0.0f || opacity < 1.0f) {
+    } else if (transmission > 0.0f) {
         out.type = MaterialType::glass;
         out.color = unit_colour(where, "base colour", colour);
         out.ior = ior > 1.0f ? ior : 1.5f;
@@ -179,6 +192,13 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
         out.two_sided = two_sided != 0;
     } else {
         out.two_sided = !has_extension(file, ".gltf") && !has_extension(file, ".glb");
+    }
+    if (mode != AlphaMode::opaque && out.type != MaterialType::emissive) {
+        out.alpha_mode = mode;
+        out.alpha = unit_number(where, "base colour alpha", base.a);
+        out.alpha_cutoff = unit_number(where, "alphaCutoff",
+                                       property(m, AI_MATKEY_GLTF_ALPHACUTOFF, 0.5f));
+        out.alpha_channel = 3;
     }
     out.name = name.C_Str();
     return out;

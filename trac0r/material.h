@@ -27,6 +27,8 @@ enum class MaterialType : unsigned {
 // and meshes' materials are held to it.
 const float max_emitted_radiance = 1e30f;
 
+enum class AlphaMode : unsigned { opaque = 0, mask = 1, blend = 2 };
+
 struct Material {
     std::string name;
     MaterialType type = MaterialType::diffuse;
@@ -58,6 +60,15 @@ struct Material {
     int metallic_texture = -1;
     int normal_texture = -1;
     float normal_scale = 1.0f;
+    // Alpha (glTF's alphaMode): opaque; a cut-out where alpha is below
+    // alpha_cutoff (MASK); or stochastic opacity (BLEND). alpha is the
+    // factor, times alpha_texture's channel alpha_channel (0 red, 3 alpha;
+    // glTF: the base-colour texture's alpha, MTL: map_d's red) where given.
+    AlphaMode alpha_mode = AlphaMode::opaque;
+    float alpha = 1.0f;
+    float alpha_cutoff = 0.5f;
+    int alpha_texture = -1;
+    int alpha_channel = 3;
     // Whether an emitting material emits from both sides (the thesis'), or
     // only from the front: the side its triangles' counter-clockwise
     // winding faces, as OBJ and glTF define it.

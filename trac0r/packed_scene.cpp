@@ -34,6 +34,8 @@ kernel::MaterialRecord pack_material(const Material& m) {
                                                             m.emittance, m.roughness, m.ior);
     r.type.z = m.two_sided ? 0u : 1u;
     r.k.w = m.normal_scale;
+    r.alpha = glm::vec4(m.alpha, m.alpha_cutoff, static_cast<float>(m.alpha_mode),
+                        static_cast<float>(m.alpha_channel));
     if (m.type == MaterialType::conductor && !m.metal.empty()) {
         const Metal* metal = find_metal(m.metal);
         if (metal != nullptr) {
@@ -77,7 +79,7 @@ std::uint32_t material_feature(const Material& m) {
 const char* const feature_bit_names[T0_FEATURE_COUNT] = {
     "emissive", "diffuse", "glass",   "glossy",      "emittance", "flat",      "bvh",       "nee",
     "sobol",    "smooth",  "texture", "environment", "lamps",     "one_sided", "light_tree",
-    "conductor", "plastic", "principled", "rough_glass"};
+    "conductor", "plastic", "principled", "rough_glass", "alpha"};
 
 // What this build's kernel can do at all.
 const std::uint32_t implemented_features =
@@ -85,7 +87,7 @@ const std::uint32_t implemented_features =
     T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT | T0_FEATURE_BVH | T0_FEATURE_NEE | T0_FEATURE_SOBOL |
     T0_FEATURE_SMOOTH | T0_FEATURE_TEXTURE | T0_FEATURE_ENVIRONMENT | T0_FEATURE_LAMPS |
     T0_FEATURE_ONE_SIDED | T0_FEATURE_LIGHT_TREE | T0_FEATURE_CONDUCTOR | T0_FEATURE_PLASTIC |
-    T0_FEATURE_PRINCIPLED | T0_FEATURE_ROUGH_GLASS;
+    T0_FEATURE_PRINCIPLED | T0_FEATURE_ROUGH_GLASS | T0_FEATURE_ALPHA;
 
 }  // namespace
 
@@ -209,7 +211,7 @@ void pack_textures(const Scene& scene, const std::vector<UsableTriangle>& usable
         return texture >= 0 && static_cast<std::size_t>(texture) < scene.textures.size();
     };
     const auto textured_material = [&](const Material& m) {
-        return (valid(m.texture) && takes_texture(m.type)) ||
+        return (valid(m.texture) && takes_texture(m.type)) || valid(m.alpha_texture) ||
                (is_microfacet(m.type) &&
                 (valid(m.roughness_texture) || valid(m.metallic_texture))) ||
                (m.type != MaterialType::emissive && valid(m.normal_texture));
@@ -242,6 +244,7 @@ void pack_textures(const Scene& scene, const std::vector<UsableTriangle>& usable
             record.maps.x = one_past(material.roughness_texture);
             record.maps.y = one_past(material.metallic_texture);
         }
+        record.maps.w = one_past(material.alpha_texture);
         if (material.type != MaterialType::emissive) {
             record.maps.z = one_past(material.normal_texture);
             record.k.w = material.normal_scale;
@@ -376,6 +379,9 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
             continue;
         }
         packed.features |= material_feature(material);
+        if (material.alpha_mode != AlphaMode::opaque) {
+            packed.features |= T0_FEATURE_ALPHA;
+        }
         if (material.emittance > 0.0f &&
             std::max({material.color.x, material.color.y, material.color.z}) > 0.0f) {
             packed.features |= T0_FEATURE_EMITTANCE;

@@ -76,6 +76,11 @@ std::uint64_t scene_digest(const Scene& scene) {
         h.value(m.metallic_texture);
         h.value(m.normal_texture);
         h.value(m.normal_scale);
+        h.value(static_cast<int>(m.alpha_mode));
+        h.value(m.alpha);
+        h.value(m.alpha_cutoff);
+        h.value(m.alpha_texture);
+        h.value(m.alpha_channel);
     }
     h.value(scene.shapes.size());
     for (const Shape& s : scene.shapes) {

@@ -252,7 +252,8 @@ std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
                         // The mesh's textures this material uses, moved
                         // into the scene's once each.
                         for (int* texture : {&m.texture, &m.roughness_texture,
-                                             &m.metallic_texture, &m.normal_texture}) {
+                                             &m.metallic_texture, &m.normal_texture,
+                                             &m.alpha_texture}) {
                             if (*texture < 0) {
                                 continue;
                             }

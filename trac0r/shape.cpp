@@ -534,6 +534,9 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
                 m.roughness_texture = load(mtl.roughness_texname, "map_Pr");
                 m.metallic_texture = load(mtl.metallic_texname, "map_Pm");
             }
+            if (m.alpha_mode != AlphaMode::opaque) {
+                m.alpha_texture = load(mtl.alpha_texname, "map_d");
+            }
             if (m.type != MaterialType::emissive) {
                 // A normal map: norm, or map_Bump as Blender reads it.
                 m.normal_texture = mtl.normal_texname.empty()
@@ -804,6 +807,9 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
                 "metallic-roughness");
             out.metallic_texture = out.roughness_texture;
         }
+        if (out.alpha_mode != AlphaMode::opaque) {
+            out.alpha_texture = out.texture;  // the base colour's alpha
+        }
         if (out.type != MaterialType::emissive) {
             out.normal_texture = assimp_texture(*scene, m, path, files, texel_budget,
                                                 {aiTextureType_NORMALS}, "normal");
@@ -863,6 +869,11 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
         w.i32(m.metallic_texture);
         w.i32(m.normal_texture);
         w.f32(m.normal_scale);
+        w.u32(static_cast<std::uint32_t>(m.alpha_mode));
+        w.f32(m.alpha);
+        w.f32(m.alpha_cutoff);
+        w.i32(m.alpha_texture);
+        w.i32(m.alpha_channel);
     }
     w.u64(files.textures.size());
     for (const Texture& t : files.textures) {
@@ -942,7 +953,7 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         part_materials.push_back(id);
         mesh.parts.push_back(std::move(p));
     }
-    const std::size_t material_count = r.count(8 + 4 + 12 + 12 + 4 + 1 + 8 + 16, "materials");
+    const std::size_t material_count = r.count(8 + 4 + 12 + 12 + 4 + 1 + 8 + 16 + 20, "materials");
     for (std::size_t i = 0; i < material_count; ++i) {
         Material m;
         m.name = r.text("bytes of a material's name");
@@ -969,6 +980,17 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         m.metallic_texture = r.get<std::int32_t>();
         m.normal_texture = r.get<std::int32_t>();
         m.normal_scale = r.get<float>();
+        const std::uint32_t alpha_mode = r.get<std::uint32_t>();
+        m.alpha = r.get<float>();
+        m.alpha_cutoff = r.get<float>();
+        m.alpha_texture = r.get<std::int32_t>();
+        m.alpha_channel = r.get<std::int32_t>();
+        if (alpha_mode > 2u || !(m.alpha >= 0.0f && m.alpha <= 1.0f) ||
+            !(m.alpha_cutoff >= 0.0f && m.alpha_cutoff <= 1.0f) || m.alpha_texture < -1 ||
+            (m.alpha_channel != 0 && m.alpha_channel != 3)) {
+            throw WireError("material " + std::to_string(i) + " with a bad alpha");
+        }
+        m.alpha_mode = static_cast<AlphaMode>(alpha_mode);
         if (!(std::min({m.color.x, m.color.y, m.color.z}) >= 0.0f) || !(std::max({m.color.x, m.color.y, m.color.z}) <= 1.0f) ||
             !(m.metallic >= 0.0f && m.metallic <= 1.0f) ||
             !(m.specular >= 0.0f && m.specular <= 1.0f) ||
@@ -1014,7 +1036,8 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         mesh.textures.push_back(std::move(t));
     }
     for (const Material& m : mesh.materials) {
-        for (int texture : {m.texture, m.roughness_texture, m.metallic_texture, m.normal_texture}) {
+        for (int texture : {m.texture, m.roughness_texture, m.metallic_texture, m.normal_texture,
+                            m.alpha_texture}) {
             if (texture >= static_cast<int>(mesh.textures.size())) {
                 throw WireError("a material of texture " + std::to_string(texture) + " of " +
                                 std::to_string(mesh.textures.size()));

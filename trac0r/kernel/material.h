@@ -30,6 +30,7 @@ T0_INLINE MaterialRecord make_material_record(t0_u32 type, float3 color, float e
     r.eta = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
     r.k = make_float4(0.0f, 0.0f, 0.0f, 1.0f);
     r.maps = make_uint4(0u, 0u, 0u, 0u);
+    r.alpha = make_float4(1.0f, 0.5f, 0.0f, 3.0f);
     return r;
 }
 

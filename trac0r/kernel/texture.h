@@ -119,6 +119,32 @@ T0_INLINE float3 texture_bilinear_as(T0_GLOBAL const t0_u32* texels, TextureReco
     return top * (1.0f - fy) + bottom * fy;
 }
 
+// One channel (0 red ... 3 alpha) of a texture at (u, v), bilinear as
+// texture_bilinear_as, read as stored (over 255).
+T0_INLINE float texture_channel(T0_GLOBAL const t0_u32* texels, TextureRecord texture, float u,
+                                float v, int channel) {
+    const t0_u32 first = texture.info.x;
+    const t0_u32 w = texture.info.y;
+    const t0_u32 h = texture.info.z;
+    const float x = repeat_coordinate(u) * (float)w - 0.5f;
+    const float y = (1.0f - repeat_coordinate(v)) * (float)h - 0.5f;
+    const float x0 = floor(x);
+    const float y0 = floor(y);
+    const float fx = x - x0;
+    const float fy = y - y0;
+    const t0_u32 ix0 = x0 < 0.0f ? w - 1u : (t0_u32)x0;
+    const t0_u32 iy0 = y0 < 0.0f ? h - 1u : (t0_u32)y0;
+    const t0_u32 ix1 = ix0 + 1u >= w ? 0u : ix0 + 1u;
+    const t0_u32 iy1 = iy0 + 1u >= h ? 0u : iy0 + 1u;
+    const t0_u32 shift = 8u * (t0_u32)channel;
+    const float a = (float)((texels[first + iy0 * w + ix0] >> shift) & 255u);
+    const float b = (float)((texels[first + iy0 * w + ix1] >> shift) & 255u);
+    const float c = (float)((texels[first + iy1 * w + ix0] >> shift) & 255u);
+    const float d = (float)((texels[first + iy1 * w + ix1] >> shift) & 255u);
+    return ((a * (1.0f - fx) + b * fx) * (1.0f - fy) + (c * (1.0f - fx) + d * fx) * fy) *
+           (1.0f / 255.0f);
+}
+
 T0_INLINE float3 texture_bilinear(T0_GLOBAL const t0_u32* texels, TextureRecord texture, float u,
                                   float v) {
     return texture_bilinear_as(texels, texture, u, v, 1);

@@ -5,6 +5,7 @@
 #define TRAC0R_KERNEL_TRAVERSE_H
 
 #include "aabb.h"
+#include "alpha.h"
 #include "lanes.h"
 #include "ray.h"
 #include "triangle.h"
@@ -27,6 +28,10 @@ T0_INLINE Hit traverse_flat(const SceneView* scene, const Ray* ray, float t_max,
             float u = 0.0f;
             float v = 0.0f;
             const float t = intersect_triangle(&scene->triangles[i], *ray, &u, &v);
+            if (T0_HAS_FEATURE(scene, T0_FEATURE_ALPHA) && t < hit.t &&
+                passes_through(scene, ray, (int)i, u, v)) {
+                continue;
+            }
             if (t < hit.t) {
                 hit.t = t;
                 hit.u = u;
@@ -129,18 +134,27 @@ T0_INLINE int leaf_hits(const SceneView* scene, t0_u32 packet, const Ray* ray, c
     if (hits == 0) {
         return 0;
     }
+    int found = 0;
     do {
         const int i = lowest_set_bit(hits);
         hits &= hits - 1;
         if (t[i] < hit->t) {
+            const int triangle = (int)buffer_uint_component(&p->triangle, i);
+            if (T0_HAS_FEATURE(scene, T0_FEATURE_ALPHA) &&
+                passes_through(scene, ray, triangle, u[i], v[i])) {
+                continue;
+            }
             hit->t = t[i];
             hit->u = u[i];
             hit->v = v[i];
-            hit->triangle = (int)buffer_uint_component(&p->triangle, i);
+            hit->triangle = triangle;
+            found = 1;
         }
     } while (hits != 0);
-    *limit = lanes_splat(hit->t);
-    return 1;
+    if (found) {
+        *limit = lanes_splat(hit->t);
+    }
+    return found;
 }
 
 // Nearest hit below t_max through the 8-wide BVH; with any_hit, stops at

@@ -39,7 +39,8 @@
 #define T0_FEATURE_PLASTIC (1u << 16)
 #define T0_FEATURE_PRINCIPLED (1u << 17)
 #define T0_FEATURE_ROUGH_GLASS (1u << 18)
-#define T0_FEATURE_COUNT 19
+#define T0_FEATURE_ALPHA (1u << 19)  // surfaces rays pass through (alpha.h)
+#define T0_FEATURE_COUNT 20
 
 T0_NAMESPACE_BEGIN
 
@@ -190,7 +191,10 @@ typedef struct T0_ALIGN16 MaterialRecord {
     float4 k;       // conductor: xyz the imaginary part of the index;
                     // w: the normal map's scale (glTF normalTexture.scale)
     uint4 maps;     // data textures + 1 (0: none; texture.h): x roughness (its
-                    // green), y metallic (its blue), z a tangent-space normal map
+                    // green), y metallic (its blue), z a tangent-space normal map,
+                    // w alpha (its channel alpha.w)
+    float4 alpha;   // x: alpha factor, y: MASK's cutoff, z: mode (alpha.h),
+                    // w: the alpha texture's channel (0 red, 3 alpha)
 } MaterialRecord;
 
 // The camera as the kernel needs it: an orthonormal frame and the image
@@ -254,7 +258,7 @@ T0_NAMESPACE_END
 T0_NAMESPACE_BEGIN
 T0_STATIC_ASSERT_SIZE(TriangleRecord, 80);
 T0_STATIC_ASSERT_SIZE(ShapeRecord, 48);
-T0_STATIC_ASSERT_SIZE(MaterialRecord, 96);
+T0_STATIC_ASSERT_SIZE(MaterialRecord, 112);
 T0_STATIC_ASSERT_SIZE(BvhNode, 256);
 T0_STATIC_ASSERT_SIZE(TrianglePacket, 176);
 T0_STATIC_ASSERT_SIZE(LightRecord, 80);
