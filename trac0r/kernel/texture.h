@@ -93,10 +93,14 @@ T0_INLINE float3 texel_value(T0_GLOBAL const t0_u32* texels, t0_u32 index, int s
            (1.0f / 255.0f);
 }
 
-// texture at (u, v), bilinear between the four nearest texel centres,
-// repeating at the edges; srgb as texel_value.
-T0_INLINE float3 texture_bilinear_as(T0_GLOBAL const t0_u32* texels, TextureRecord texture,
-                                     float u, float v, int srgb) {
+// The four texels around (u, v) and the weights between them: bilinear
+// between the nearest texel centres, repeating at the edges.
+typedef struct BilinearTaps {
+    t0_u32 i00, i01, i10, i11;  // top-left, top-right, bottom-left, bottom-right
+    float fx, fy;
+} BilinearTaps;
+
+T0_INLINE BilinearTaps bilinear_taps(TextureRecord texture, float u, float v) {
     const t0_u32 first = texture.info.x;
     const t0_u32 w = texture.info.y;
     const t0_u32 h = texture.info.z;
@@ -105,43 +109,44 @@ T0_INLINE float3 texture_bilinear_as(T0_GLOBAL const t0_u32* texels, TextureReco
     const float y = (1.0f - repeat_coordinate(v)) * (float)h - 0.5f;
     const float x0 = floor(x);
     const float y0 = floor(y);
-    const float fx = x - x0;
-    const float fy = y - y0;
     // x0 in [-1, w - 1] (y0 alike): -1 wraps to the last column.
     const t0_u32 ix0 = x0 < 0.0f ? w - 1u : (t0_u32)x0;
     const t0_u32 iy0 = y0 < 0.0f ? h - 1u : (t0_u32)y0;
     const t0_u32 ix1 = ix0 + 1u >= w ? 0u : ix0 + 1u;
     const t0_u32 iy1 = iy0 + 1u >= h ? 0u : iy0 + 1u;
-    const float3 top = texel_value(texels, first + iy0 * w + ix0, srgb) * (1.0f - fx) +
-                       texel_value(texels, first + iy0 * w + ix1, srgb) * fx;
-    const float3 bottom = texel_value(texels, first + iy1 * w + ix0, srgb) * (1.0f - fx) +
-                          texel_value(texels, first + iy1 * w + ix1, srgb) * fx;
-    return top * (1.0f - fy) + bottom * fy;
+    BilinearTaps t;
+    t.i00 = first + iy0 * w + ix0;
+    t.i01 = first + iy0 * w + ix1;
+    t.i10 = first + iy1 * w + ix0;
+    t.i11 = first + iy1 * w + ix1;
+    t.fx = x - x0;
+    t.fy = y - y0;
+    return t;
+}
+
+// texture at (u, v), bilinear (bilinear_taps); srgb as texel_value.
+T0_INLINE float3 texture_bilinear_as(T0_GLOBAL const t0_u32* texels, TextureRecord texture, float u,
+                                     float v, int srgb) {
+    const BilinearTaps t = bilinear_taps(texture, u, v);
+    const float3 top =
+        texel_value(texels, t.i00, srgb) * (1.0f - t.fx) + texel_value(texels, t.i01, srgb) * t.fx;
+    const float3 bottom =
+        texel_value(texels, t.i10, srgb) * (1.0f - t.fx) + texel_value(texels, t.i11, srgb) * t.fx;
+    return top * (1.0f - t.fy) + bottom * t.fy;
 }
 
 // One channel (0 red ... 3 alpha) of a texture at (u, v), bilinear as
 // texture_bilinear_as, read as stored (over 255).
 T0_INLINE float texture_channel(T0_GLOBAL const t0_u32* texels, TextureRecord texture, float u,
                                 float v, int channel) {
-    const t0_u32 first = texture.info.x;
-    const t0_u32 w = texture.info.y;
-    const t0_u32 h = texture.info.z;
-    const float x = repeat_coordinate(u) * (float)w - 0.5f;
-    const float y = (1.0f - repeat_coordinate(v)) * (float)h - 0.5f;
-    const float x0 = floor(x);
-    const float y0 = floor(y);
-    const float fx = x - x0;
-    const float fy = y - y0;
-    const t0_u32 ix0 = x0 < 0.0f ? w - 1u : (t0_u32)x0;
-    const t0_u32 iy0 = y0 < 0.0f ? h - 1u : (t0_u32)y0;
-    const t0_u32 ix1 = ix0 + 1u >= w ? 0u : ix0 + 1u;
-    const t0_u32 iy1 = iy0 + 1u >= h ? 0u : iy0 + 1u;
+    const BilinearTaps t = bilinear_taps(texture, u, v);
     const t0_u32 shift = 8u * (t0_u32)channel;
-    const float a = (float)((texels[first + iy0 * w + ix0] >> shift) & 255u);
-    const float b = (float)((texels[first + iy0 * w + ix1] >> shift) & 255u);
-    const float c = (float)((texels[first + iy1 * w + ix0] >> shift) & 255u);
-    const float d = (float)((texels[first + iy1 * w + ix1] >> shift) & 255u);
-    return ((a * (1.0f - fx) + b * fx) * (1.0f - fy) + (c * (1.0f - fx) + d * fx) * fy) *
+    const float a = (float)((texels[t.i00] >> shift) & 255u);
+    const float b = (float)((texels[t.i01] >> shift) & 255u);
+    const float c = (float)((texels[t.i10] >> shift) & 255u);
+    const float d = (float)((texels[t.i11] >> shift) & 255u);
+    return ((a * (1.0f - t.fx) + b * t.fx) * (1.0f - t.fy) +
+            (c * (1.0f - t.fx) + d * t.fx) * t.fy) *
            (1.0f / 255.0f);
 }
 
@@ -203,17 +208,11 @@ T0_INLINE float3 surface_texture(const SceneView* scene, T0_GLOBAL const Materia
     if (texture == 0u) {
         return float3_splat(1.0f);
     }
-    T0_GLOBAL const TriangleUVs* t = &scene->uvs[hit.triangle];
-    if (!(t->uv2.z > 0.0f)) {
+    float2 uv;
+    if (!hit_uv(scene, hit, &uv)) {
         return float3_splat(1.0f);
     }
-    const float b0 = 1.0f - hit.u - hit.v;
-    const float u = t->uv01.x * b0 + t->uv01.z * hit.u + t->uv2.x * hit.v;
-    const float v = t->uv01.y * b0 + t->uv01.w * hit.u + t->uv2.y * hit.v;
-    if (!(is_finite_f(u) && is_finite_f(v))) {
-        return float3_splat(1.0f);
-    }
-    return texture_bilinear(scene->texels, scene->textures[texture - 1u], u, v);
+    return texture_bilinear(scene->texels, scene->textures[texture - 1u], uv.x, uv.y);
 }
 
 T0_NAMESPACE_END
