@@ -1,0 +1,379 @@
+#include "trac0r/assimp_mesh.h"
+
+#include "trac0r/file_materials.h"
+#include "trac0r/input_checks.h"
+#include "trac0r/input_file.h"
+#include "trac0r/isolated_call.h"
+#include "trac0r/mesh_parts.h"
+#include "trac0r/mesh_wire.h"
+
+#include <assimp/BaseImporter.h>
+#include <assimp/GltfMaterial.h>
+#include <assimp/Importer.hpp>
+#include <assimp/importerdesc.h>
+#include <assimp/scene.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <stdexcept>
+#include <utility>
+
+namespace trac0r {
+
+namespace {
+
+// Whether a PLY's text has the line that ends its header: "end_header"
+// alone on a line (LF or CR LF), within the first megabyte.
+bool has_ply_header_end(const std::string& text) {
+    const std::size_t limit = std::min<std::size_t>(text.size(), 1u << 20);
+    for (std::size_t at = text.find("\nend_header"); at != std::string::npos && at < limit;
+         at = text.find("\nend_header", at + 1)) {
+        const std::size_t after = at + 11;
+        if (after < text.size() &&
+            (text[after] == '\n' ||
+             (text[after] == '\r' && after + 1 < text.size() && text[after + 1] == '\n'))) {
+            return true;
+        }
+    }
+    return false;
+}
+
+// The texture of an assimp material of the first of `types` it has (for
+// the base colour glTF's baseColorTexture: BASE_COLOR, then DIFFUSE) as an
+// index into mesh.textures, or -1 for none: an image embedded in the file
+// (a .glb's buffer, a data URI: "*N") or a file beside it. `what` names it
+// in messages ("base colour").
+int assimp_texture(const aiScene& scene, const aiMaterial& m, const std::string& path,
+                   MeshParts& mesh, std::uint64_t texel_budget,
+                   std::initializer_list<aiTextureType> types, const char* what) {
+    // What the file's textures so far leave of the scene's room.
+    const std::uint64_t room = texel_budget - texel_count(mesh.textures);
+    aiString name;
+    bool found = false;
+    for (aiTextureType type : types) {
+        if (!found && m.GetTexture(type, 0, &name) == AI_SUCCESS) {
+            found = true;
+        }
+    }
+    if (!found) {
+        return -1;
+    }
+    aiString material_name;
+    m.Get(AI_MATKEY_NAME, material_name);
+    const std::string file = name.C_Str();
+    const std::string where = path + ": material '" + printable(material_name.C_Str(), 60) +
+                              "': " + what + " texture '" + printable(file, 200) + "'";
+    const aiTexture* embedded = scene.GetEmbeddedTexture(name.C_Str());
+    if (embedded != nullptr) {
+        return texture_index(mesh, path + " " + file, [&] {
+            if (embedded->mHeight != 0) {
+                // Uncompressed: mWidth x mHeight texels, BGRA.
+                if (embedded->mWidth == 0 ||
+                    embedded->mWidth > static_cast<unsigned>(max_texture_side) ||
+                    embedded->mHeight > static_cast<unsigned>(max_texture_side)) {
+                    throw std::runtime_error(where + ": expected each side at most " +
+                                             std::to_string(max_texture_side));
+                }
+                check_texture_room(where, static_cast<int>(embedded->mWidth),
+                                   static_cast<int>(embedded->mHeight), room);
+                Texture t;
+                t.source = path + " " + file;
+                t.width = static_cast<int>(embedded->mWidth);
+                t.height = static_cast<int>(embedded->mHeight);
+                t.texels.resize(static_cast<std::size_t>(t.width) * t.height);
+                for (std::size_t i = 0; i < t.texels.size(); ++i) {
+                    const aiTexel& c = embedded->pcData[i];
+                    t.texels[i] = static_cast<std::uint32_t>(c.r) |
+                                  static_cast<std::uint32_t>(c.g) << 8 |
+                                  static_cast<std::uint32_t>(c.b) << 16 |
+                                  static_cast<std::uint32_t>(c.a) << 24;
+                }
+                return t;
+            }
+            // Compressed (PNG, JPEG): mWidth bytes.
+            return decode_texture(where, path + " " + file,
+                                  reinterpret_cast<const unsigned char*>(embedded->pcData),
+                                  embedded->mWidth, room);
+        });
+    }
+    if (!file.empty() && file[0] == '*') {
+        throw std::runtime_error(where + ": the file has no embedded image of that number");
+    }
+    const std::string texture = texture_path_beside(path, file);
+    return texture_index(mesh, texture, [&] { return load_texture_file(where, texture, room); });
+}
+
+// Leaves `importer` with only its reader named `name` (an
+// aiImporterDesc::mName). With all of them, assimp guesses the format from
+// the contents of a file its extension's reader cannot read: a .glb or
+// .gltf that is no glTF went to whichever of its other readers (STL,
+// OBJ, OFF, Blender, ...) claimed it, readers trac0r neither documents nor
+// fuzzes. And glTF 1.0's reader, which also claims .gltf and .glb, is not
+// the glTF 2.0 that docs/scene-format.md promises. The importer does not
+// delete the readers it unregisters: deleted here.
+void keep_only_reader(Assimp::Importer& importer, const char* name, const std::string& path) {
+    bool kept = false;
+    for (std::size_t i = importer.GetImporterCount(); i-- > 0;) {
+        const aiImporterDesc* desc = importer.GetImporterInfo(i);
+        if (!kept && desc != nullptr && std::strcmp(desc->mName, name) == 0) {
+            kept = true;
+            continue;
+        }
+        Assimp::BaseImporter* reader = importer.GetImporter(i);
+        if (importer.UnregisterLoader(reader) == AI_SUCCESS) {
+            delete reader;
+        }
+    }
+    if (!kept) {
+        throw std::runtime_error(path + ": cannot read mesh: this build of assimp has no " + name);
+    }
+}
+
+// "the PLY reader (assimp)", for messages.
+std::string assimp_reader_name(bool ply) {
+    return ply ? "the PLY reader (assimp)" : "the glTF reader (assimp)";
+}
+
+// The import itself, in the child process: assimp's reader of the format
+// alone, our conversion of its scene into plain parts, materials and
+// textures; everything that touches assimp's structures is here. Throws
+// std::runtime_error naming the file for what assimp or our checks refuse.
+std::string import_assimp(const std::string& path, const std::string& text, bool ply, bool smooth,
+                          bool file_materials, std::uint64_t texel_budget) {
+    Assimp::Importer importer;
+    importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                                aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+    // No post-processing: assimp 5.2's steps trust the faces' indices,
+    // and on a broken PLY face its triangulation aborts the process (an
+    // ai_assert) and its vertex pre-transform reads out of bounds (both
+    // found by tests/fuzz/fuzz_mesh). Indices are checked below, polygons
+    // split into fans and the nodes' transforms applied here.
+    const unsigned flags = 0;
+    const bool gltf = has_extension(path, ".gltf");
+    keep_only_reader(importer, ply ? "Stanford Polygon Library (PLY) Importer" : "glTF2 Importer",
+                     path);
+    const aiScene* scene =
+        gltf ? importer.ReadFile(path, flags)
+             : importer.ReadFileFromMemory(text.data(), text.size(), flags,
+                                           has_extension(path, ".glb") ? "glb" : "ply");
+    if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
+        std::string reason = importer.GetErrorString();
+        reason.erase(reason.find_last_not_of(" \n\r") + 1);
+        throw std::runtime_error(path + ": cannot read mesh: " +
+                                 (reason.empty() ? std::string("no scene in it") : reason));
+    }
+    // Each node's meshes, with the node's transform (and its parents'):
+    // (mesh index, transform) in the order of a depth-first walk.
+    std::vector<std::pair<unsigned, aiMatrix4x4>> instances;
+    const int max_node_depth = 256;
+    const std::function<void(const aiNode&, const aiMatrix4x4&, int)> walk =
+        [&](const aiNode& node, const aiMatrix4x4& parent, int depth) {
+            if (depth > max_node_depth) {
+                throw std::runtime_error(path + ": cannot read mesh: its nodes nest deeper than " +
+                                         std::to_string(max_node_depth));
+            }
+            const aiMatrix4x4 transform = parent * node.mTransformation;
+            for (unsigned k = 0; k < node.mNumMeshes; ++k) {
+                if (node.mMeshes[k] < scene->mNumMeshes) {
+                    instances.emplace_back(node.mMeshes[k], transform);
+                }
+            }
+            for (unsigned c = 0; c < node.mNumChildren; ++c) {
+                if (node.mChildren[c] != nullptr) {
+                    walk(*node.mChildren[c], transform, depth + 1);
+                }
+            }
+        };
+    if (scene->mRootNode != nullptr) {
+        walk(*scene->mRootNode, aiMatrix4x4(), 0);
+    }
+    PartBuilder parts;
+    for (const std::pair<unsigned, aiMatrix4x4>& instance : instances) {
+        const aiMesh& mesh = *scene->mMeshes[instance.first];
+        const aiMatrix4x4& to_world = instance.second;
+        aiMatrix3x3 normal_matrix(to_world);
+        // A mirroring node turns the winding inside out: two corners are
+        // swapped (with their normals and coordinates), as make_shape does.
+        const bool mirrored = aiMatrix3x3(to_world).Determinant() < 0.0f;
+        normal_matrix.Inverse().Transpose();
+        for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
+            const aiFace& face = mesh.mFaces[f];
+            // A polygon as a fan of triangles around its first corner;
+            // points and lines (SortByPType leaves none) give none.
+            for (unsigned fan = 1; fan + 1 < face.mNumIndices; ++fan) {
+                const unsigned corners[3] = {face.mIndices[0],
+                                             face.mIndices[mirrored ? fan + 1 : fan],
+                                             face.mIndices[mirrored ? fan : fan + 1]};
+                glm::vec3 p[3];
+                VertexNormalTriple n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+                bool has_normals = mesh.HasNormals();
+                TriangleUv uv;
+                uv.present = mesh.HasTextureCoords(0);
+                for (int k = 0; k < 3; ++k) {
+                    const unsigned index = corners[k];
+                    if (index >= mesh.mNumVertices) {
+                        throw std::runtime_error(
+                            path + ": mesh '" + printable(mesh.mName.C_Str(), 60) +
+                            "': a face refers to vertex " + std::to_string(index) +
+                            ", but the mesh has " + std::to_string(mesh.mNumVertices));
+                    }
+                    const aiVector3D v = to_world * mesh.mVertices[index];
+                    p[k] = glm::vec3(v.x, v.y, v.z);
+                    if (!is_finite(p[k])) {
+                        throw std::runtime_error(path + ": mesh '" +
+                                                 printable(mesh.mName.C_Str(), 60) + "': vertex " +
+                                                 std::to_string(index) + " is not finite");
+                    }
+                    if (uv.present) {
+                        const aiVector3D& t = mesh.mTextureCoords[0][index];
+                        uv.uv[k] = glm::vec2(t.x, t.y);
+                        uv.present = std::isfinite(t.x) && std::isfinite(t.y);
+                    }
+                    if (has_normals) {
+                        const aiVector3D vn = normal_matrix * mesh.mNormals[index];
+                        n[k] = glm::vec3(vn.x, vn.y, vn.z);
+                        has_normals = is_finite(n[k]) && glm::length(n[k]) > 0.0f;
+                    }
+                }
+                // A PLY has no materials (assimp gives it a default one).
+                parts.add(file_materials && !ply ? static_cast<int>(mesh.mMaterialIndex) : -1, p, n,
+                          has_normals, smooth, uv);
+            }
+        }
+    }
+    if (parts.triangles.empty()) {
+        throw std::runtime_error(path + ": mesh has no triangles");
+    }
+    // The file's materials (and their textures) as the parts use them.
+    MeshParts files;
+    const auto material_of = [&](int id) {
+        if (id < 0 || static_cast<unsigned>(id) >= scene->mNumMaterials) {
+            return -1;
+        }
+        const aiMaterial& m = *scene->mMaterials[id];
+        if (is_default_material(m)) {
+            return -1;
+        }
+        Material out = material_from_assimp(m, path);
+        if (out.type == MaterialType::emissive) {
+            out.texture = assimp_texture(*scene, m, path, files, texel_budget,
+                                         {aiTextureType_EMISSIVE}, "emissive");
+        } else if (takes_texture(out.type)) {
+            out.texture =
+                assimp_texture(*scene, m, path, files, texel_budget,
+                               {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}, "base colour");
+        }
+        if (is_microfacet(out.type)) {
+            // glTF's metallicRoughnessTexture: roughness in green, metallic
+            // in blue, one image for both.
+            out.roughness_texture = assimp_texture(
+                *scene, m, path, files, texel_budget,
+                {aiTextureType_UNKNOWN, aiTextureType_DIFFUSE_ROUGHNESS, aiTextureType_METALNESS},
+                "metallic-roughness");
+            out.metallic_texture = out.roughness_texture;
+        }
+        if (out.alpha_mode != AlphaMode::opaque) {
+            out.alpha_texture = out.texture;  // the base colour's alpha
+        }
+        if (out.type != MaterialType::emissive) {
+            out.normal_texture = assimp_texture(*scene, m, path, files, texel_budget,
+                                                {aiTextureType_NORMALS}, "normal");
+            float scale = 1.0f;
+            if (out.normal_texture >= 0 &&
+                m.Get(AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), scale) ==
+                    AI_SUCCESS &&
+                std::isfinite(scale)) {
+                out.normal_scale = scale;
+            }
+        }
+        files.materials.push_back(out);
+        return static_cast<int>(files.materials.size()) - 1;
+    };
+    std::vector<int> part_materials;
+    for (int key : parts.key) {
+        part_materials.push_back(material_of(key));
+    }
+    return mesh_to_wire(parts, part_materials, files);
+}
+
+double mesh_import_seconds = 300.0;
+
+}  // namespace
+
+MeshParts load_assimp(const std::string& path, const glm::vec3& position,
+                      const glm::vec3& orientation, const glm::vec3& scale, int material,
+                      bool smooth, bool file_materials, std::uint64_t texel_budget) {
+    // Only a regular file within the size limit (input_file.h). A .gltf
+    // may refer to other files (its buffers), which assimp opens beside
+    // it; the others are read from memory.
+    const std::string text = read_input_file(path, "mesh");
+    if (text.empty()) {
+        throw std::runtime_error(path + ": cannot read mesh: the file is empty");
+    }
+    const bool ply = has_extension(path, ".ply");
+    // assimp 5.2's PLY reader, given a header without its end_header
+    // line, or with one that does not end the line ("end_header0"),
+    // allocates or loops without end (found by tests/fuzz/fuzz_mesh):
+    // such a file is refused before it sees it (the time limit below
+    // would stop it, later).
+    if (ply && !has_ply_header_end(text)) {
+        throw std::runtime_error(path +
+                                 ": cannot read mesh: the PLY header has no end_header "
+                                 "line (a line of its own)");
+    }
+    const std::string reader = assimp_reader_name(ply);
+    const IsolatedOutcome outcome = run_isolated(
+        [&] { return import_assimp(path, text, ply, smooth, file_materials, texel_budget); },
+        mesh_import_seconds);
+    using Kind = IsolatedOutcome::Kind;
+    switch (outcome.kind) {
+    case Kind::result:
+        break;
+    case Kind::error:
+        throw std::runtime_error(outcome.payload);
+    case Kind::out_of_memory:
+        throw std::runtime_error(path + ": " + reader + " ran out of memory on this file");
+    case Kind::exception:
+        throw std::runtime_error(path + ": " + reader + " failed on this file (" +
+                                 printable(outcome.detail, 200) + "): it is malformed");
+    case Kind::crashed:
+        throw std::runtime_error(path + ": " + reader + " crashed on this file (" + outcome.detail +
+                                 "): it is malformed");
+    case Kind::exited:
+        // A sanitizer's report in the child ends it so (exit status 1).
+        throw std::runtime_error(path + ": " + reader + " failed on this file (its process " +
+                                 "ended with " + outcome.detail + "): it is malformed");
+    case Kind::timed_out: {
+        char seconds[32];
+        std::snprintf(seconds, sizeof seconds, "%g", mesh_import_seconds);
+        throw std::runtime_error(path + ": " + reader + " did not finish within " + seconds +
+                                 " s and was stopped: the file is malformed or too large");
+    }
+    case Kind::broken:
+        throw std::runtime_error(path + ": " + reader + " sent back a broken result (" +
+                                 outcome.detail + "): the file is malformed");
+    case Kind::not_started:
+        throw std::runtime_error(path + ": cannot read mesh: cannot start its import (" +
+                                 outcome.detail + ")");
+    }
+    try {
+        return mesh_from_wire(outcome.payload, model_matrix(position, orientation, scale),
+                              material);
+    } catch (const WireError& e) {
+        throw std::runtime_error(path + ": " + reader + " sent back a broken result (" + e.what() +
+                                 "): the file is malformed");
+    }
+}
+
+void set_mesh_import_time_limit(double seconds) {
+    if (!(seconds > 0.0 && seconds <= 1e6)) {
+        throw std::invalid_argument("set_mesh_import_time_limit: expected seconds in (0, 1e6]");
+    }
+    mesh_import_seconds = seconds;
+}
+
+double mesh_import_time_limit() { return mesh_import_seconds; }
+
+}  // namespace trac0r

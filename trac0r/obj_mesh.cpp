@@ -1,0 +1,227 @@
+#include "trac0r/obj_mesh.h"
+
+#include "trac0r/file_materials.h"
+#include "trac0r/input_checks.h"
+#include "trac0r/mesh_parts.h"
+#include "trac0r/obj_checker.h"
+
+#include <tiny_obj_loader.h>
+
+#include <algorithm>
+#include <istream>
+#include <map>
+#include <stdexcept>
+#include <streambuf>
+
+namespace trac0r {
+
+namespace {
+
+// A read-only stream over a string that outlives it, for tinyobjloader:
+// no second copy of a mesh's text.
+class TextBuffer : public std::streambuf {
+  public:
+    explicit TextBuffer(std::string& text) { setg(&text[0], &text[0], &text[0] + text.size()); }
+};
+
+// tinyobjloader's reader of the mtllib files: each one's text checked
+// (checked_mtl_text) first, relative to the OBJ's directory; which file
+// each material came from is kept.
+class CheckedMtlReader : public tinyobj::MaterialReader {
+  public:
+    CheckedMtlReader(const std::string& obj_path, const std::vector<ObjNameRef>& libraries)
+        : obj_path_(obj_path), libraries_(libraries) {
+        const std::size_t slash = obj_path.find_last_of('/');
+        dir_ = slash == std::string::npos ? "" : obj_path.substr(0, slash + 1);
+    }
+    bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
+                    std::map<std::string, int>* map, std::string* warn, std::string* err) override {
+        // tinyobjloader asks for the first file of an mtllib line and stops
+        // there: every file of the line is read here.
+        long line = 0;
+        for (const ObjNameRef& r : libraries_) {
+            if (r.name == name) {
+                line = r.line;
+                break;
+            }
+        }
+        for (const ObjNameRef& r : libraries_) {
+            if (r.line == line) {
+                load(r.name, line, materials, map, warn, err);
+            }
+        }
+        return true;
+    }
+    std::vector<std::string> files;  // per material: its file
+
+  private:
+    void load(const std::string& name, long line, std::vector<tinyobj::material_t>* materials,
+              std::map<std::string, int>* map, std::string* warn, std::string* err) {
+        const std::string file = !name.empty() && name[0] == '/' ? name : dir_ + name;
+        std::string text;
+        try {
+            text = checked_mtl_text(file);
+        } catch (const std::runtime_error& e) {
+            // Named by the OBJ's mtllib line as well.
+            throw std::runtime_error(obj_path_ + ":" + std::to_string(line) + ": mtllib '" + name +
+                                     "': " + e.what());
+        }
+        TextBuffer buffer(text);
+        std::istream stream(&buffer);
+        tinyobj::LoadMtl(map, materials, &stream, warn, err);
+        files.resize(materials->size(), file);
+    }
+
+    std::string obj_path_;
+    std::string dir_;
+    const std::vector<ObjNameRef>& libraries_;
+};
+
+}  // namespace
+
+MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm::vec3& orientation,
+                   const glm::vec3& scale, int material, bool smooth, bool read_mtl,
+                   std::uint64_t texel_budget) {
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warn;
+    std::string err;
+    CheckedObj checked = check_obj(path);
+    TextBuffer buffer(checked.text);
+    std::istream text(&buffer);
+    CheckedMtlReader reader(path, checked.libraries);
+    // Triangulate polygons; the materials from the mtllib files, where
+    // asked for.
+    if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &text,
+                          read_mtl ? &reader : nullptr, true)) {
+        throw std::runtime_error(path + ": cannot read OBJ mesh" + (err.empty() ? "" : ": " + err));
+    }
+    // An OBJ without mtllib names materials it does not have: its usemtl
+    // are ignored, and every face takes `material`.
+    read_mtl = read_mtl && !checked.libraries.empty();
+    if (read_mtl) {
+        for (const ObjNameRef& used : checked.materials) {
+            if (std::none_of(materials.begin(), materials.end(),
+                             [&](const tinyobj::material_t& m) { return m.name == used.name; })) {
+                std::string files;
+                for (const ObjNameRef& lib : checked.libraries) {
+                    files += (files.empty() ? "" : ", ") + lib.name;
+                }
+                throw std::runtime_error(path + ":" + std::to_string(used.line) + ": usemtl '" +
+                                         used.name + "': no material of that name in its mtllib " +
+                                         "files (" + files + ")");
+            }
+        }
+    }
+    const std::size_t vertex_count = attrib.vertices.size() / 3;
+    const std::size_t normal_count = attrib.normals.size() / 3;
+    const std::size_t texcoord_count = attrib.texcoords.size() / 2;
+    PartBuilder parts;
+    for (const tinyobj::shape_t& s : shapes) {
+        for (std::size_t i = 0; i + 2 < s.mesh.indices.size(); i += 3) {
+            glm::vec3 p[3];
+            VertexNormalTriple n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
+            bool has_normals = true;
+            TriangleUv uv;
+            uv.present = true;
+            for (int k = 0; k < 3; ++k) {
+                const tinyobj::index_t& ref = s.mesh.indices[i + k];
+                const int texcoord = ref.texcoord_index;
+                if (texcoord >= 0 && static_cast<std::size_t>(texcoord) >= texcoord_count) {
+                    throw std::runtime_error(path + ": face of shape '" + s.name +
+                                             "' refers to texture coordinate " +
+                                             std::to_string(texcoord + 1) + ", but the file has " +
+                                             std::to_string(texcoord_count) + " (vt)");
+                }
+                if (texcoord < 0) {
+                    uv.present = false;
+                } else {
+                    uv.uv[k] = glm::vec2(attrib.texcoords[2 * texcoord],
+                                         attrib.texcoords[2 * texcoord + 1]);
+                }
+                const int index = ref.vertex_index;
+                if (index < 0 || static_cast<std::size_t>(index) >= vertex_count) {
+                    throw std::runtime_error(path + ": face of shape '" + s.name +
+                                             "' refers to vertex " + std::to_string(index + 1) +
+                                             ", but the file has " + std::to_string(vertex_count) +
+                                             " vertices");
+                }
+                p[k] = glm::vec3(attrib.vertices[3 * index], attrib.vertices[3 * index + 1],
+                                 attrib.vertices[3 * index + 2]);
+                const int normal = ref.normal_index;
+                if (normal >= 0 && static_cast<std::size_t>(normal) >= normal_count) {
+                    throw std::runtime_error(path + ": face of shape '" + s.name +
+                                             "' refers to normal " + std::to_string(normal + 1) +
+                                             ", but the file has " + std::to_string(normal_count) +
+                                             " normals (vn)");
+                }
+                if (normal < 0) {
+                    has_normals = false;
+                    continue;
+                }
+                n[k] = glm::vec3(attrib.normals[3 * normal], attrib.normals[3 * normal + 1],
+                                 attrib.normals[3 * normal + 2]);
+                // A zero normal (some exporters write "vn 0 0 0") shades flat.
+                if (!(glm::length(n[k]) > 0.0f)) {
+                    has_normals = false;
+                }
+            }
+            const std::size_t face = i / 3;
+            const int id =
+                read_mtl && face < s.mesh.material_ids.size() ? s.mesh.material_ids[face] : -1;
+            parts.add(id, p, n, has_normals, smooth, uv);
+        }
+    }
+    return parts.finish(
+        path, "OBJ mesh", model_matrix(position, orientation, scale), material,
+        [&](int id, MeshParts& mesh) {
+            if (id < 0) {
+                return -1;
+            }
+            const std::size_t k = static_cast<std::size_t>(id);
+            const std::string& file = k < reader.files.size() ? reader.files[k] : path;
+            Material m = material_from_mtl(materials[k], file);
+            // The texture a statement (key) of the material names, as
+            // an index into mesh.textures; -1 where it names none.
+            const auto load = [&](const std::string& map, const char* key) {
+                if (map.empty()) {
+                    return -1;
+                }
+                const std::string texture = texture_path_beside(file, map);
+                return texture_index(mesh, texture, [&] {
+                    return load_texture_file(file + ": material '" + printable(m.name, 60) +
+                                                 "': " + key + " '" + printable(map, 200) + "'",
+                                             texture, texel_budget - texel_count(mesh.textures));
+                });
+            };
+            const tinyobj::material_t& mtl = materials[k];
+            const char* key = "";
+            const std::string map = mtl_texture_name(mtl, m, &key);
+            m.texture = load(map, key);
+            if (is_microfacet(m.type)) {
+                m.roughness_texture = load(mtl.roughness_texname, "map_Pr");
+                m.metallic_texture = load(mtl.metallic_texname, "map_Pm");
+            }
+            if (m.alpha_mode != AlphaMode::opaque) {
+                m.alpha_texture = load(mtl.alpha_texname, "map_d");
+            }
+            if (m.type != MaterialType::emissive) {
+                // A normal map: norm, or map_Bump as Blender reads it.
+                m.normal_texture = mtl.normal_texname.empty() ? load(mtl.bump_texname, "map_Bump")
+                                                              : load(mtl.normal_texname, "norm");
+            }
+            mesh.materials.push_back(m);
+            return static_cast<int>(mesh.materials.size()) - 1;
+        });
+}
+
+Shape load_obj_mesh(const std::string& path, const glm::vec3& position,
+                    const glm::vec3& orientation, const glm::vec3& scale, int material,
+                    bool smooth) {
+    return load_obj(path, position, orientation, scale, material, smooth, false, max_scene_texels)
+        .parts[0]
+        .shape;
+}
+
+}  // namespace trac0r
