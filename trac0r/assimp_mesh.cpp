@@ -211,6 +211,10 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
                 bool has_normals = mesh.HasNormals();
                 TriangleUv uv;
                 uv.present = mesh.HasTextureCoords(0);
+                // glTF's TANGENT (assimp gives its xyz, and its w as the
+                // bitangent cross(normal, xyz) w).
+                VertexTangentTriple tangent{};
+                bool has_tangents = has_normals && mesh.HasTangentsAndBitangents();
                 for (int k = 0; k < 3; ++k) {
                     const unsigned index = corners[k];
                     if (index >= mesh.mNumVertices) {
@@ -236,10 +240,23 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
                         n[k] = glm::vec3(vn.x, vn.y, vn.z);
                         has_normals = is_finite(n[k]) && glm::length(n[k]) > 0.0f;
                     }
+                    if (has_tangents) {
+                        const aiVector3D& t = mesh.mTangents[index];
+                        const aiVector3D& vn = mesh.mNormals[index];
+                        const aiVector3D& b = mesh.mBitangents[index];
+                        const float handedness = glm::dot(
+                            glm::cross(glm::vec3(vn.x, vn.y, vn.z), glm::vec3(t.x, t.y, t.z)),
+                            glm::vec3(b.x, b.y, b.z));
+                        const aiVector3D moved = aiMatrix3x3(to_world) * t;
+                        const float w = handedness < 0.0f ? -1.0f : 1.0f;
+                        tangent[k] = glm::vec4(moved.x, moved.y, moved.z, mirrored ? -w : w);
+                        has_tangents = is_finite(glm::vec3(tangent[k])) &&
+                                       glm::length(glm::vec3(tangent[k])) > 0.0f;
+                    }
                 }
                 // A PLY has no materials (assimp gives it a default one).
                 parts.add(file_materials && !ply ? static_cast<int>(mesh.mMaterialIndex) : -1, p, n,
-                          has_normals, smooth, uv);
+                          has_normals, smooth, uv, has_tangents ? &tangent : nullptr);
             }
         }
     }

@@ -31,17 +31,21 @@ int texture_index(MeshParts& mesh, const std::string& source, Load load) {
 std::string texture_path_beside(const std::string& mtl_file, std::string name);
 
 // Faces grouped into parts by a material key (first use first), with
-// their normals; what load_obj and load_assimp fill.
+// their normals, texture coordinates and tangents; what load_obj and
+// load_assimp fill.
 struct PartBuilder {
     std::vector<int> key;
     std::vector<std::vector<Triangle>> triangles;
     std::vector<std::vector<VertexNormalTriple>> normals;
     std::vector<std::vector<TriangleUv>> uvs;
+    std::vector<std::vector<VertexTangentTriple>> tangents;  // the file's
     std::vector<bool> any_smooth;
     std::vector<bool> any_uv;
+    std::vector<bool> any_tangent;
 
+    // `tangent`: the file's at the face's corners, or nullptr for none.
     void add(int material_key, const glm::vec3 p[3], VertexNormalTriple n, bool has_normals,
-             bool smooth, const TriangleUv& uv) {
+             bool smooth, const TriangleUv& uv, const VertexTangentTriple* tangent = nullptr) {
         std::size_t part =
             static_cast<std::size_t>(std::find(key.begin(), key.end(), material_key) - key.begin());
         if (part == key.size()) {
@@ -49,8 +53,10 @@ struct PartBuilder {
             triangles.emplace_back();
             normals.emplace_back();
             uvs.emplace_back();
+            tangents.emplace_back();
             any_smooth.push_back(false);
             any_uv.push_back(false);
+            any_tangent.push_back(false);
         }
         triangles[part].emplace_back(p[0], p[1], p[2]);
         if (!has_normals || !smooth) {
@@ -61,6 +67,8 @@ struct PartBuilder {
         any_uv[part] = any_uv[part] || uv.present;
         // Coordinates of some corners only: none.
         uvs[part].push_back(uv.present ? uv : TriangleUv());
+        any_tangent[part] = any_tangent[part] || tangent != nullptr;
+        tangents[part].push_back(tangent != nullptr ? *tangent : VertexTangentTriple{});
     }
 
     // The parts as shapes; `material_of(key, mesh)` maps a key to the
@@ -80,8 +88,12 @@ struct PartBuilder {
             if (!any_uv[part]) {
                 uvs[part].clear();
             }
+            if (!any_tangent[part]) {
+                tangents[part].clear();
+            }
             MeshPart p;
-            p.shape = make_shape(triangles[part], model, material, normals[part], uvs[part]);
+            p.shape = make_shape(triangles[part], model, material, normals[part], uvs[part],
+                                 tangents[part]);
             p.material = material_of(key[part], mesh);
             mesh.parts.push_back(std::move(p));
         }

@@ -121,6 +121,15 @@ std::string mesh_to_wire(const PartBuilder& parts, const std::vector<int>& part_
                 w.u8(t.present ? 1 : 0);
             }
         }
+        w.u8(parts.any_tangent[part] ? 1 : 0);
+        if (parts.any_tangent[part]) {
+            for (const VertexTangentTriple& t : parts.tangents[part]) {
+                for (const glm::vec4& v : t) {
+                    w.vec3(glm::vec3(v));
+                    w.f32(v.w);
+                }
+            }
+        }
     }
     w.u64(files.materials.size());
     for (const Material& m : files.materials) {
@@ -162,7 +171,7 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         throw WireError("it does not begin as one");
     }
     MeshParts mesh;
-    const std::size_t part_count = r.count(4 + 8 + 36 + 2, "parts");
+    const std::size_t part_count = r.count(4 + 8 + 36 + 3, "parts");
     if (part_count == 0) {
         throw WireError("no parts");
     }
@@ -212,8 +221,25 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
                 t.present = present == 1;
             }
         }
+        std::vector<VertexTangentTriple> tangents;
+        const std::uint8_t has_tangents = r.get<std::uint8_t>();
+        if (has_tangents > 1) {
+            throw WireError("a part's tangents neither there nor not");
+        }
+        if (has_tangents == 1) {
+            tangents.resize(n);
+            for (VertexTangentTriple& t : tangents) {
+                for (glm::vec4& v : t) {
+                    const glm::vec3 direction = r.vec3("tangent");
+                    v = glm::vec4(direction, r.get<float>());
+                    if (v.w != 0.0f && v.w != 1.0f && v.w != -1.0f) {
+                        throw WireError("a tangent's sign that is not -1, 0 or 1");
+                    }
+                }
+            }
+        }
         MeshPart p;
-        p.shape = make_shape(std::move(triangles), model, material, normals, uvs);
+        p.shape = make_shape(std::move(triangles), model, material, normals, uvs, tangents);
         p.material = id;
         part_materials.push_back(id);
         mesh.parts.push_back(std::move(p));

@@ -251,6 +251,7 @@ enum RenderFrameArg : cl_uint {
     arg_environment,    // __global const float4*
     arg_distant_count,  // uint
     arg_light_nodes,    // __global const LightTreeNode*
+    arg_tangents,       // __global const VertexTangents*
 };
 
 // Sets render_frame's argument `index` to `value`: a cl_mem for a buffer,
@@ -271,6 +272,7 @@ struct SceneBuffers {
     OpenClMem lights;
     OpenClMem normals;
     OpenClMem uvs;
+    OpenClMem tangents;
     OpenClMem textures;
     OpenClMem texels;
     OpenClMem environment;
@@ -294,6 +296,7 @@ SceneBuffers upload_scene(cl_context context, const PackedScene& scene, std::uin
     check("the scene's lights", sizeof(scene.lights[0]) * scene.lights.size());
     check("the scene's vertex normals", sizeof(scene.normals[0]) * scene.normals.size());
     check("the scene's texture coordinates", sizeof(scene.uvs[0]) * scene.uvs.size());
+    check("the scene's tangents", sizeof(scene.tangents[0]) * scene.tangents.size());
     check("the scene's texture records", sizeof(scene.textures[0]) * scene.textures.size());
     check("the scene's texels", sizeof(scene.texels[0]) * scene.texels.size());
     check("the environment map", sizeof(glm::vec4) * scene.environment.size());
@@ -307,6 +310,7 @@ SceneBuffers upload_scene(cl_context context, const PackedScene& scene, std::uin
     buffers.lights = upload(context, scene.lights);
     buffers.normals = upload(context, scene.normals);
     buffers.uvs = upload(context, scene.uvs);
+    buffers.tangents = upload(context, scene.tangents);
     buffers.textures = upload(context, scene.textures);
     buffers.texels = upload(context, scene.texels);
     buffers.environment = upload(context, scene.environment);
@@ -517,6 +521,7 @@ bool OpenClBackend::render_frame_cancellable(const kernel::CameraRecord& camera,
     set_arg(k, arg_environment, state_->scene.environment.get());
     set_arg(k, arg_distant_count, state_->distant_count);
     set_arg(k, arg_light_nodes, state_->scene.light_nodes.get());
+    set_arg(k, arg_tangents, state_->scene.tangents.get());
     std::size_t global = 0;
     const std::size_t* local = nullptr;  // the driver's choice
     if (state_->bvh) {

@@ -5,6 +5,7 @@
 #include "trac0r/kernel/material.h"
 #include "trac0r/kernel/ray_offset.h"
 #include "trac0r/light_list.h"
+#include "trac0r/tangents.h"
 
 #include <algorithm>
 #include <cmath>
@@ -104,6 +105,7 @@ kernel::SceneView PackedScene::view() const {
     v.features = features;
     v.normals = normals.data();
     v.uvs = uvs.data();
+    v.tangents = tangents.data();
     v.textures = textures.data();
     v.texels = texels.data();
     v.environment = environment.data();
@@ -120,6 +122,7 @@ struct UsableTriangle {
     unsigned shape;
     const VertexNormalTriple* normals;  // nullptr: flat
     const TriangleUv* uv;               // nullptr: none
+    std::uint32_t index;                // in its shape
 };
 
 // The thesis' structure: each shape's usable triangles in a run, one AABB.
@@ -262,6 +265,42 @@ void pack_textures(const Scene& scene, const std::vector<UsableTriangle>& usable
     }
 }
 
+// The tangents of the packed triangles whose material has a normal map
+// (MaterialRecord.maps.z, set by pack_textures): their shape's file's, or
+// uv_tangents' where it gives none (computed once per shape).
+void pack_tangents(const Scene& scene, const std::vector<UsableTriangle>& usable,
+                   const std::vector<std::uint32_t>& packed_index, PackedScene& packed) {
+    const auto mapped = [&](const UsableTriangle& u) {
+        return u.uv != nullptr && packed.materials[u.material].maps.z != 0u;
+    };
+    if (std::none_of(usable.begin(), usable.end(), mapped)) {
+        return;
+    }
+    packed.tangents.assign(usable.size(), kernel::VertexTangents{});
+    std::vector<std::vector<VertexTangentTriple>> computed(scene.shapes.size());
+    for (std::size_t u = 0; u < usable.size(); ++u) {
+        if (!mapped(usable[u])) {
+            continue;
+        }
+        const Shape& shape = scene.shapes[usable[u].shape];
+        const std::uint32_t index = usable[u].index;
+        const VertexTangentTriple* t = nullptr;
+        if (index < shape.tangents.size() && shape.tangents[index][0].w != 0.0f) {
+            t = &shape.tangents[index];
+        } else {
+            std::vector<VertexTangentTriple>& own = computed[usable[u].shape];
+            if (own.empty()) {
+                own = uv_tangents(shape);
+            }
+            t = &own[index];
+        }
+        kernel::VertexTangents& record = packed.tangents[packed_index[u]];
+        record.t0 = (*t)[0];
+        record.t1 = (*t)[1];
+        record.t2 = (*t)[2];
+    }
+}
+
 // The power of two the packer multiplies a scene's coordinates by. The
 // triangle test's distance has a numerator that grows as the cube of the
 // scene's size (kernel/triangle.h): a scene 1e13 across overflowed it and
@@ -313,8 +352,8 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
                     : nullptr;
             const TriangleUv* uv =
                 index < shape.uvs.size() && shape.uvs[index].present ? &shape.uvs[index] : nullptr;
-            usable.push_back(
-                {&t, static_cast<unsigned>(shape.material), static_cast<unsigned>(s), normals, uv});
+            usable.push_back({&t, static_cast<unsigned>(shape.material), static_cast<unsigned>(s),
+                              normals, uv, static_cast<std::uint32_t>(index)});
             magnitudes.push_back(
                 std::max({kernel::max_abs3(t.v0), kernel::max_abs3(t.v1), kernel::max_abs3(t.v2)}));
         }
@@ -342,7 +381,7 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
                 ++packed.dropped_degenerate_triangles;
                 continue;
             }
-            kept.push_back({&scaled.back(), u.material, u.shape, u.normals, u.uv});
+            kept.push_back({&scaled.back(), u.material, u.shape, u.normals, u.uv, u.index});
         }
         usable.swap(kept);
     }
@@ -392,6 +431,7 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
     }
     pack_normals(usable, packed_index, packed);
     pack_textures(scene, usable, packed_index, packed);
+    pack_tangents(scene, usable, packed_index, packed);
     pack_lights(scene, packed, packed_index, options.light_sampler);
     if (options.integrator == Integrator::nee && !packed.lights.empty()) {
         packed.features |= T0_FEATURE_NEE;

@@ -81,6 +81,9 @@ struct PackedScene {
     std::vector<kernel::TriangleUVs> uvs;
     std::vector<kernel::TextureRecord> textures;
     std::vector<std::uint32_t> texels;
+    // By packed triangle, its tangents, where a material of the scene has
+    // a normal map (the file's, else uv_tangents'); else empty.
+    std::vector<kernel::VertexTangents> tangents;
     // With T0_FEATURE_ENVIRONMENT (else empty): the environment's texels
     // and CDFs (SceneView.environment); the lights list's distant lights
     // (environment and suns), first in it.

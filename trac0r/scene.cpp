@@ -105,6 +105,13 @@ std::uint64_t scene_digest(const Scene& scene) {
                 h.value(uv.y);
             }
         }
+        h.value(s.tangents.size());
+        for (const VertexTangentTriple& t : s.tangents) {
+            for (const glm::vec4& v : t) {
+                h.vec3(glm::vec3(v));
+                h.value(v.w);
+            }
+        }
     }
     h.value(scene.textures.size());
     for (const Texture& t : scene.textures) {

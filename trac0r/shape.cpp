@@ -28,7 +28,8 @@ glm::mat4 model_matrix(const glm::vec3& position, const glm::vec3& orientation,
 
 Shape make_shape(std::vector<Triangle> local_triangles, const glm::mat4& model, int material,
                  const std::vector<VertexNormalTriple>& local_normals,
-                 const std::vector<TriangleUv>& local_uvs) {
+                 const std::vector<TriangleUv>& local_uvs,
+                 const std::vector<VertexTangentTriple>& local_tangents) {
     // A mirroring transform turns the winding inside out; swap two vertices
     // so normals keep pointing out of closed shapes (glass needs that).
     const bool mirrored = glm::determinant(glm::mat3(model)) < 0.0f;
@@ -66,6 +67,25 @@ Shape make_shape(std::vector<Triangle> local_triangles, const glm::mat4& model, 
         for (TriangleUv& t : shape.uvs) {
             std::swap(t.uv[1], t.uv[2]);
         }
+    }
+    shape.tangents.reserve(local_tangents.size());
+    const glm::mat3 linear(model);
+    for (const VertexTangentTriple& t : local_tangents) {
+        VertexTangentTriple world{};
+        bool usable = t[0].w != 0.0f;
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3 moved = linear * glm::vec3(t[k]);
+            const float length = glm::length(moved);
+            usable = usable && is_finite(moved) && length > 0.0f && std::isfinite(length);
+            world[k] = glm::vec4(usable ? moved / length : glm::vec3(0.0f),
+                                 mirrored ? -t[k].w : t[k].w);
+        }
+        if (!usable) {
+            world = VertexTangentTriple{};  // none: computed from the coordinates
+        } else if (mirrored) {
+            std::swap(world[1], world[2]);
+        }
+        shape.tangents.push_back(world);
     }
     return shape;
 }

@@ -19,6 +19,12 @@ namespace trac0r {
 // where it has none (it is shaded flat).
 using VertexNormalTriple = std::array<glm::vec3, 3>;
 
+// A triangle's tangents at v0, v1, v2, for normal maps: xyz the direction
+// of increasing u, w the bitangent's sign (the bitangent, the direction of
+// increasing v, is w * cross(normal, tangent), as glTF's TANGENT and
+// MikkTSpace define it); all zero where it has none.
+using VertexTangentTriple = std::array<glm::vec4, 3>;
+
 // A triangle's texture coordinates at v0, v1, v2 (u right, v up from the
 // image's bottom), where the file gives them.
 struct TriangleUv {
@@ -33,6 +39,10 @@ struct Shape {
     std::vector<VertexNormalTriple> normals;
     // Empty: no triangle has texture coordinates. Else one per triangle.
     std::vector<TriangleUv> uvs;
+    // Empty: the file gives no tangents (they are computed from the
+    // texture coordinates where a normal map needs them, tangents.h). Else
+    // one per triangle.
+    std::vector<VertexTangentTriple> tangents;
     AABB aabb;
     int material = 0;    // index into Scene::materials
     std::string source;  // a mesh's file, as the scene loader found it; "" for the rest
@@ -46,10 +56,12 @@ glm::mat4 model_matrix(const glm::vec3& position, const glm::vec3& orientation,
 // Applies the model matrix to every vertex and recomputes the AABB; and to
 // the vertex normals, where given (one per triangle), by its inverse
 // transpose. Texture coordinates, where given (one per triangle), stay
-// with their vertices.
+// with their vertices; tangents, where given, turn with the model matrix
+// (their sign flips where it mirrors).
 Shape make_shape(std::vector<Triangle> local_triangles, const glm::mat4& model, int material,
                  const std::vector<VertexNormalTriple>& local_normals = {},
-                 const std::vector<TriangleUv>& local_uvs = {});
+                 const std::vector<TriangleUv>& local_uvs = {},
+                 const std::vector<VertexTangentTriple>& local_tangents = {});
 
 // The unit plane in local xz (normal +y), size (x, z).
 Shape make_plane(const glm::vec3& position, const glm::vec3& orientation, const glm::vec2& size,

@@ -7,12 +7,13 @@
 #include "trace.h"
 
 // The kernel's view of the packed buffers (PackedScene::view on the host).
-// A kernel that reads no materials, lights, normals, textures or
+// A kernel that reads no materials, lights, normals, tangents, textures or
 // environment (the ray-cast benchmark's) passes 0 for them.
 SceneView scene_view(__global const TriangleRecord* triangles, __global const ShapeRecord* shapes,
                      __global const MaterialRecord* materials, __global const BvhNode* nodes,
                      __global const TrianglePacket* packets, __global const LightRecord* lights,
                      __global const VertexNormals* normals, __global const TriangleUVs* uvs,
+                     __global const VertexTangents* tangents,
                      __global const TextureRecord* textures, __global const uint* texels,
                      __global const float4* environment, __global const LightTreeNode* light_nodes,
                      uint shape_count, uint light_count, uint distant_count) {
@@ -25,6 +26,7 @@ SceneView scene_view(__global const TriangleRecord* triangles, __global const Sh
     scene.lights = lights;
     scene.normals = normals;
     scene.uvs = uvs;
+    scene.tangents = tangents;
     scene.textures = textures;
     scene.texels = texels;
     scene.environment = environment;
@@ -125,10 +127,11 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
                            __global const TriangleUVs* uvs,
                            __global const TextureRecord* textures, __global const uint* texels,
                            __global const float4* environment, uint distant_count,
-                           __global const LightTreeNode* light_nodes) {
-    const SceneView scene =
-        scene_view(triangles, shapes, materials, nodes, packets, lights, normals, uvs, textures,
-                   texels, environment, light_nodes, shape_count, light_count, distant_count);
+                           __global const LightTreeNode* light_nodes,
+                           __global const VertexTangents* tangents) {
+    const SceneView scene = scene_view(triangles, shapes, materials, nodes, packets, lights,
+                                       normals, uvs, tangents, textures, texels, environment,
+                                       light_nodes, shape_count, light_count, distant_count);
     if (!T0_HAS_FEATURE(&scene, T0_FEATURE_BVH)) {
         // A pixel a work-item.
         const uint pixel = (uint)get_global_id(0);

@@ -161,6 +161,17 @@ typedef struct T0_ALIGN16 VertexNormals {
     float4 n2;  // xyz: unit normal at v2
 } VertexNormals;
 
+// A triangle's tangents at v0, v1, v2, by triangle index, for normal maps
+// (MaterialRecord.maps.z): xyz the direction of increasing u, w the sign
+// of the bitangent (the direction of increasing v is w cross(n, t)), as
+// glTF's TANGENT and MikkTSpace give them; all zero where the triangle has
+// none (its normal map is not applied).
+typedef struct T0_ALIGN16 VertexTangents {
+    float4 t0;
+    float4 t1;
+    float4 t2;
+} VertexTangents;
+
 // A triangle's texture coordinates at v0, v1, v2 (T0_FEATURE_TEXTURE), by
 // triangle index, with u to the right and v up from the image's bottom
 // row (OBJ's and assimp's convention). uv2.z is 1 where the triangle has
@@ -236,6 +247,8 @@ typedef struct SceneView {
     T0_GLOBAL const TriangleUVs* uvs;
     T0_GLOBAL const TextureRecord* textures;
     T0_GLOBAL const t0_u32* texels;
+    // By triangle; only where a material of the scene has a normal map.
+    T0_GLOBAL const VertexTangents* tangents;
     // Only with T0_FEATURE_ENVIRONMENT: the map's texels row by row from
     // the top (xyz radiance, w the row's CDF through this texel), then one
     // a row (x: the rows' CDF through it) (environment.h).
@@ -265,6 +278,7 @@ T0_STATIC_ASSERT_SIZE(LightRecord, 80);
 T0_STATIC_ASSERT_SIZE(LightTreeNode, 64);
 T0_STATIC_ASSERT_SIZE(VertexNormals, 48);
 T0_STATIC_ASSERT_SIZE(TriangleUVs, 32);
+T0_STATIC_ASSERT_SIZE(VertexTangents, 48);
 T0_STATIC_ASSERT_SIZE(TextureRecord, 16);
 T0_STATIC_ASSERT_SIZE(CameraRecord, 96);
 T0_STATIC_ASSERT_SIZE(AccumPixel, 48);
