@@ -139,8 +139,7 @@ void require_tilted_normal_map(bool opencl, const glm::vec4* tangent = nullptr) 
     mapped.textures.push_back(texture_of(2, 2, {texel, texel, texel, texel}));
     if (tangent != nullptr) {
         Shape& floor_shape = mapped.shapes[0];
-        floor_shape.tangents.assign(floor_shape.triangles.size(),
-                                    {*tangent, *tangent, *tangent});
+        floor_shape.tangents.assign(floor_shape.triangles.size(), {*tangent, *tangent, *tangent});
     }
     REQUIRE((pack_scene(mapped).materials[0].maps.z) == 1u);
     const double flat_expected = albedo / pi * irradiance * towards.y;
@@ -184,8 +183,10 @@ namespace {
 // A 1 m emitter at height 0.5 over the floor, facing down, with an
 // emission texture of one black and one white column (or none): half
 // its light, on average over it, both where the camera sees it and where
-// the floor's light samples land on it.
-Scene emitter_over_floor(bool textured) {
+// the floor's light samples land on it. `principled`: the lamp is a
+// principled material (white, metallic 0, roughness 0.5) that emits the
+// same, with its emission texture.
+Scene emitter_over_floor(bool textured, bool principled = false) {
     Material floor;
     floor.name = "floor";
     floor.color = glm::vec3(0.5f);
@@ -195,6 +196,13 @@ Scene emitter_over_floor(bool textured) {
     lamp.type = MaterialType::emissive;
     lamp.color = glm::vec3(1.0f);
     lamp.emittance = 3.0f;
+    if (principled) {
+        lamp.type = MaterialType::principled;
+        lamp.emittance = 0.0f;
+        lamp.emission = glm::vec3(3.0f);
+        lamp.metallic = 0.0f;
+        lamp.roughness = 0.5f;
+    }
     scene.materials.push_back(lamp);
     Shape quad = make_plane(glm::vec3(0.0f, 0.5f, 0.0f), glm::vec3(3.14159265f, 0.0f, 0.0f),
                             glm::vec2(1.0f), 1);
@@ -209,7 +217,7 @@ Scene emitter_over_floor(bool textured) {
     }
     scene.shapes.push_back(quad);
     if (textured) {
-        scene.materials[1].texture = 0;
+        (principled ? scene.materials[1].emission_texture : scene.materials[1].texture) = 0;
         scene.textures.push_back(texture_of(2, 1, {rgba(0, 0, 0), rgba(255, 255, 255)}));
     }
     scene.camera.position = glm::vec3(0.0f, 0.4f, 1.2f);
@@ -222,15 +230,21 @@ Scene emitter_over_floor(bool textured) {
 
 }  // namespace
 
-TEST_CASE("an emission texture scales what an emitter sends, seen and sampled", "[texture][maps]") {
+namespace {
+
+void require_half_emission(bool principled) {
     // Bilinear between the two texel centres and repeating, the texture
     // averages exactly 1/2 over the quad; the floor under it gets half the
     // light. Tolerance: 5 standard errors of the block means (the floor's
     // light samples land on black or white).
-    const Scene plain = emitter_over_floor(false);
-    const Scene textured = emitter_over_floor(true);
+    const Scene plain = emitter_over_floor(false, principled);
+    const Scene textured = emitter_over_floor(true, principled);
     REQUIRE((pack_scene(textured).features & T0_FEATURE_TEXTURE) != 0u);
-    REQUIRE(pack_scene(textured).materials[1].type.y == 1u);
+    if (principled) {
+        REQUIRE(pack_scene(textured).materials[1].emission.w == 1.0f);
+    } else {
+        REQUIRE(pack_scene(textured).materials[1].type.y == 1u);
+    }
     PackOptions options;
     options.integrator = Integrator::nee;
     options.sampler = SamplerKind::sobol;
@@ -252,6 +266,90 @@ TEST_CASE("an emission texture scales what an emitter sends, seen and sampled", 
     const double se = std::sqrt(var_b) / n;
     CAPTURE(sum_a / n, sum_b / n, se);
     REQUIRE(std::fabs(sum_b / n - 0.5 * sum_a / n) <= 5.0 * se + 1e-6);
+}
+
+}  // namespace
+
+TEST_CASE("an emission texture scales what an emitter sends, seen and sampled", "[texture][maps]") {
+    require_half_emission(false);
+}
+
+TEST_CASE("a principled material's emission texture scales what it sends, seen and sampled",
+          "[texture][maps]") {
+    require_half_emission(true);
+}
+
+TEST_CASE("a principled material's emission lights the floor as an emitter's (CPU, OpenCL)",
+          "[maps][emission][opencl]") {
+    // Direct light alone (max_depth 2): the camera sees the lamp's
+    // emission, and the floor the light it sends, by the same light
+    // samples and the same MIS; that the principled lamp also reflects
+    // would take a third vertex. So the two images are the same, to float
+    // rounding (the emitter's radiance is colour x emittance, the other's
+    // given: 1e-6).
+    for (bool opencl : {false, true}) {
+        CAPTURE(opencl);
+        Scene emitter = emitter_over_floor(false, false);
+        Scene principled = emitter_over_floor(false, true);
+        emitter.render.max_depth = 2;
+        principled.render.max_depth = 2;
+        const PackedScene packed = pack_scene(principled);
+        REQUIRE((packed.features & T0_FEATURE_EMITTANCE) != 0u);
+        REQUIRE(packed.lights.size() == 2);  // the lamp's two triangles
+        const Image a = render(emitter, 8, opencl);
+        const Image b = render(principled, 8, opencl);
+        REQUIRE(mean_red(a) > 0.1);
+        for (std::size_t i = 0; i < a.pixels.size(); ++i) {
+            CAPTURE(i);
+            REQUIRE(b.pixels[i].x == Approx(a.pixels[i].x).epsilon(1e-6).margin(1e-7));
+            REQUIRE(b.pixels[i].y == Approx(a.pixels[i].y).epsilon(1e-6).margin(1e-7));
+        }
+    }
+}
+
+TEST_CASE("a principled material that emits also reflects", "[maps][emission]") {
+    // The camera under the lamp, looking up at the side it emits from
+    // (all it sees), with a point light beside the camera that the lamp
+    // reflects, over a black floor (which sends none of the lamp's own
+    // light back to it): it shows its emission plus what it reflects, the
+    // emission alone added to what the same material without it shows.
+    // Tolerance: 5 standard errors of the difference of the two means.
+    Scene lit = emitter_over_floor(false, true);
+    lit.camera.position = glm::vec3(0.0f, 0.1f, 0.0f);
+    lit.camera.direction = glm::vec3(0.0f, 1.0f, 0.0f);
+    lit.camera.world_up = glm::vec3(0.0f, 0.0f, -1.0f);
+    lit.render.max_depth = 3;
+    lit.materials[0].color = glm::vec3(0.0f);
+    Lamp bulb;
+    bulb.position = glm::vec3(0.2f, 0.2f, 0.1f);
+    bulb.power = 0.05f;
+    lit.lamps.push_back(bulb);
+    Scene dark = lit;
+    dark.materials[1].emission = glm::vec3(0.0f);
+    PackOptions options;
+    options.integrator = Integrator::nee;
+    options.sampler = SamplerKind::sobol;
+    Renderer a(lit, std::make_unique<CpuBackend>(), 3, options);
+    Renderer b(dark, std::make_unique<CpuBackend>(), 3, options);
+    const int frames = 64;
+    for (int i = 0; i < frames; ++i) {
+        a.render_frame();
+        b.render_frame();
+    }
+    double sum_a = 0.0, sum_b = 0.0, var = 0.0;
+    const std::size_t count = a.image().pixels.size();
+    for (std::size_t i = 0; i < count; ++i) {
+        sum_a += a.image().pixels[i].x;
+        sum_b += b.image().pixels[i].x;
+        var +=
+            (a.accumulator()[i].moments.y + b.accumulator()[i].moments.y) / (frames - 1) / frames;
+    }
+    const double reflected = sum_b / count;
+    const double difference = (sum_a - sum_b) / count;
+    const double se = std::sqrt(var) / count;
+    CAPTURE(reflected, difference, se);
+    REQUIRE(reflected > 0.05);  // it reflects
+    REQUIRE(std::fabs(difference - 3.0) <= 5.0 * se + 1e-5);
 }
 
 TEST_CASE("metallic-roughness textures scale the factors (green roughness, blue metallic)",

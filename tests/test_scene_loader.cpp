@@ -980,9 +980,13 @@ TEST_CASE("PLY and glTF 2.0 meshes, with their normals and materials", "[scene_l
         CHECK(copper.ior == 1.5f);
         CHECK(copper.specular == 1.0f);
         const Material& glow = scene.materials[static_cast<std::size_t>(scene.shapes[1].material)];
-        CHECK(glow.type == MaterialType::emissive);
-        CHECK(glow.emittance == 1.0f);
-        CHECK(glow.color == glm::vec3(1.0f, 0.5f, 0.25f));
+        // Emissive and reflecting (glTF's default base colour, metallic
+        // and roughness), as every glTF material.
+        CHECK(glow.type == MaterialType::principled);
+        CHECK(glow.emission == glm::vec3(1.0f, 0.5f, 0.25f));
+        CHECK(glow.color == glm::vec3(1.0f));
+        CHECK(glow.metallic == 1.0f);
+        CHECK(glow.roughness == 1.0f);
         // Not doubleSided (glTF's default): it emits from its front alone.
         CHECK_FALSE(glow.two_sided);
         // The node's translation applied: z = 1 + 2.

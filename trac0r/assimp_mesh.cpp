@@ -274,6 +274,10 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
             return -1;
         }
         Material out = material_from_assimp(m, path);
+        if (out.type == MaterialType::principled && out.emission != glm::vec3(0.0f)) {
+            out.emission_texture = assimp_texture(*scene, m, path, files, texel_budget,
+                                                  {aiTextureType_EMISSIVE}, "emissive");
+        }
         if (out.type == MaterialType::emissive) {
             out.texture = assimp_texture(*scene, m, path, files, texel_budget,
                                          {aiTextureType_EMISSIVE}, "emissive");

@@ -44,12 +44,17 @@ float roughness_from_ns(float ns) {
     return 1.0f - std::sqrt(std::min(std::max(ns, 0.0f), 1000.0f) / 1000.0f);
 }
 
-// An emissive material of emission e (each channel in [0,
-// max_emitted_radiance]).
-Material emitter(const std::string& where, const char* key, const glm::vec3& e) {
+// An emission e, checked: each channel in [0, max_emitted_radiance].
+glm::vec3 checked_emission(const std::string& where, const char* key, const glm::vec3& e) {
     if (!(std::min({e.x, e.y, e.z}) >= 0.0f) || !(peak(e) <= max_emitted_radiance)) {
         throw std::runtime_error(where + key + ": expected each in [0, 1e30]");
     }
+    return e;
+}
+
+// An emissive material of emission e (checked_emission).
+Material emitter(const std::string& where, const char* key, const glm::vec3& e) {
+    checked_emission(where, key, e);
     Material out;
     out.type = MaterialType::emissive;
     out.emittance = peak(e);
@@ -133,9 +138,9 @@ bool is_default_material(const aiMaterial& m) {
 }
 
 // One of the renderer's materials for a glTF (or other assimp) material:
-// emissive where it emits, (rough) glass where it transmits or is not
-// opaque, else principled: its base colour, metallic, roughness, ior and
-// specular factor.
+// (rough) glass where it transmits (what it emits is then left out), else
+// principled: its base colour, metallic, roughness, ior and specular
+// factor, and its emission (emissiveFactor x emissive strength).
 Material material_from_assimp(const aiMaterial& m, const std::string& file) {
     aiString name;
     m.Get(AI_MATKEY_NAME, name);
@@ -166,9 +171,7 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
     const glm::vec3 colour(base.r, base.g, base.b);
     const glm::vec3 emission = glm::vec3(emissive.r, emissive.g, emissive.b) * strength;
     Material out;
-    if (peak(emission) > 0.0f) {
-        out = emitter(where, "emissive", emission);
-    } else if (transmission > 0.0f) {
+    if (transmission > 0.0f) {
         out.type = MaterialType::glass;
         out.color = unit_colour(where, "base colour", colour);
         out.ior = ior > 1.0f ? ior : 1.5f;
@@ -182,8 +185,10 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
         out.metallic = unit_number(where, "metallic", metallic);
         out.ior = ior > 0.0f && std::isfinite(ior) ? ior : 1.5f;
         out.specular = unit_number(where, "specular", property(m, AI_MATKEY_SPECULAR_FACTOR, 1.0f));
+        // What it emits besides (glTF: every material reflects and emits).
+        out.emission = checked_emission(where, "emissive", emission);
     }
-    // An emitter of a glTF file emits from its front alone unless the
+    // A material of a glTF file emits from its front alone unless it is
     // material is doubleSided (glTF 2.0, 3.9.5), which assimp reports as
     // AI_MATKEY_TWOSIDED; other formats keep the thesis' two sides unless
     // they say otherwise.
@@ -196,8 +201,8 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
     if (mode != AlphaMode::opaque && out.type != MaterialType::emissive) {
         out.alpha_mode = mode;
         out.alpha = unit_number(where, "base colour alpha", base.a);
-        out.alpha_cutoff = unit_number(where, "alphaCutoff",
-                                       property(m, AI_MATKEY_GLTF_ALPHACUTOFF, 0.5f));
+        out.alpha_cutoff =
+            unit_number(where, "alphaCutoff", property(m, AI_MATKEY_GLTF_ALPHACUTOFF, 0.5f));
         out.alpha_channel = 3;
     }
     out.name = name.C_Str();
@@ -207,7 +212,8 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
 // The base-colour texture an MTL material names, for the material `out`
 // made of it: for an emitter its emission's (map_Ke), for a glossy or
 // conductor one the map of the colour it took (map_Ks with Ks, else
-// map_Kd), map_Kd for the others that take a texture; "" for none. *key is the statement's name, for messages.
+// map_Kd), map_Kd for the others that take a texture; "" for none. *key is the statement's name,
+// for messages.
 std::string mtl_texture_name(const tinyobj::material_t& m, const Material& out, const char** key) {
     *key = "map_Kd";
     if (out.type == MaterialType::emissive) {

@@ -154,7 +154,8 @@ Candidate lamp_light(const Lamp& lamp, float scale, double radius) {
 // The light list, picked in proportion to power: the environment, the
 // suns, the point and spot lamps, and every triangle that emits, in that
 // order (the distant lights first, as the kernel's escaped_radiance reads
-// them). A triangle's power is its emittance x luminance(colour) x area,
+// them). A triangle's power is the luminance of its emitted radiance
+// (emittance x luminance(colour), or a principled's emission) x area,
 // halved where it emits from one side (the radiance is the same over the
 // triangle; pi and the two sides are common factors, and the others'
 // powers are in the same unit). The CDF is summed in double and stored in
@@ -194,8 +195,12 @@ void pack_lights(const Scene& scene, PackedScene& packed,
         kernel::TriangleRecord& t = packed.triangles[i];
         const kernel::MaterialRecord& m = packed.materials[t.ids.x];
         const double sides = m.type.z != 0u ? 0.5 : 1.0;
-        const double p = static_cast<double>(m.params.x) * luminance(glm::vec3(m.color)) * 0.5 *
-                         t.normal.w * sides;
+        // colour x emittance, or a principled material's emission.
+        const double radiance =
+            m.type.x == T0_MATERIAL_PRINCIPLED
+                ? luminance(glm::vec3(m.emission))
+                : static_cast<double>(m.params.x) * luminance(glm::vec3(m.color));
+        const double p = radiance * 0.5 * t.normal.w * sides;
         if (p > 0.0 && std::isfinite(p)) {
             Candidate c;
             c.record = kernel::LightRecord{};

@@ -69,6 +69,12 @@ struct Material {
     float alpha_cutoff = 0.5f;
     int alpha_texture = -1;
     int alpha_channel = 3;
+    // principled: the radiance it emits besides what it reflects (glTF's
+    // emissiveFactor x KHR_materials_emissive_strength), times
+    // emission_texture (an index as texture's; -1 for none) where given.
+    // The other types emit colour x emittance (emitters, diffuse).
+    glm::vec3 emission{0.0f};
+    int emission_texture = -1;
     // Whether an emitting material emits from both sides (the thesis'), or
     // only from the front: the side its triangles' counter-clockwise
     // winding faces, as OBJ and glTF define it.
@@ -78,6 +84,12 @@ struct Material {
 // Whether a material of this type takes a base-colour texture (all but
 // glass; an emitter's multiplies its emission).
 inline bool takes_texture(MaterialType type) { return type != MaterialType::glass; }
+
+// The radiance a material emits: colour x emittance, or a principled
+// material's emission.
+inline glm::vec3 emitted_radiance(const Material& m) {
+    return m.type == MaterialType::principled ? m.emission : m.color * m.emittance;
+}
 
 // Whether the type is one of the GGX microfacet ones (kernel/rough_materials.h).
 inline bool is_microfacet(MaterialType type) {

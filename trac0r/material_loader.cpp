@@ -75,6 +75,10 @@ void read_material_parameters(const ObjectReader& o, Material& m) {
     if (m.type == MaterialType::conductor) {
         allowed.push_back("metal");
     }
+    if (m.type == MaterialType::principled) {
+        allowed.push_back("emission");
+        allowed.push_back("two_sided");
+    }
     o.allow_only(allowed, with_article(to_string(m.type)) + " material");
     m.two_sided = o.optional_bool("two_sided", true);
     read_metal(o, m);
@@ -88,18 +92,24 @@ void read_material_parameters(const ObjectReader& o, Material& m) {
                                     : o.optional_float(k.key, k.rule, k.fallback);
         }
     }
+    if (m.type == MaterialType::principled) {
+        m.emission = o.optional_vec3("emission", NumberRule::non_negative, glm::vec3(0.0f));
+    }
 }
 
 void check_emission(const ObjectReader& o, const Material& m) {
+    const bool principled = m.type == MaterialType::principled;
     const double emitted =
-        static_cast<double>(m.emittance) * std::max({m.color.x, m.color.y, m.color.z});
+        principled ? std::max({m.emission.x, m.emission.y, m.emission.z})
+                   : static_cast<double>(m.emittance) * std::max({m.color.x, m.color.y, m.color.z});
     if (emitted > static_cast<double>(max_emitted_radiance)) {
         char text[32];
         std::snprintf(text, sizeof text, "%.3g", emitted);
-        fail(o.at("emittance"), "the colour times the emittance is " + std::string(text) +
-                                    " in a channel, above 1e30, the most the renderer can "
-                                    "sum over a pixel's samples in float: scale the "
-                                    "scene's emittances down");
+        fail(o.at(principled ? "emission" : "emittance"),
+             std::string(principled ? "the emission" : "the colour times the emittance") + " is " +
+                 text +
+                 " in a channel, above 1e30, the most the renderer can "
+                 "sum over a pixel's samples in float: scale the scene's emission down");
     }
 }
 

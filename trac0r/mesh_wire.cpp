@@ -152,6 +152,8 @@ std::string mesh_to_wire(const PartBuilder& parts, const std::vector<int>& part_
         w.f32(m.alpha_cutoff);
         w.i32(m.alpha_texture);
         w.i32(m.alpha_channel);
+        w.vec3(m.emission);
+        w.i32(m.emission_texture);
     }
     w.u64(files.textures.size());
     for (const Texture& t : files.textures) {
@@ -244,7 +246,8 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         part_materials.push_back(id);
         mesh.parts.push_back(std::move(p));
     }
-    const std::size_t material_count = r.count(8 + 4 + 12 + 12 + 4 + 1 + 8 + 16 + 20, "materials");
+    const std::size_t material_count =
+        r.count(8 + 4 + 12 + 12 + 4 + 1 + 8 + 16 + 20 + 16, "materials");
     for (std::size_t i = 0; i < material_count; ++i) {
         Material m;
         m.name = r.text("bytes of a material's name");
@@ -276,6 +279,15 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         m.alpha_cutoff = r.get<float>();
         m.alpha_texture = r.get<std::int32_t>();
         m.alpha_channel = r.get<std::int32_t>();
+        m.emission = r.vec3("emission");
+        m.emission_texture = r.get<std::int32_t>();
+        if (!(std::min({m.emission.x, m.emission.y, m.emission.z}) >= 0.0f) ||
+            !(std::max({m.emission.x, m.emission.y, m.emission.z}) <= max_emitted_radiance) ||
+            m.emission_texture < -1 ||
+            (m.type != MaterialType::principled &&
+             (m.emission != glm::vec3(0.0f) || m.emission_texture != -1))) {
+            throw WireError("material " + std::to_string(i) + " with a bad emission");
+        }
         if (alpha_mode > 2u || !(m.alpha >= 0.0f && m.alpha <= 1.0f) ||
             !(m.alpha_cutoff >= 0.0f && m.alpha_cutoff <= 1.0f) || m.alpha_texture < -1 ||
             (m.alpha_channel != 0 && m.alpha_channel != 3)) {
@@ -329,7 +341,7 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
     }
     for (const Material& m : mesh.materials) {
         for (int texture : {m.texture, m.roughness_texture, m.metallic_texture, m.normal_texture,
-                            m.alpha_texture}) {
+                            m.alpha_texture, m.emission_texture}) {
             if (texture >= static_cast<int>(mesh.textures.size())) {
                 throw WireError("a material of texture " + std::to_string(texture) + " of " +
                                 std::to_string(mesh.textures.size()));

@@ -51,6 +51,7 @@ kernel::MaterialRecord pack_material(const Material& m) {
     if (m.type == MaterialType::principled) {
         r.color.w = m.metallic;
         r.eta.x = m.specular;
+        r.emission = glm::vec4(m.emission, 0.0f);
     }
     return r;
 }
@@ -217,7 +218,8 @@ void pack_textures(const Scene& scene, const std::vector<UsableTriangle>& usable
         return (valid(m.texture) && takes_texture(m.type)) || valid(m.alpha_texture) ||
                (is_microfacet(m.type) &&
                 (valid(m.roughness_texture) || valid(m.metallic_texture))) ||
-               (m.type != MaterialType::emissive && valid(m.normal_texture));
+               (m.type != MaterialType::emissive && valid(m.normal_texture)) ||
+               (m.type == MaterialType::principled && valid(m.emission_texture));
     };
     const auto textured = [&](const UsableTriangle& u) {
         return u.uv != nullptr && textured_material(scene.materials[u.material]);
@@ -251,6 +253,9 @@ void pack_textures(const Scene& scene, const std::vector<UsableTriangle>& usable
         if (material.type != MaterialType::emissive) {
             record.maps.z = one_past(material.normal_texture);
             record.k.w = material.normal_scale;
+        }
+        if (material.type == MaterialType::principled) {
+            record.emission.w = static_cast<float>(one_past(material.emission_texture));
         }
     }
     packed.uvs.assign(usable.size(), kernel::TriangleUVs{});
@@ -421,8 +426,8 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
         if (material.alpha_mode != AlphaMode::opaque) {
             packed.features |= T0_FEATURE_ALPHA;
         }
-        if (material.emittance > 0.0f &&
-            std::max({material.color.x, material.color.y, material.color.z}) > 0.0f) {
+        const glm::vec3 emitted = emitted_radiance(material);
+        if (std::max({emitted.x, emitted.y, emitted.z}) > 0.0f) {
             packed.features |= T0_FEATURE_EMITTANCE;
             if (!material.two_sided) {
                 packed.features |= T0_FEATURE_ONE_SIDED;

@@ -81,6 +81,8 @@ std::uint64_t scene_digest(const Scene& scene) {
         h.value(m.alpha_cutoff);
         h.value(m.alpha_texture);
         h.value(m.alpha_channel);
+        h.vec3(m.emission);
+        h.value(m.emission_texture);
     }
     h.value(scene.shapes.size());
     for (const Shape& s : scene.shapes) {

@@ -183,7 +183,8 @@ void print_lights(const trac0r::Scene& scene, const trac0r::PackedScene& p) {
     }
     const std::size_t one_sided = static_cast<std::size_t>(std::count_if(
         scene.materials.begin(), scene.materials.end(), [](const trac0r::Material& m) {
-            return !m.two_sided && m.emittance > 0.0f;
+            const glm::vec3 e = trac0r::emitted_radiance(m);
+            return !m.two_sided && std::max({e.x, e.y, e.z}) > 0.0f;
         }));
     const bool tree = (p.features & T0_FEATURE_LIGHT_TREE) != 0u;
     std::fprintf(stderr, "light list: %zu lights, picked by %s (shares of power: %s)%s\n",
@@ -352,9 +353,10 @@ std::unique_ptr<trac0r::Renderer> Startup::make_renderer(const Options& options)
         T0_FEATURE_EMITTANCE | T0_FEATURE_ENVIRONMENT | T0_FEATURE_LAMPS;
     if ((renderer->packed().features & lit) == 0u && !warned_dark_ && speaks_) {
         std::fprintf(stderr,
-                     "%s: warning: nothing emits light (no material with an emittance and a "
-                     "colour above 0 is used, and there is no environment or lamp that is not "
-                     "black), so the image will be black\n",
+                     "%s: warning: nothing emits light (no material that emits is used: an "
+                     "emittance and a colour above 0, or a principled material's emission; and "
+                     "there is no environment or lamp that is not black), so the image will be "
+                     "black\n",
                      program_name());
         warned_dark_ = true;
     } else if ((renderer->packed().features & T0_FEATURE_LAMPS) != 0u &&

@@ -233,14 +233,13 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     }
     const float light_pdf = area_to_solid_angle(pick_per_area, distance2, cos_light);
     float3 emitted = material_emission(emitter);
-    if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE) && emitter->type.x == T0_MATERIAL_EMISSIVE &&
-        emitter->type.y != 0u) {
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) {
         Hit at;
         at.t = distance;
         at.u = b1;
         at.v = b2;
         at.triangle = (int)light->ids.x;
-        emitted *= surface_texture(scene, emitter, at);  // its emission texture there
+        emitted *= emission_texture(scene, emitter, at);  // its emission texture there
     }
     return e.f_cos * emitted * (power_heuristic(light_pdf, e.pdf) / light_pdf);
 }

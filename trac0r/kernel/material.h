@@ -10,6 +10,7 @@
 #include "rough_materials.h"
 #include "sampling.h"
 #include "scatter.h"
+#include "texture.h"
 #include "types.h"
 
 T0_NAMESPACE_BEGIN
@@ -31,6 +32,7 @@ T0_INLINE MaterialRecord make_material_record(t0_u32 type, float3 color, float e
     r.k = make_float4(0.0f, 0.0f, 0.0f, 1.0f);
     r.maps = make_uint4(0u, 0u, 0u, 0u);
     r.alpha = make_float4(1.0f, 0.5f, 0.0f, 3.0f);
+    r.emission = make_float4(color.x * emittance, color.y * emittance, color.z * emittance, 0.0f);
     return r;
 }
 
@@ -38,11 +40,10 @@ T0_INLINE MaterialRecord make_material_record(t0_u32 type, float3 color, float e
 // record is (make_material_record): not a sine at every glossy bounce.
 T0_INLINE float glossy_cone_sin2(T0_GLOBAL const MaterialRecord* m) { return m->params.w; }
 
-// Emitted radiance: colour x emittance, on both sides (as in the thesis)
-// or, for a one-sided emitter, from its front only (material_emission_seen).
-T0_INLINE float3 material_emission(T0_GLOBAL const MaterialRecord* m) {
-    return xyz(m->color) * m->params.x;
-}
+// Emitted radiance: colour x emittance (or a principled material's
+// emission), on both sides (as in the thesis) or, for a one-sided emitter,
+// from its front only (material_emission_seen).
+T0_INLINE float3 material_emission(T0_GLOBAL const MaterialRecord* m) { return xyz(m->emission); }
 
 // Whether the material emits from its front only (the side its triangles'
 // counter-clockwise winding faces; type.z).
@@ -56,6 +57,22 @@ T0_INLINE float3 material_emission_seen(const SceneView* scene, T0_GLOBAL const 
         return float3_splat(0.0f);
     }
     return material_emission(m);
+}
+
+// What a hit's emission is multiplied by: an emitter's texture (type.y,
+// which is its emission's), a principled material's emission texture
+// (emission.w); one where it has none or the triangle no coordinates.
+T0_INLINE float3 emission_texture(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
+                                  Hit hit) {
+    if (m->type.x == T0_MATERIAL_EMISSIVE) {
+        return surface_texture(scene, m, hit);
+    }
+    const t0_u32 texture = (t0_u32)m->emission.w;
+    float2 uv;
+    if (texture == 0u || !hit_uv(scene, hit, &uv)) {
+        return float3_splat(1.0f);
+    }
+    return texture_bilinear(scene->texels, scene->textures[texture - 1u], uv.x, uv.y);
 }
 
 // Lambertian: BRDF colour/pi, cosine-weighted sampling, so the weight is the

@@ -168,9 +168,8 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         // Emit.
         if (T0_HAS_FEATURE(scene, T0_FEATURE_EMITTANCE)) {
             float3 emitted = throughput * material_emission_seen(scene, m, front);
-            if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE) && m->type.x == T0_MATERIAL_EMISSIVE &&
-                m->type.y != 0u) {
-                emitted *= surface_texture(scene, m, hit);  // its emission texture
+            if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) {
+                emitted *= emission_texture(scene, m, hit);
             }
             if (T0_HAS_FEATURE(scene, T0_FEATURE_NEE) && lights_sampled &&
                 tri->ids.z != T0_NO_LIGHT) {

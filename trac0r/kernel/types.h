@@ -194,7 +194,7 @@ typedef struct T0_ALIGN16 MaterialRecord {
     float4 params;  // x: emittance, y: roughness, z: ior, w: glossy_cone_sin2
                     // (glossy) or GGX alpha (the microfacet types)
     uint4 type;     // x: T0_MATERIAL_*, y: base-colour texture + 1 (0: none),
-                    // z: 1 for an emitter that emits from its front only,
+                    // z: 1 for a material that emits from its front only,
                     // w: 1 for a conductor of complex index (eta, k)
     float4 eta;     // conductor: xyz the real part of the index; plastic: w the
                     // diffuse term's scale 1 / (ior^2 (1 - internal reflectance));
@@ -206,6 +206,9 @@ typedef struct T0_ALIGN16 MaterialRecord {
                     // w alpha (its channel alpha.w)
     float4 alpha;   // x: alpha factor, y: MASK's cutoff, z: mode (alpha.h),
                     // w: the alpha texture's channel (0 red, 3 alpha)
+    float4 emission;  // xyz: the radiance it emits (colour x emittance, or a
+                      // principled material's emission), w: a principled
+                      // material's emission texture + 1 (0: none)
 } MaterialRecord;
 
 // The camera as the kernel needs it: an orthonormal frame and the image
@@ -271,7 +274,7 @@ T0_NAMESPACE_END
 T0_NAMESPACE_BEGIN
 T0_STATIC_ASSERT_SIZE(TriangleRecord, 80);
 T0_STATIC_ASSERT_SIZE(ShapeRecord, 48);
-T0_STATIC_ASSERT_SIZE(MaterialRecord, 112);
+T0_STATIC_ASSERT_SIZE(MaterialRecord, 128);
 T0_STATIC_ASSERT_SIZE(BvhNode, 256);
 T0_STATIC_ASSERT_SIZE(TrianglePacket, 176);
 T0_STATIC_ASSERT_SIZE(LightRecord, 80);
