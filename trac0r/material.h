@@ -6,16 +6,17 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <string>
 #include <vector>
 
 namespace trac0r {
 
 enum class MaterialType : unsigned {
-    emissive = T0_MATERIAL_EMISSIVE,  // a pure emitter: radiance color x emittance
-    diffuse = T0_MATERIAL_DIFFUSE,    // Lambertian, BRDF color/pi; may also emit
-    glass = T0_MATERIAL_GLASS,        // smooth dielectric with Fresnel, tinted by color
-    glossy = T0_MATERIAL_GLOSSY,      // the thesis' roughness cone around the mirror direction
+    emissive = T0_MATERIAL_EMISSIVE,      // a pure emitter: radiance color x emittance
+    diffuse = T0_MATERIAL_DIFFUSE,        // Lambertian, BRDF color/pi; may also emit
+    glass = T0_MATERIAL_GLASS,            // smooth dielectric with Fresnel, tinted by color
+    glossy = T0_MATERIAL_GLOSSY,          // the thesis' roughness cone around the mirror direction
     conductor = T0_MATERIAL_CONDUCTOR,    // GGX metal: colour as F0, or a named metal
     plastic = T0_MATERIAL_PLASTIC,        // a Lambertian base under a GGX dielectric coat
     principled = T0_MATERIAL_PRINCIPLED,  // glTF 2.0's metallic-roughness BRDF
@@ -80,6 +81,18 @@ struct Material {
     // winding faces, as OBJ and glTF define it.
     bool two_sided = true;
 };
+
+// Every texture index a material holds (base colour, roughness,
+// metallic, normal map, alpha, emission), for code that moves or checks
+// them all.
+inline std::array<int*, 6> texture_fields(Material& m) {
+    return {&m.texture,        &m.roughness_texture, &m.metallic_texture,
+            &m.normal_texture, &m.alpha_texture,     &m.emission_texture};
+}
+inline std::array<int, 6> texture_fields(const Material& m) {
+    return {m.texture,        m.roughness_texture, m.metallic_texture,
+            m.normal_texture, m.alpha_texture,     m.emission_texture};
+}
 
 // Whether a material of this type takes a base-colour texture (all but
 // glass; an emitter's multiplies its emission).

@@ -340,8 +340,7 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
         mesh.textures.push_back(std::move(t));
     }
     for (const Material& m : mesh.materials) {
-        for (int texture : {m.texture, m.roughness_texture, m.metallic_texture, m.normal_texture,
-                            m.alpha_texture, m.emission_texture}) {
+        for (int texture : texture_fields(m)) {
             if (texture >= static_cast<int>(mesh.textures.size())) {
                 throw WireError("a material of texture " + std::to_string(texture) + " of " +
                                 std::to_string(mesh.textures.size()));

@@ -251,9 +251,7 @@ std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
                         (*context.file_material_index)[key] = part.shape.material;
                         // The mesh's textures this material uses, moved
                         // into the scene's once each.
-                        for (int* texture : {&m.texture, &m.roughness_texture,
-                                             &m.metallic_texture, &m.normal_texture,
-                                             &m.alpha_texture}) {
+                        for (int* texture : texture_fields(m)) {
                             if (*texture < 0) {
                                 continue;
                             }
