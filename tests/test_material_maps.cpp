@@ -392,6 +392,69 @@ TEST_CASE("metallic-roughness textures scale the factors (green roughness, blue 
     CHECK(close_pixel_count(metal, dielectric) < n / 2);
 }
 
+TEST_CASE("a glTF's emissiveTexture becomes its principled material's emission texture",
+          "[texture][maps][scene_loader]") {
+    TempDir dir;
+    // 1 x 1 TGA images (stb_image reads them): uncompressed, 24-bit BGR.
+    const unsigned char header[18] = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 1, 0, 24, 0};
+    const std::string tga_header(reinterpret_cast<const char*>(header), sizeof header);
+    dir.write("base.tga", tga_header + std::string("\x10\x20\x30", 3));
+    dir.write("glow.tga", tga_header + std::string("\x00\x00\xff", 3));  // red
+    const float values[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1};
+    const std::string buffer(reinterpret_cast<const char*>(values), sizeof values);
+    const std::string gltf =
+        R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}],
+  "extensionsUsed": ["KHR_materials_emissive_strength"],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
+  "materials": [{"name": "screen", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                 "metallicFactor": 0}, "emissiveFactor": [1, 0.5, 1],
+                 "emissiveTexture": {"index": 1},
+                 "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 2}}}],
+  "textures": [{"source": 0}, {"source": 1}], "images": [{"uri": "base.tga"}, {"uri": "glow.tga"}],
+  "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,)" +
+        base64(buffer) + R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                  {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+     "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]})";
+    dir.write("t.gltf", gltf);
+    // Through a scene file: the file's textures are moved into the scene's.
+    const std::string json = dir.write("s.json", R"({"materials": {"white": {"type": "diffuse",
+                "color": [1, 1, 1]}}, "shapes": [{"type": "mesh", "file": "t.gltf",
+                "material": "white"}]})");
+    const Scene scene = load_scene_file(json);
+    REQUIRE(scene.shapes.size() == 1);
+    const Material& m = scene.materials[static_cast<std::size_t>(scene.shapes[0].material)];
+    CHECK(m.type == MaterialType::principled);
+    CAPTURE(m.emission.x, m.emission.y, m.emission.z);
+    CHECK(m.emission == glm::vec3(2.0f, 1.0f, 2.0f));
+    REQUIRE(m.texture >= 0);
+    REQUIRE(m.emission_texture >= 0);
+    REQUIRE(m.emission_texture < static_cast<int>(scene.textures.size()));
+    CHECK(scene.textures[static_cast<std::size_t>(m.texture)].texels[0] == rgba(0x30, 0x20, 0x10));
+    CHECK(scene.textures[static_cast<std::size_t>(m.emission_texture)].texels[0] ==
+          rgba(255, 0, 0));
+    const PackedScene packed = pack_scene(scene);
+    const auto& record = packed.materials[static_cast<std::size_t>(scene.shapes[0].material)];
+    CHECK(record.emission.w == static_cast<float>(m.emission_texture + 1));
+    CHECK(glm::vec3(record.emission) == glm::vec3(2.0f, 1.0f, 2.0f));
+    CHECK(packed.lights.size() == 1);
+    // A strength that is no number >= 0: one message naming the file, the
+    // material and the key.
+    std::string bad = gltf;
+    const std::string good = R"("emissiveStrength": 2)";
+    REQUIRE(bad.find(good) != std::string::npos);
+    bad.replace(bad.find(good), good.size(), R"("emissiveStrength": -1)");
+    dir.write("t.gltf", bad);
+    REQUIRE_THROWS_WITH(load_scene_file(json),
+                        Catch::Contains("t.gltf: material 'screen': "
+                                        "KHR_materials_emissive_strength: emissiveStrength -1") &&
+                            Catch::Contains("expected a number >= 0"));
+}
+
 TEST_CASE("MTL map_Pr, map_Pm, norm and map_Ke become the material's textures",
           "[texture][maps][scene_loader]") {
     TempDir dir;

@@ -1,6 +1,7 @@
 #include "trac0r/assimp_mesh.h"
 
 #include "trac0r/file_materials.h"
+#include "trac0r/gltf_json.h"
 #include "trac0r/input_checks.h"
 #include "trac0r/input_file.h"
 #include "trac0r/isolated_call.h"
@@ -265,6 +266,9 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     }
     // The file's materials (and their textures) as the parts use them.
     MeshParts files;
+    const std::vector<float> strengths =
+        ply ? std::vector<float>()
+            : gltf_emissive_strengths(gltf_json_text(text, !gltf), path);
     const auto material_of = [&](int id) {
         if (id < 0 || static_cast<unsigned>(id) >= scene->mNumMaterials) {
             return -1;
@@ -273,7 +277,8 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
         if (is_default_material(m)) {
             return -1;
         }
-        Material out = material_from_assimp(m, path);
+        Material out = material_from_assimp(
+            m, path, static_cast<std::size_t>(id) < strengths.size() ? strengths[id] : 1.0f);
         if (out.type == MaterialType::principled && out.emission != glm::vec3(0.0f)) {
             out.emission_texture = assimp_texture(*scene, m, path, files, texel_budget,
                                                   {aiTextureType_EMISSIVE}, "emissive");

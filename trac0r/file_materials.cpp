@@ -141,7 +141,8 @@ bool is_default_material(const aiMaterial& m) {
 // (rough) glass where it transmits (what it emits is then left out), else
 // principled: its base colour, metallic, roughness, ior and specular
 // factor, and its emission (emissiveFactor x emissive strength).
-Material material_from_assimp(const aiMaterial& m, const std::string& file) {
+Material material_from_assimp(const aiMaterial& m, const std::string& file,
+                              float emissive_strength) {
     aiString name;
     m.Get(AI_MATKEY_NAME, name);
     const std::string where = file + ": material '" + printable(name.C_Str(), 60) + "': ";
@@ -151,7 +152,6 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
     }
     aiColor3D emissive(0.0f, 0.0f, 0.0f);
     m.Get(AI_MATKEY_COLOR_EMISSIVE, emissive);
-    const float strength = property(m, AI_MATKEY_EMISSIVE_INTENSITY, 1.0f);
     const float metallic = property(m, AI_MATKEY_METALLIC_FACTOR, 0.0f);
     const float roughness = property(m, AI_MATKEY_ROUGHNESS_FACTOR, 1.0f);
     const float transmission = property(m, AI_MATKEY_TRANSMISSION_FACTOR, 0.0f);
@@ -169,7 +169,7 @@ Material material_from_assimp(const aiMaterial& m, const std::string& file) {
     }
     const float ior = property(m, AI_MATKEY_REFRACTI, 1.5f);
     const glm::vec3 colour(base.r, base.g, base.b);
-    const glm::vec3 emission = glm::vec3(emissive.r, emissive.g, emissive.b) * strength;
+    const glm::vec3 emission = glm::vec3(emissive.r, emissive.g, emissive.b) * emissive_strength;
     Material out;
     if (transmission > 0.0f) {
         out.type = MaterialType::glass;

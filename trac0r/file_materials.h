@@ -26,8 +26,11 @@ std::string mtl_texture_name(const tinyobj::material_t& m, const Material& out, 
 // (glTF's default material).
 bool is_default_material(const aiMaterial& m);
 
-// A glTF (or other assimp) material of `file`; throws as material_from_mtl.
-Material material_from_assimp(const aiMaterial& m, const std::string& file);
+// A glTF (or other assimp) material of `file`, its emission times
+// `emissive_strength` (KHR_materials_emissive_strength, which assimp 5.2
+// does not read: gltf_json.h); throws as material_from_mtl.
+Material material_from_assimp(const aiMaterial& m, const std::string& file,
+                              float emissive_strength = 1.0f);
 
 }  // namespace trac0r
 
