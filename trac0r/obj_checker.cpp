@@ -116,6 +116,31 @@ class ObjChecker {
         throw std::runtime_error(path_ + ":" + std::to_string(line) + ": " + message);
     }
 
+    // Whether [at, end) (what follows an "s") is one smoothing group as
+    // tinyobjloader reads it: "off", or a number of at most 9 digits (0:
+    // none). Another is blanked with the statements the mesh does not use
+    // (its faces are flat).
+    static bool is_smoothing_group(const char* at, const char* end) {
+        while (at < end && is_blank(*at)) {
+            ++at;
+        }
+        const char* word_end = at;
+        while (word_end < end && !is_blank(*word_end) && *word_end != '\r') {
+            ++word_end;
+        }
+        for (const char* rest = word_end; rest < end; ++rest) {
+            if (!is_blank(*rest) && *rest != '\r') {
+                return false;
+            }
+        }
+        const std::size_t length = static_cast<std::size_t>(word_end - at);
+        if (length == 3 && std::equal(at, word_end, "off")) {
+            return true;
+        }
+        return length >= 1 && length <= 9 &&
+               std::all_of(at, word_end, [](char c) { return c >= '0' && c <= '9'; });
+    }
+
     // The line [begin, end), its comment (from '#') blanked out first.
     void check_line(char* begin, char* end) {
         if (char* const hash = static_cast<char*>(std::memchr(begin, '#', end - begin))) {
@@ -148,6 +173,9 @@ class ObjChecker {
                         is_word(words_[0], "usemtl") || is_word(words_[0], "mtllib")) {
                         whole_line_ = true;  // checked as a whole below
                         continue;
+                    }
+                    if (is_word(words_[0], "s") && is_smoothing_group(at, end)) {
+                        return;  // kept as it is
                     }
                     std::fill(begin, end, ' ');
                     return;

@@ -4,6 +4,7 @@
 #include "trac0r/input_checks.h"
 #include "trac0r/mesh_parts.h"
 #include "trac0r/obj_checker.h"
+#include "trac0r/smoothing_groups.h"
 
 #include <tiny_obj_loader.h>
 
@@ -117,9 +118,21 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
     const std::size_t vertex_count = attrib.vertices.size() / 3;
     const std::size_t normal_count = attrib.normals.size() / 3;
     const std::size_t texcoord_count = attrib.texcoords.size() / 2;
-    PartBuilder parts;
+    // The faces, before they join their parts: those without normals (vn)
+    // in a smoothing group get theirs from it.
+    struct Face {
+        glm::vec3 p[3];
+        VertexNormalTriple n;
+        bool has_normals;
+        TriangleUv uv;
+        int id;
+    };
+    std::vector<Face> faces;
+    std::vector<GroupedTriangle> grouped;
+    bool any_group = false;
     for (const tinyobj::shape_t& s : shapes) {
         for (std::size_t i = 0; i + 2 < s.mesh.indices.size(); i += 3) {
+            GroupedTriangle corners;
             glm::vec3 p[3];
             VertexNormalTriple n = {glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(0.0f)};
             bool has_normals = true;
@@ -149,6 +162,7 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
                 }
                 p[k] = glm::vec3(attrib.vertices[3 * index], attrib.vertices[3 * index + 1],
                                  attrib.vertices[3 * index + 2]);
+                corners.vertex[k] = static_cast<std::uint32_t>(index);
                 const int normal = ref.normal_index;
                 if (normal >= 0 && static_cast<std::size_t>(normal) >= normal_count) {
                     throw std::runtime_error(path + ": face of shape '" + s.name +
@@ -170,8 +184,31 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
             const std::size_t face = i / 3;
             const int id =
                 read_mtl && face < s.mesh.material_ids.size() ? s.mesh.material_ids[face] : -1;
-            parts.add(id, p, n, has_normals, smooth, uv);
+            if (!has_normals && face < s.mesh.smoothing_group_ids.size()) {
+                corners.group = s.mesh.smoothing_group_ids[face];
+                any_group = any_group || corners.group != 0;
+            }
+            faces.push_back({{p[0], p[1], p[2]}, n, has_normals, uv, id});
+            grouped.push_back(corners);
         }
+    }
+    std::vector<VertexNormalTriple> group_normals;
+    if (smooth && any_group) {
+        std::vector<glm::vec3> positions(vertex_count);
+        for (std::size_t v = 0; v < vertex_count; ++v) {
+            positions[v] = glm::vec3(attrib.vertices[3 * v], attrib.vertices[3 * v + 1],
+                                     attrib.vertices[3 * v + 2]);
+        }
+        group_normals = smoothing_group_normals(positions, grouped);
+    }
+    PartBuilder parts;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+        Face& face = faces[f];
+        if (!group_normals.empty() && glm::length(group_normals[f][0]) > 0.0f) {
+            face.n = group_normals[f];
+            face.has_normals = true;
+        }
+        parts.add(face.id, face.p, face.n, face.has_normals, smooth, face.uv);
     }
     return parts.finish(
         path, "OBJ mesh", model_matrix(position, orientation, scale), material,
