@@ -70,10 +70,19 @@ std::string scene_error(const std::string& text) {
     return "";
 }
 
-// The message of the SceneError that loading the scene file `path` throws.
+// Strict loading: a model file's defects are errors, with the messages
+// these tests check (lenient loading's warnings: test_model_defects.cpp).
+LoadOptions strict() {
+    LoadOptions options;
+    options.strict = true;
+    return options;
+}
+
+// The message of the SceneError that loading the scene file `path` throws
+// (strictly).
 std::string scene_file_error(const std::string& path) {
     try {
-        load_scene_file(path);
+        load_scene_file(path, strict());
     } catch (const SceneError& e) {
         return e.what();
     }
@@ -587,7 +596,7 @@ TEST_CASE("OBJ meshes: mistakes are named by file and line", "[scene_loader]") {
     const auto obj_error = [&](const std::string& obj) {
         dir.write("m.obj", obj);
         try {
-            load_scene_file(scene);
+            load_scene_file(scene, strict());
         } catch (const SceneError& e) {
             const std::string prefix = scene + ": /shapes/0/file: ";
             const std::string message = e.what();

@@ -7,6 +7,7 @@
 #include "trac0r/isolated_call.h"
 #include "trac0r/mesh_parts.h"
 #include "trac0r/mesh_wire.h"
+#include "trac0r/model_defects.h"
 
 #include <assimp/BaseImporter.h>
 #include <assimp/GltfMaterial.h>
@@ -142,7 +143,7 @@ std::string assimp_reader_name(bool ply) {
 // textures; everything that touches assimp's structures is here. Throws
 // std::runtime_error naming the file for what assimp or our checks refuse.
 std::string import_assimp(const std::string& path, const std::string& text, bool ply, bool smooth,
-                          bool file_materials, std::uint64_t texel_budget) {
+                          bool file_materials, std::uint64_t texel_budget, bool strict) {
     Assimp::Importer importer;
     importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
                                 aiPrimitiveType_POINT | aiPrimitiveType_LINE);
@@ -267,8 +268,22 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     // The file's materials (and their textures) as the parts use them.
     MeshParts files;
     const std::vector<float> strengths =
-        ply ? std::vector<float>()
-            : gltf_emissive_strengths(gltf_json_text(text, !gltf), path);
+        ply ? std::vector<float>() : gltf_emissive_strengths(gltf_json_text(text, !gltf), path);
+    // A texture as assimp_texture reads it; one that is not there or does
+    // not decode is a defect (-1: the material's factor alone).
+    ModelDefects defects(strict);
+    const auto texture_of = [&](const aiMaterial& m, std::initializer_list<aiTextureType> types,
+                                const char* what) {
+        try {
+            return assimp_texture(*scene, m, path, files, texel_budget, types, what);
+        } catch (const TextureUnreadable& e) {
+            if (strict) {
+                throw;
+            }
+            defects.report_message(path, e.what(), "its factor is used alone");
+            return -1;
+        }
+    };
     const auto material_of = [&](int id) {
         if (id < 0 || static_cast<unsigned>(id) >= scene->mNumMaterials) {
             return -1;
@@ -280,22 +295,19 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
         Material out = material_from_assimp(
             m, path, static_cast<std::size_t>(id) < strengths.size() ? strengths[id] : 1.0f);
         if (out.type == MaterialType::principled && out.emission != glm::vec3(0.0f)) {
-            out.emission_texture = assimp_texture(*scene, m, path, files, texel_budget,
-                                                  {aiTextureType_EMISSIVE}, "emissive");
+            out.emission_texture = texture_of(m, {aiTextureType_EMISSIVE}, "emissive");
         }
         if (out.type == MaterialType::emissive) {
-            out.texture = assimp_texture(*scene, m, path, files, texel_budget,
-                                         {aiTextureType_EMISSIVE}, "emissive");
+            out.texture = texture_of(m, {aiTextureType_EMISSIVE}, "emissive");
         } else if (takes_texture(out.type)) {
             out.texture =
-                assimp_texture(*scene, m, path, files, texel_budget,
-                               {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}, "base colour");
+                texture_of(m, {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE}, "base colour");
         }
         if (is_microfacet(out.type)) {
             // glTF's metallicRoughnessTexture: roughness in green, metallic
             // in blue, one image for both.
-            out.roughness_texture = assimp_texture(
-                *scene, m, path, files, texel_budget,
+            out.roughness_texture = texture_of(
+                m,
                 {aiTextureType_UNKNOWN, aiTextureType_DIFFUSE_ROUGHNESS, aiTextureType_METALNESS},
                 "metallic-roughness");
             out.metallic_texture = out.roughness_texture;
@@ -304,8 +316,7 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
             out.alpha_texture = out.texture;  // the base colour's alpha
         }
         if (out.type != MaterialType::emissive) {
-            out.normal_texture = assimp_texture(*scene, m, path, files, texel_budget,
-                                                {aiTextureType_NORMALS}, "normal");
+            out.normal_texture = texture_of(m, {aiTextureType_NORMALS}, "normal");
             float scale = 1.0f;
             if (out.normal_texture >= 0 &&
                 m.Get(AI_MATKEY_GLTF_TEXTURE_SCALE(aiTextureType_NORMALS, 0), scale) ==
@@ -321,6 +332,7 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     for (int key : parts.key) {
         part_materials.push_back(material_of(key));
     }
+    files.warnings = defects.lines();
     return mesh_to_wire(parts, part_materials, files);
 }
 
@@ -330,7 +342,7 @@ double mesh_import_seconds = 300.0;
 
 MeshParts load_assimp(const std::string& path, const glm::vec3& position,
                       const glm::vec3& orientation, const glm::vec3& scale, int material,
-                      bool smooth, bool file_materials, std::uint64_t texel_budget) {
+                      bool smooth, bool file_materials, std::uint64_t texel_budget, bool strict) {
     // Only a regular file within the size limit (input_file.h). A .gltf
     // may refer to other files (its buffers), which assimp opens beside
     // it; the others are read from memory.
@@ -351,7 +363,9 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
     }
     const std::string reader = assimp_reader_name(ply);
     const IsolatedOutcome outcome = run_isolated(
-        [&] { return import_assimp(path, text, ply, smooth, file_materials, texel_budget); },
+        [&] {
+            return import_assimp(path, text, ply, smooth, file_materials, texel_budget, strict);
+        },
         mesh_import_seconds);
     using Kind = IsolatedOutcome::Kind;
     switch (outcome.kind) {

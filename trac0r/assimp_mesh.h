@@ -16,9 +16,12 @@ namespace trac0r {
 // found them), and such a crash, a hang or a corrupted result is one clear
 // error here, never the program's. Its meshes with their node transforms
 // applied, polygons as fans of triangles, points and lines left out.
+// Without `strict`, a texture that is not there or does not decode is
+// passed over, as MeshParts::warnings says (model_defects.h).
 MeshParts load_assimp(const std::string& path, const glm::vec3& position,
                       const glm::vec3& orientation, const glm::vec3& scale, int material,
-                      bool smooth, bool file_materials, std::uint64_t texel_budget);
+                      bool smooth, bool file_materials, std::uint64_t texel_budget,
+                      bool strict = true);
 
 }  // namespace trac0r
 

@@ -20,14 +20,20 @@ std::string texture_path_beside(const std::string& mtl_file, std::string name) {
 
 MeshParts load_mesh_parts(const std::string& path, const glm::vec3& position,
                           const glm::vec3& orientation, const glm::vec3& scale, int material,
-                          bool smooth, bool file_materials, std::uint64_t texel_budget) {
+                          bool smooth, bool file_materials, std::uint64_t texel_budget,
+                          ModelDefects* defects) {
     if (has_extension(path, ".ply") || has_extension(path, ".gltf") ||
         has_extension(path, ".glb")) {
-        return load_assimp(path, position, orientation, scale, material, smooth, file_materials,
-                           texel_budget);
+        MeshParts mesh =
+            load_assimp(path, position, orientation, scale, material, smooth, file_materials,
+                        texel_budget, defects == nullptr || defects->strict());
+        if (defects != nullptr) {
+            defects->add_lines(mesh.warnings);
+        }
+        return mesh;
     }
     return load_obj(path, position, orientation, scale, material, smooth, file_materials,
-                    texel_budget);
+                    texel_budget, defects);
 }
 
 }  // namespace trac0r

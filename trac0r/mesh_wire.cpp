@@ -163,6 +163,10 @@ std::string mesh_to_wire(const PartBuilder& parts, const std::vector<int>& part_
         w.u64(t.texels.size());
         w.raw(t.texels.data(), t.texels.size() * sizeof(std::uint32_t));
     }
+    w.u64(files.warnings.size());
+    for (const std::string& line : files.warnings) {
+        w.text(line);
+    }
     w.u32(wire_end);
     return std::move(w.bytes);
 }
@@ -346,6 +350,10 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
                                 std::to_string(mesh.textures.size()));
             }
         }
+    }
+    const std::size_t warning_count = r.count(8, "warnings");
+    for (std::size_t i = 0; i < warning_count; ++i) {
+        mesh.warnings.push_back(printable(r.text("bytes of a warning"), 1000));
     }
     if (r.get<std::uint32_t>() != wire_end || !r.done()) {
         throw WireError("it does not end as one");

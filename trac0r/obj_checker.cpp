@@ -27,7 +27,8 @@ namespace {
 class ObjChecker {
   public:
     // mtl: the file is an MTL material library (checked_mtl_text).
-    ObjChecker(const std::string& path, bool mtl) : path_(path), mtl_(mtl) {}
+    ObjChecker(const std::string& path, bool mtl, ModelDefects* defects = nullptr)
+        : path_(path), mtl_(mtl), defects_(defects) {}
 
     // The usemtl and mtllib statements of the text checked, in order.
     const std::vector<ObjNameRef>& materials() const { return materials_; }
@@ -198,8 +199,8 @@ class ObjChecker {
             }
         } else if (is_keyword(words_[0], 'v')) {
             check_vertex();
-        } else {
-            check_face();
+        } else if (!check_face()) {
+            std::fill(begin, end, ' ');  // a defect passed over: the face skipped
         }
     }
 
@@ -349,12 +350,20 @@ class ObjChecker {
     // At least three vertex references v, v/vt, v//vn or v/vt/vn; v is an
     // integer, from 1 up or (relative) from -1 down, of a vertex the file
     // has.
-    void check_face() {
+    // Returns false for a face lenient loading skips (fewer than 3
+    // distinct vertices, model_defects.h).
+    bool check_face() {
         const std::size_t vertices = words_.size() - 1;
+        if (vertices < 3 && defects_ != nullptr && !defects_->strict()) {
+            defects_->report(path_, line_number_,
+                             "a face of " + std::to_string(vertices) + " vertices", "skipped");
+            return false;
+        }
         if (vertices < 3 || vertices > max_face_vertices) {
             fail_at(line_number_, "expected a face of 3 to " + std::to_string(max_face_vertices) +
                                       " vertices, got " + std::to_string(vertices));
         }
+        std::vector<long> corners;
         for (std::size_t k = 1; k < words_.size(); ++k) {
             const Word& w = words_[k];
             // v, v/vt, v//vn or v/vt/vn: each index present a non-zero
@@ -380,7 +389,16 @@ class ObjChecker {
             refer(vertices_, index, w);
             refer(normals_, normal, w);
             refer(texcoords_, texcoord, w);
+            corners.push_back(index < 0 ? vertices_.count + 1 + index : index);
         }
+        std::sort(corners.begin(), corners.end());
+        if (std::unique(corners.begin(), corners.end()) - corners.begin() < 3 &&
+            defects_ != nullptr) {
+            defects_->report(path_, line_number_, "a face of fewer than 3 distinct vertices",
+                             "skipped");
+            return false;
+        }
+        return true;
     }
 
     // What faces refer to by index (from 1, or counted back from -1):
@@ -446,6 +464,7 @@ class ObjChecker {
     Referred normals_{"normal", "normals"};
     Referred texcoords_{"texture coordinate", "texture coordinates (vt)"};
     bool mtl_ = false;
+    ModelDefects* defects_;
     bool whole_line_ = false;  // the line being split is a vn, usemtl or mtllib statement
     std::vector<ObjNameRef> materials_;
     std::vector<ObjNameRef> libraries_;
@@ -457,8 +476,8 @@ class ObjChecker {
 
 std::string checked_obj_text(const std::string& path) { return check_obj(path).text; }
 
-CheckedObj check_obj(const std::string& path) {
-    ObjChecker checker(path, false);
+CheckedObj check_obj(const std::string& path, ModelDefects* defects) {
+    ObjChecker checker(path, false, defects);
     CheckedObj out;
     out.text = checker.checked_text();
     out.materials = checker.materials();

@@ -4,6 +4,8 @@
 #ifndef TRAC0R_OBJ_CHECKER_H
 #define TRAC0R_OBJ_CHECKER_H
 
+#include "trac0r/model_defects.h"
+
 #include <string>
 #include <vector>
 
@@ -30,7 +32,10 @@ struct CheckedObj {
     std::vector<ObjNameRef> materials;  // usemtl
     std::vector<ObjNameRef> libraries;  // mtllib
 };
-CheckedObj check_obj(const std::string& path);
+// `defects`: where a face of fewer than 3 distinct vertices is reported
+// and skipped (blanked); nullptr: a face of fewer than 3 vertices is an
+// error, one of 3 repeating a vertex is kept.
+CheckedObj check_obj(const std::string& path, ModelDefects* defects = nullptr);
 
 // The text of the MTL file `path` once its colours (Ka, Kd, Ks, Ke, Tf)
 // and numbers (Ns, Ni, d, Tr, illum) are checked: decimal numbers, finite

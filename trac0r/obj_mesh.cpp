@@ -9,6 +9,7 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <fstream>
 #include <istream>
 #include <map>
 #include <stdexcept>
@@ -30,8 +31,9 @@ class TextBuffer : public std::streambuf {
 // each material came from is kept.
 class CheckedMtlReader : public tinyobj::MaterialReader {
   public:
-    CheckedMtlReader(const std::string& obj_path, const std::vector<ObjNameRef>& libraries)
-        : obj_path_(obj_path), libraries_(libraries) {
+    CheckedMtlReader(const std::string& obj_path, const std::vector<ObjNameRef>& libraries,
+                     ModelDefects* defects)
+        : obj_path_(obj_path), libraries_(libraries), defects_(defects) {
         const std::size_t slash = obj_path.find_last_of('/');
         dir_ = slash == std::string::npos ? "" : obj_path.substr(0, slash + 1);
     }
@@ -59,6 +61,13 @@ class CheckedMtlReader : public tinyobj::MaterialReader {
     void load(const std::string& name, long line, std::vector<tinyobj::material_t>* materials,
               std::map<std::string, int>* map, std::string* warn, std::string* err) {
         const std::string file = !name.empty() && name[0] == '/' ? name : dir_ + name;
+        if (defects_ != nullptr && !defects_->strict() && !std::ifstream(file)) {
+            defects_->report(
+                obj_path_, line,
+                "mtllib '" + printable(name, 200) + "': cannot open " + printable(file, 200),
+                "its materials are left out");
+            return;
+        }
         std::string text;
         try {
             text = checked_mtl_text(file);
@@ -76,22 +85,23 @@ class CheckedMtlReader : public tinyobj::MaterialReader {
     std::string obj_path_;
     std::string dir_;
     const std::vector<ObjNameRef>& libraries_;
+    ModelDefects* defects_;
 };
 
 }  // namespace
 
 MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm::vec3& orientation,
                    const glm::vec3& scale, int material, bool smooth, bool read_mtl,
-                   std::uint64_t texel_budget) {
+                   std::uint64_t texel_budget, ModelDefects* defects) {
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;
     std::vector<tinyobj::material_t> materials;
     std::string warn;
     std::string err;
-    CheckedObj checked = check_obj(path);
+    CheckedObj checked = check_obj(path, defects);
     TextBuffer buffer(checked.text);
     std::istream text(&buffer);
-    CheckedMtlReader reader(path, checked.libraries);
+    CheckedMtlReader reader(path, checked.libraries, defects);
     // Triangulate polygons; the materials from the mtllib files, where
     // asked for.
     if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &text,
@@ -109,9 +119,13 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
                 for (const ObjNameRef& lib : checked.libraries) {
                     files += (files.empty() ? "" : ", ") + lib.name;
                 }
-                throw std::runtime_error(path + ":" + std::to_string(used.line) + ": usemtl '" +
-                                         used.name + "': no material of that name in its mtllib " +
-                                         "files (" + files + ")");
+                const std::string what = "usemtl '" + used.name +
+                                         "': no material of that name in its mtllib files (" +
+                                         files + ")";
+                if (defects == nullptr) {
+                    throw std::runtime_error(path + ":" + std::to_string(used.line) + ": " + what);
+                }
+                defects->report(path, used.line, what, "its faces take the shape's material");
             }
         }
     }
@@ -226,11 +240,20 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
                     return -1;
                 }
                 const std::string texture = texture_path_beside(file, map);
-                return texture_index(mesh, texture, [&] {
-                    return load_texture_file(file + ": material '" + printable(m.name, 60) +
-                                                 "': " + key + " '" + printable(map, 200) + "'",
-                                             texture, texel_budget - texel_count(mesh.textures));
-                });
+                try {
+                    return texture_index(mesh, texture, [&] {
+                        return load_texture_file(file + ": material '" + printable(m.name, 60) +
+                                                     "': " + key + " '" + printable(map, 200) + "'",
+                                                 texture,
+                                                 texel_budget - texel_count(mesh.textures));
+                    });
+                } catch (const TextureUnreadable& e) {
+                    if (defects == nullptr || defects->strict()) {
+                        throw;
+                    }
+                    defects->report_message(file, e.what(), "its factor is used alone");
+                    return -1;
+                }
             };
             const tinyobj::material_t& mtl = materials[k];
             const char* key = "";

@@ -37,6 +37,9 @@ struct Scene {
     std::vector<Texture> textures;  // the materials' base-colour textures (Material::texture)
     Environment environment;        // none unless present
     std::vector<Lamp> lamps;        // positions relative to origin, as the shapes'
+    // What loading passed over in its model files (ModelDefects::lines),
+    // for the program to show; empty when strict or when there was none.
+    std::vector<std::string> warnings;
 
     std::size_t triangle_count() const;
 };

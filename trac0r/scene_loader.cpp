@@ -40,7 +40,7 @@
 // | material.specular      | number  | principled, in [0, 1]                   | 1               |
 // | shapes                 | array   | required, non-empty                     |                 |
 // | shape.type             | string  | required: plane/box/icosphere/mesh      |                 |
-// | shape.material         | string  | required, a name in materials           |                 |
+// | shape.material         | string  | a name in materials; meshes: optional   | "default"       |
 // | shape.position         | [3]     | finite                                  | [0, 0, 0]       |
 // | shape.orientation      | [3]     | finite, radians                         | [0, 0, 0]       |
 // | plane.size             | [2]     | required, > 0 (local x, z)              |                 |
@@ -79,6 +79,7 @@
 #include "trac0r/json_diagnostics.h"
 #include "trac0r/light_loader.h"
 #include "trac0r/material_loader.h"
+#include "trac0r/model_defects.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -170,6 +171,11 @@ struct ShapeContext {
     std::map<std::string, int>* file_material_index = nullptr;
     // The scene's textures, which meshes' materials add.
     std::vector<Texture>* textures = nullptr;
+    // Where the model files' defects go (LoadOptions::strict).
+    ModelDefects* defects = nullptr;
+    // The index of default_mesh_material in materials once a mesh without
+    // a material has added it (or the scene's own "default"); -1 before.
+    int* default_material = nullptr;
 };
 
 // The scene's textures within max_scene_texels in all, or an error naming
@@ -183,7 +189,20 @@ void check_scene_texels(const std::vector<Texture>& textures, const std::string&
     }
 }
 
-int read_material_reference(const ObjectReader& o, const ShapeContext& context) {
+int read_material_reference(const ObjectReader& o, const ShapeContext& context, bool optional) {
+    if (optional && !o.has("material")) {
+        int& index = *context.default_material;
+        if (index < 0) {
+            const auto own = context.material_index.find("default");
+            if (own != context.material_index.end()) {
+                index = own->second;
+            } else {
+                index = static_cast<int>(context.materials->size());
+                context.materials->push_back(default_mesh_material());
+            }
+        }
+        return index;
+    }
     const json& value = o.required("material", "the name of a material");
     const Location at = o.at("material");
     if (!value.is_string()) {
@@ -222,7 +241,7 @@ std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
         // they are decoded (a small file may name many huge images).
         MeshParts mesh =
             load_mesh_parts(path, position, orientation, scale, material, smooth, file_materials,
-                            max_scene_texels - texel_count(*context.textures));
+                            max_scene_texels - texel_count(*context.textures), context.defects);
         std::vector<Material>& materials = *context.materials;
         std::vector<Texture>& textures = *context.textures;
         // The file's textures that its materials use, moved into the
@@ -301,7 +320,9 @@ std::vector<Shape> read_shape(const json& value, const Location& at, const Shape
     allowed.insert(allowed.end(), own.begin(), own.end());
     o.allow_only(allowed, with_article(type) + " shape");
 
-    const int material = read_material_reference(o, context);
+    // A mesh's faces may all have their file's materials: its own is
+    // optional (default_mesh_material).
+    const int material = read_material_reference(o, context, type == "mesh");
     // Relative to the local origin in double, then rounded to float once.
     const glm::vec3 position = glm::vec3(
         o.optional_dvec3("position", NumberRule::finite, glm::dvec3(0.0)) - context.origin);
@@ -355,7 +376,8 @@ std::vector<Shape> read_shapes(const json& value, const Location& at, const Shap
 
 // ---- The document -----------------------------------------------------------
 
-Scene read_scene(const json& document, const Location& at, const std::string& base_dir) {
+Scene read_scene(const json& document, const Location& at, const std::string& base_dir,
+                 const LoadOptions& options) {
     const ObjectReader o(document, at, "a JSON object with materials and shapes");
     o.allow_only({"camera", "render", "materials", "shapes", "environment", "lights"},
                  "the top level");
@@ -375,11 +397,16 @@ Scene read_scene(const json& document, const Location& at, const std::string& ba
     std::map<std::string, int> file_material_index;
     context.file_material_index = &file_material_index;
     context.textures = &scene.textures;
+    ModelDefects defects(options.strict);
+    context.defects = &defects;
+    int default_material = -1;
+    context.default_material = &default_material;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         context.material_index[scene.materials[i].name] = static_cast<int>(i);
         context.material_names.push_back(scene.materials[i].name);
     }
     scene.shapes = read_shapes(o.required("shapes", "an array of shapes"), o.at("shapes"), context);
+    scene.warnings = defects.lines();
     if (o.has("environment")) {
         scene.environment = read_environment(o["environment"], o.at("environment"), base_dir);
     }
@@ -402,22 +429,30 @@ std::string directory_of(const std::string& path) {
 }  // namespace
 
 Scene parse_scene(const std::string& json_text, const std::string& origin,
-                  const std::string& base_dir) {
+                  const std::string& base_dir, const LoadOptions& options) {
     try {
-        return read_scene(parse_json(json_text, origin), Location{origin, ""}, base_dir);
+        return read_scene(parse_json(json_text, origin), Location{origin, ""}, base_dir, options);
     } catch (const JsonError& e) {
         throw SceneError(e.what());  // the same message, as the scene file's error
     }
 }
 
-Scene load_scene_file(const std::string& path) {
+Scene load_scene_file(const std::string& path, const LoadOptions& options) {
     std::string text;
     try {
         text = read_input_file(path, "scene file");
     } catch (const std::runtime_error& e) {
         throw SceneError(e.what());
     }
-    return parse_scene(text, path, directory_of(path));
+    return parse_scene(text, path, directory_of(path), options);
+}
+
+Material default_mesh_material() {
+    Material m;
+    m.name = "default";
+    m.type = MaterialType::diffuse;
+    m.color = glm::vec3(0.8f);
+    return m;
 }
 
 const char* builtin_scene_json() {

@@ -15,13 +15,26 @@ class SceneError : public std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
+// How model files are read. Lenient (the default): a defect that leaves a
+// model renderable (model_defects.h: a face of two vertices, a usemtl
+// naming no material, a texture that is not there) is passed over, one
+// warning line a kind in Scene::warnings. Strict: each is an error.
+struct LoadOptions {
+    bool strict = false;
+};
+
 // Loads a scene file; relative mesh paths are relative to its directory.
-Scene load_scene_file(const std::string& path);
+Scene load_scene_file(const std::string& path, const LoadOptions& options = LoadOptions());
 
 // Parses scene JSON text; `origin` names it in messages and `base_dir`
 // resolves relative mesh paths.
 Scene parse_scene(const std::string& json_text, const std::string& origin,
-                  const std::string& base_dir);
+                  const std::string& base_dir, const LoadOptions& options = LoadOptions());
+
+// The material a mesh without a "material" key takes: the scene's
+// material named "default" where it has one, else this one, a grey
+// diffuse (colour 0.8), added to the scene when first used.
+Material default_mesh_material();
 
 // The built-in default: the thesis' Cornell box (scenes/cornell.json,
 // embedded at build time).

@@ -5,6 +5,7 @@
 
 #include "trac0r/geometry.h"
 #include "trac0r/material.h"
+#include "trac0r/model_defects.h"
 #include "trac0r/texture.h"
 
 #include <glm/glm.hpp>
@@ -82,6 +83,7 @@ struct MeshParts {
     std::vector<MeshPart> parts;      // in the order their materials are first used
     std::vector<Material> materials;  // the file's materials that faces use, mapped
     std::vector<Texture> textures;    // their base-colour textures (Material::texture)
+    std::vector<std::string> warnings;  // a reader's warning lines (ModelDefects::lines)
 };
 
 // A mesh file split by its faces' materials: a PLY or glTF 2.0 by its
@@ -99,10 +101,14 @@ struct MeshParts {
 // textures may have `texel_budget` texels in all (what the scene has room
 // for): each is refused from its image's header, before it is decoded,
 // where it would go over.
+// `defects`: where the file's defects that leave it renderable are
+// reported (model_defects.h; its warnings end up there); nullptr: each is
+// an error.
 MeshParts load_mesh_parts(const std::string& path, const glm::vec3& position,
                           const glm::vec3& orientation, const glm::vec3& scale, int material,
                           bool smooth, bool file_materials,
-                          std::uint64_t texel_budget = max_scene_texels);
+                          std::uint64_t texel_budget = max_scene_texels,
+                          ModelDefects* defects = nullptr);
 
 // A PLY or glTF file is read (by assimp) in a child process of its own,
 // so that a reader that crashes, hangs or corrupts memory on a malformed

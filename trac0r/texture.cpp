@@ -31,18 +31,18 @@ void check_texture_room(const std::string& where, int width, int height,
 Texture decode_texture(const std::string& where, const std::string& source,
                        const unsigned char* bytes, std::size_t size, std::uint64_t max_texels) {
     if (size == 0) {
-        throw std::runtime_error(where + ": cannot decode texture: it is empty");
+        throw TextureUnreadable(where + ": cannot decode texture: it is empty");
     }
     if (size > static_cast<std::size_t>(INT_MAX)) {
-        throw std::runtime_error(where + ": cannot decode texture: it is over 2 GB");
+        throw TextureUnreadable(where + ": cannot decode texture: it is over 2 GB");
     }
     const int n = static_cast<int>(size);
     int width = 0;
     int height = 0;
     int channels = 0;
     if (!stbi_info_from_memory(bytes, n, &width, &height, &channels)) {
-        throw std::runtime_error(where + ": cannot decode texture (" + stbi_failure_reason() +
-                                 "): expected a PNG, JPEG, BMP, TGA or GIF image");
+        throw TextureUnreadable(where + ": cannot decode texture (" + stbi_failure_reason() +
+                                "): expected a PNG, JPEG, BMP, TGA or GIF image");
     }
     if (stbi_is_hdr_from_memory(bytes, n)) {
         throw std::runtime_error(where + ": an HDR image cannot be a base-colour texture: " +
@@ -58,7 +58,7 @@ Texture decode_texture(const std::string& where, const std::string& source,
     check_texture_room(where, width, height, max_texels);
     stbi_uc* pixels = stbi_load_from_memory(bytes, n, &width, &height, &channels, 4);
     if (pixels == nullptr) {
-        throw std::runtime_error(where + ": cannot decode texture (" + stbi_failure_reason() + ")");
+        throw TextureUnreadable(where + ": cannot decode texture (" + stbi_failure_reason() + ")");
     }
     Texture t;
     t.source = source;
@@ -82,7 +82,7 @@ Texture load_texture_file(const std::string& where, const std::string& path,
     try {
         bytes = read_input_file(path, "texture");
     } catch (const std::runtime_error& e) {
-        throw std::runtime_error(where + ": " + e.what());
+        throw TextureUnreadable(where + ": " + e.what());
     }
     return decode_texture(where, path, reinterpret_cast<const unsigned char*>(bytes.data()),
                           bytes.size(), max_texels);

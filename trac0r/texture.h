@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -24,10 +25,18 @@ struct Texture {
 const int max_texture_side = 16384;
 const std::uint64_t max_scene_texels = std::uint64_t(1) << 31;
 
+// A texture that is not there, or whose bytes do not decode as an image:
+// a defect lenient loading passes over (model_defects.h), where a texture
+// over the scene's room or of the wrong kind (HDR) stays an error.
+struct TextureUnreadable : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
 // An image file (PNG, JPEG, BMP, TGA or GIF, through stb_image; HDR is
 // refused) as a texture; `where` starts each message ("mesh.mtl:
 // material 'wood': map_Kd 'wood.png'"). Throws std::runtime_error
-// "WHERE: cannot open/read texture ..." or "WHERE: cannot decode ...".
+// "WHERE: cannot open/read texture ..." or "WHERE: cannot decode ..."
+// (both TextureUnreadable).
 // An image of more than `max_texels` texels (what the scene has room for)
 // is refused from its header, before it is decoded.
 Texture load_texture_file(const std::string& where, const std::string& path,

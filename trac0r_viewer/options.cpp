@@ -146,6 +146,10 @@ void define_options(trac0r_cli::CommandLine& cl, Options& o) {
               "how PNG outputs and the window show radiance: each channel clipped at 1 "
               "(standard), or AgX, highlights rolled off to white as in Blender (filmic); "
               "default: the scene's render.view, else standard; never changes .pfm or .exr");
+    cl.flag("--strict", &o.strict,
+            "refuse a model file with a defect that other importers pass over (a face of two "
+            "vertices, a usemtl naming no material, a texture that is not there), which is "
+            "otherwise one warning line a kind");
     cl.flag("--verbose", &o.verbose,
             "each mesh (triangles, bounds, material, smooth ones), backend, device, feature "
             "mask and what was left out");

@@ -109,8 +109,10 @@ void check_options(const Options& o, bool writes_outputs) {
 }
 
 trac0r::Scene load_scene(const Options& o) {
-    trac0r::Scene scene =
-        o.scene_path.empty() ? trac0r::builtin_scene() : trac0r::load_scene_file(o.scene_path);
+    trac0r::LoadOptions load;
+    load.strict = o.strict;
+    trac0r::Scene scene = o.scene_path.empty() ? trac0r::builtin_scene()
+                                               : trac0r::load_scene_file(o.scene_path, load);
     if (o.width > 0) {
         scene.render.width = o.width;
     }
@@ -326,6 +328,11 @@ const trac0r::Scene& Startup::load(const Options& options) {
             "loading " + (options.scene_path.empty() ? "the built-in scene" : options.scene_path),
             options.verbose);
         scene_ = load_scene(options);
+    }
+    if (speaks_) {
+        for (const std::string& line : scene_.warnings) {
+            std::fprintf(stderr, "%s\n", line.c_str());
+        }
     }
     memory_user_ = "the scene's " + std::to_string(scene_.triangle_count()) +
                    " triangles and their tree, and 48 bytes a pixel for the accumulator: "

@@ -1,0 +1,202 @@
+// Lenient loading (trac0r/model_defects.h): a model with a defect that
+// other importers pass over loads with one warning line a kind and
+// renders; strict loading (--strict) refuses each as it always did.
+#include "test_support.h"
+#include "viewer_process.h"
+
+using namespace trac0r;
+using Catch::Matchers::Contains;
+using Catch::Matchers::EndsWith;
+
+namespace {
+
+LoadOptions strict() {
+    LoadOptions options;
+    options.strict = true;
+    return options;
+}
+
+// The warning lines of `scene` that contain `text`.
+std::size_t warnings_with(const Scene& scene, const std::string& text) {
+    std::size_t n = 0;
+    for (const std::string& line : scene.warnings) {
+        n += line.find(text) != std::string::npos ? 1u : 0u;
+    }
+    return n;
+}
+
+std::string strict_error(const std::string& path) {
+    try {
+        load_scene_file(path, strict());
+    } catch (const SceneError& e) {
+        return e.what();
+    }
+    FAIL("no SceneError for " << path << " (strict)");
+    return "";
+}
+
+// A unit square of two faces in the xy plane, each of one material.
+const std::string square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n";
+
+}  // namespace
+
+TEST_CASE("an OBJ's defects: skipped or replaced with a warning each, refused when strict",
+          "[defects][mesh]") {
+    TempDir dir;
+    const std::string obj = dir.path() + "/m.obj";
+    const std::string mtl = dir.path() + "/m.mtl";
+    dir.write("m.mtl", "newmtl red\nKd 0.8 0.1 0.1\nmap_Kd nope.png\n");
+    // Two faces of two vertices and one repeating a vertex (lines 10, 11
+    // and 13), usemtl naming nothing twice (lines 12 and 14), a texture
+    // that is not there.
+    dir.write("m.obj", "mtllib m.mtl\n" + square + "usemtl red\nf 1 2\nf 3 4\n" +
+                           "usemtl blue\nf 1 1 2\nusemtl green\nf 1/1 2/2 3/3\n" +
+                           "usemtl red\nf 1/1 3/3 4/3\n");
+    const std::string json =
+        dir.write("s.json", R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},
+                      "shapes": [{"type": "mesh", "file": "m.obj", "material": "white"}]})");
+    const Scene scene = load_scene_file(json);
+    CAPTURE(scene.warnings.size());
+    for (const std::string& w : scene.warnings) {
+        CAPTURE(w);
+    }
+    REQUIRE(scene.warnings.size() == 5);
+    CHECK(scene.warnings[0] == obj +
+                                   ":10: warning: a face of 2 vertices; skipped (2 times; the "
+                                   "first here) (--strict refuses it)");
+    CHECK(warnings_with(scene, obj + ":13: warning: a face of fewer than 3 distinct vertices; "
+                                     "skipped (--strict refuses it)") == 1);
+    CHECK(warnings_with(scene, obj + ":12: warning: usemtl 'blue': no material of that name in "
+                                     "its mtllib files (m.mtl); its faces take the shape's "
+                                     "material") == 1);
+    CHECK(warnings_with(scene, obj + ":14: warning: usemtl 'green'") == 1);
+    CHECK(warnings_with(scene, mtl + ": warning: material 'red': map_Kd 'nope.png': " + dir.path() +
+                                   "/nope.png: cannot open texture") == 1);
+    // What is left renders: the green face in white (the shape's), the
+    // red one red without its texture.
+    REQUIRE(scene.shapes.size() == 2);
+    std::size_t triangles = 0;
+    for (const Shape& s : scene.shapes) {
+        triangles += s.triangles.size();
+        const Material& m = scene.materials[static_cast<std::size_t>(s.material)];
+        CHECK(m.texture == -1);
+        CHECK((m.name == "white" || m.name == "red"));
+    }
+    CHECK(triangles == 2);
+    // Strict: the first defect, as the error it always was.
+    CHECK_THAT(strict_error(json),
+               EndsWith(obj + ":10: expected a face of 3 to 10000 vertices, got 2"));
+    dir.write("m.obj", "mtllib m.mtl\n" + square + "f 1 1 2\nf 1 2 3\n");
+    CHECK_THAT(strict_error(json), EndsWith(obj + ":9: a face of fewer than 3 distinct vertices"));
+    dir.write("m.obj", "mtllib m.mtl\n" + square + "usemtl blue\nf 1 2 3\n");
+    CHECK_THAT(strict_error(json),
+               EndsWith(obj + ":9: usemtl 'blue': no material of that name in its mtllib files "
+                              "(m.mtl)"));
+    dir.write("m.obj", "mtllib m.mtl\n" + square + "usemtl red\nf 1/1 2/2 3/3\n");
+    CHECK_THAT(strict_error(json), Contains(mtl + ": material 'red': map_Kd 'nope.png': " +
+                                            dir.path() + "/nope.png: cannot open texture"));
+    // A missing MTL file: its materials are left out, and the usemtl
+    // naming them warn.
+    dir.write("m.obj", "mtllib gone.mtl\n" + square + "usemtl red\nf 1 2 3\n");
+    const Scene gone = load_scene_file(json);
+    CHECK(warnings_with(gone, obj + ":1: warning: mtllib 'gone.mtl': cannot open " + dir.path() +
+                                  "/gone.mtl; its materials are left out") == 1);
+    CHECK(warnings_with(gone, obj + ":9: warning: usemtl 'red'") == 1);
+    CHECK_THAT(strict_error(json), Contains(obj + ":1: mtllib 'gone.mtl': "));
+}
+
+TEST_CASE("a glTF texture that is not there: a warning from the reader's child process",
+          "[defects][mesh]") {
+    TempDir dir;
+    const float values[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1};
+    const std::string buffer(reinterpret_cast<const char*>(values), sizeof values);
+    dir.write("t.gltf", R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
+  "materials": [{"name": "logo", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1],
+                 "baseColorTexture": {"index": 0}, "metallicFactor": 0}}],
+  "textures": [{"source": 0}], "images": [{"uri": "missing.png"}],
+  "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,)" +
+                            base64(buffer) + R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                  {"buffer": 0, "byteOffset": 36, "byteLength": 24}],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+     "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}]})");
+    // No "material" on the mesh: every face has the file's.
+    const std::string json =
+        dir.write("s.json", R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},
+                      "shapes": [{"type": "mesh", "file": "t.gltf"}]})");
+    const Scene scene = load_scene_file(json);
+    REQUIRE(scene.warnings.size() == 1);
+    CHECK(scene.warnings[0] == dir.path() +
+                                   "/t.gltf: warning: material 'logo': base colour "
+                                   "texture 'missing.png': " +
+                                   dir.path() +
+                                   "/missing.png: cannot open texture: No such file or "
+                                   "directory; its factor is used alone (--strict refuses it)");
+    REQUIRE(scene.shapes.size() == 1);
+    const Material& logo = scene.materials[static_cast<std::size_t>(scene.shapes[0].material)];
+    CHECK(logo.name == "logo");
+    CHECK(logo.texture == -1);
+    CHECK(logo.color == glm::vec3(0.5f));
+    CHECK_THAT(strict_error(json), Contains("/missing.png: cannot open texture"));
+}
+
+TEST_CASE("a mesh without a material takes the default grey, or the scene's \"default\"",
+          "[defects][scene_loader]") {
+    TempDir dir;
+    dir.write("m.obj", square + "f 1 2 3\n");
+    const std::string plain =
+        dir.write("a.json", R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},
+                      "shapes": [{"type": "mesh", "file": "m.obj"},
+                                 {"type": "mesh", "file": "m.obj", "position": [2, 0, 0]}]})");
+    const Scene scene = load_scene_file(plain);
+    CHECK(scene.warnings.empty());
+    REQUIRE(scene.shapes.size() == 2);
+    REQUIRE(scene.materials.size() == 2);  // white, and the default added once
+    const Material& m = scene.materials[static_cast<std::size_t>(scene.shapes[0].material)];
+    CHECK(scene.shapes[1].material == scene.shapes[0].material);
+    CHECK(m.name == "default");
+    CHECK(m.type == MaterialType::diffuse);
+    CHECK(m.color == glm::vec3(0.8f));
+    const std::string own =
+        dir.write("b.json", R"({"materials": {"default": {"type": "glossy", "color": [1, 1, 1],
+                                                 "roughness": 0.2}},
+                      "shapes": [{"type": "mesh", "file": "m.obj"}]})");
+    const Scene with_own = load_scene_file(own);
+    REQUIRE(with_own.materials.size() == 1);
+    CHECK(with_own.materials[0].type == MaterialType::glossy);
+    CHECK(with_own.shapes[0].material == 0);
+    // The primitives still name theirs.
+    const std::string plane =
+        dir.write("c.json", R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},
+                      "shapes": [{"type": "plane", "size": [1, 1]}]})");
+    CHECK_THAT(strict_error(plane), Contains("/shapes/0/material: required key is missing"));
+}
+
+TEST_CASE("trac0r_viewer renders a model with defects, warning once a kind; --strict refuses",
+          "[defects][cli]") {
+    TempDir dir;
+    dir.write("m.obj", square + "f 1 2\nf 1 2 3\n");
+    const std::string json =
+        dir.write("s.json", R"({"materials": {"lamp": {"type": "emissive", "color": [1, 1, 1],
+                                              "emittance": 1}},
+                      "shapes": [{"type": "mesh", "file": "m.obj", "material": "lamp"}]})");
+    const std::string png = dir.path() + "/o.png";
+    const auto lenient = trac0r_test::run_viewer_process(
+        json + " --headless --width 8 --height 6 --spp 1 --output " + png);
+    CAPTURE(lenient.err);
+    CHECK(lenient.exit_code == 0);
+    CHECK_THAT(lenient.err, Contains(dir.path() + "/m.obj:8: warning: a face of 2 vertices; "
+                                                  "skipped (--strict refuses it)"));
+    std::remove(png.c_str());
+    const auto refused = trac0r_test::run_viewer_process(
+        json + " --strict --headless --width 8 --height 6 --spp 1 --output " + png);
+    CAPTURE(refused.err);
+    CHECK(refused.exit_code != 0);
+    CHECK_THAT(refused.err,
+               Contains(dir.path() + "/m.obj:8: expected a face of 3 to 10000 vertices, got 2"));
+    CHECK_FALSE(std::ifstream(png).good());
+}
