@@ -12,6 +12,7 @@
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 using trac0r::IsolatedOutcome;
 using trac0r::run_isolated;
@@ -119,4 +120,25 @@ TEST_CASE("the mesh import's time limit takes only positive seconds", "[isolated
     CHECK_THROWS_AS(trac0r::set_mesh_import_time_limit(0.0), std::invalid_argument);
     CHECK_THROWS_AS(trac0r::set_mesh_import_time_limit(-1.0), std::invalid_argument);
     CHECK(trac0r::mesh_import_time_limit() == before);
+}
+
+TEST_CASE("run_isolated bounds the child's memory: past it, out_of_memory", "[isolated]") {
+    // 256 MB more than the child has at the fork: 64 MB fit, 4 GB do not
+    // (the allocation fails, whatever the machine has).
+    const std::uint64_t limit = 256u << 20;
+    const IsolatedOutcome fits = run_isolated(
+        [] {
+            std::vector<char> block(64u << 20, 'x');
+            return std::string(1, block.back());
+        },
+        60.0, limit);
+    CHECK(fits.kind == IsolatedOutcome::Kind::result);
+    CHECK(fits.payload == "x");
+    const IsolatedOutcome over = run_isolated(
+        [] {
+            std::vector<char> block(std::size_t(4) << 30, 'x');
+            return std::string(1, block.back());
+        },
+        60.0, limit);
+    CHECK(over.kind == IsolatedOutcome::Kind::out_of_memory);
 }

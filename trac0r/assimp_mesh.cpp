@@ -16,10 +16,13 @@
 #include <assimp/importerdesc.h>
 #include <assimp/scene.h>
 
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <new>
 #include <stdexcept>
 #include <utility>
 
@@ -148,6 +151,9 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
         std::string reason = importer.GetErrorString();
         reason.erase(reason.find_last_not_of(" \n\r") + 1);
+        if (reason == "std::bad_alloc") {
+            throw std::bad_alloc();  // assimp's words for the memory limit's
+        }
         throw std::runtime_error(path + ": cannot read mesh: " +
                                  (reason.empty() ? std::string("no scene in it") : reason));
     }
@@ -323,6 +329,17 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
 
 double mesh_import_seconds = 300.0;
 
+// How much more memory than trac0r's own the reader's child may take:
+// half the machine's, so that a file that drives it to allocate without
+// end (a glTF's 1 GiB buffer took it past 8 GB) stops there.
+std::uint64_t mesh_import_memory() {
+    const long pages = sysconf(_SC_PHYS_PAGES);
+    const long page = sysconf(_SC_PAGE_SIZE);
+    if (pages <= 0 || page <= 0) {
+        return 0;  // unknown: no limit
+    }
+    return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2u;
+}
 
 }  // namespace
 
@@ -350,7 +367,7 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
         [&] {
             return import_assimp(path, text, ply, smooth, file_materials, texel_budget, strict);
         },
-        mesh_import_seconds);
+        mesh_import_seconds, mesh_import_memory());
     using Kind = IsolatedOutcome::Kind;
     switch (outcome.kind) {
     case Kind::result:
@@ -358,7 +375,9 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
     case Kind::error:
         throw std::runtime_error(outcome.payload);
     case Kind::out_of_memory:
-        throw std::runtime_error(path + ": " + reader + " ran out of memory on this file");
+        throw std::runtime_error(path + ": " + reader + " ran out of memory on this file (it " +
+                                 "may take " + std::to_string(mesh_import_memory() >> 20) +
+                                 " MB, half the machine's): it is malformed or too large");
     case Kind::exception:
         throw std::runtime_error(path + ": " + reader + " failed on this file (" +
                                  printable(outcome.detail, 200) + "): it is malformed");

@@ -16,6 +16,7 @@
 #include <chrono>
 #include <climits>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <new>
 #include <stdexcept>
@@ -86,8 +87,39 @@ void prepare_child() {
 #endif
 }
 
-[[noreturn]] void run_child(int fd, pid_t parent, const std::function<std::string()>& work) {
+// Bounds the child's data (heap and private mappings, RLIMIT_DATA) to
+// what it has at the fork plus `bytes` (0: no bound), so that a reader a
+// file drives to allocate without end meets std::bad_alloc, not the
+// machine's memory. What it has is read from /proc/self/status (VmData);
+// without it, no bound.
+void limit_child_memory(std::uint64_t bytes) {
+    if (bytes == 0) {
+        return;
+    }
+    std::FILE* status = std::fopen("/proc/self/status", "r");
+    if (status == nullptr) {
+        return;
+    }
+    char line[256];
+    unsigned long long kb = 0;
+    bool found = false;
+    while (!found && std::fgets(line, sizeof line, status) != nullptr) {
+        found = std::sscanf(line, "VmData: %llu kB", &kb) == 1;
+    }
+    std::fclose(status);
+    if (!found) {
+        return;
+    }
+    struct rlimit data;
+    data.rlim_cur = static_cast<rlim_t>(kb * 1024u + bytes);
+    data.rlim_max = data.rlim_cur;
+    setrlimit(RLIMIT_DATA, &data);
+}
+
+[[noreturn]] void run_child(int fd, pid_t parent, const std::function<std::string()>& work,
+                            std::uint64_t memory_limit) {
     prepare_child();
+    limit_child_memory(memory_limit);
 #ifdef __linux__
     if (getppid() != parent) {
         _exit(1);  // the parent died before PR_SET_PDEATHSIG took effect
@@ -160,7 +192,8 @@ std::string signal_name(int signal) {
     }
 }
 
-IsolatedOutcome run_isolated(const std::function<std::string()>& work, double time_limit_seconds) {
+IsolatedOutcome run_isolated(const std::function<std::string()>& work, double time_limit_seconds,
+                             std::uint64_t memory_limit_bytes) {
     IsolatedOutcome out;
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) {
@@ -179,7 +212,7 @@ IsolatedOutcome run_isolated(const std::function<std::string()>& work, double ti
     }
     if (pid == 0) {
         ::close(fds[0]);
-        run_child(fds[1], parent, work);
+        run_child(fds[1], parent, work, memory_limit_bytes);
     }
     ::close(fds[1]);
     // Everything the child sends, until it closes the pipe (or dies), or

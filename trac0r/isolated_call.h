@@ -17,6 +17,7 @@
 #ifndef TRAC0R_ISOLATED_CALL_H
 #define TRAC0R_ISOLATED_CALL_H
 
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -39,9 +40,11 @@ struct IsolatedOutcome {
     std::string detail;
 };
 
-// Runs work() in a forked child within `time_limit_seconds` (> 0).
+// Runs work() in a forked child within `time_limit_seconds` (> 0), and
+// with `memory_limit_bytes` more data than it has at the fork (0: no
+// limit; beyond it allocations fail, and the outcome is out_of_memory).
 IsolatedOutcome run_isolated(const std::function<std::string()>& work,
-                             double time_limit_seconds);
+                             double time_limit_seconds, std::uint64_t memory_limit_bytes = 0);
 
 // "SIGSEGV" for SIGSEGV, ...; "signal N" for one it does not know.
 std::string signal_name(int signal);
