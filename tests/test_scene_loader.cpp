@@ -887,17 +887,18 @@ TEST_CASE("OBJ meshes: materials from the MTL files, split by usemtl", "[scene_l
         dir.write("m.mtl", "newmtl red\nKd 0.8 0.1\n");
         CHECK_THAT(scene_file_error(mesh_scene("")),
                    EndsWith(mtl + ":2: expected 'Kd r g b', three numbers, got 2 values"));
-        // tinyobjloader would read one number as (0.8, 0, 0).
-        dir.write("m.mtl", "newmtl red\nKd 0.8\n");
+        // One number is grey, as the MTL format says (tinyobjloader alone
+        // would read (0.8, 0, 0)): test_mtl_names.cpp.
+        dir.write("m.mtl", "newmtl red\nKd 0.8 0.1 0.1 0.1\n");
         CHECK_THAT(scene_file_error(mesh_scene("")),
-                   EndsWith(mtl + ":2: expected 'Kd r g b', three numbers, got 1 values"));
+                   EndsWith(mtl + ":2: expected 'Kd r g b', three numbers, got 4 values"));
 
         dir.write("m.mtl", "newmtl red\nKd 1.5 0 0\n");
         CHECK_THAT(scene_file_error(mesh_scene("")),
                    EndsWith(mtl + ": material 'red': Kd (1.5, 0, 0): expected each in [0, 1]"));
         dir.write("m.obj", "mtllib m.mtl\n" + quad + "usemtl\nf 1 2 3\n");
         CHECK_THAT(scene_file_error(mesh_scene("")),
-                   EndsWith(obj + ":6: expected 'usemtl NAME', one name without blanks"));
+                   EndsWith(obj + ":6: expected 'usemtl NAME', got no name"));
     }
 }
 

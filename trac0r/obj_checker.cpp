@@ -53,6 +53,7 @@ class ObjChecker {
         }
         char* at = &text[0];
         char* const end = at + text.size();
+        base_ = at;
         while (at < end) {
             // One statement: a line, and the lines after it while each
             // ends in '\' (a continuation; not in a comment, which ends
@@ -94,6 +95,10 @@ class ObjChecker {
         check_referred(vertices_);
         check_referred(normals_);
         check_referred(texcoords_);
+        // The rewrites, from the last: earlier offsets stay valid.
+        for (auto e = edits_.rbegin(); e != edits_.rend(); ++e) {
+            text.replace(e->offset, e->length, e->with);
+        }
         return text;
     }
 
@@ -148,6 +153,7 @@ class ObjChecker {
             std::fill(hash, end, ' ');
             end = hash;
         }
+        statement_end_ = end;
         // tinyobjloader separates words by spaces and tabs only: other
         // blanks become spaces, so that it reads the words checked here.
         std::replace_if(
@@ -285,14 +291,52 @@ class ObjChecker {
     // usemtl NAME, or mtllib FILE...: each name recorded with its line.
     void check_names() {
         const bool library = is_word(words_[0], "mtllib");
-        if (words_.size() < 2 || (!library && words_.size() > 2)) {
-            fail_at(line_number_, library ? "expected 'mtllib FILE.mtl ...', got no file name"
-                                          : "expected 'usemtl NAME', one name without blanks");
+        if (library && words_.size() < 2) {
+            fail_at(line_number_, "expected 'mtllib FILE.mtl ...', got no file name");
+        }
+        if (!library) {
+            // usemtl NAME: the rest of the line, trimmed, as Blender and
+            // assimp read it (blanks and all; none: no material).
+            if (words_.size() < 2) {
+                if (defects_ == nullptr || defects_->strict()) {
+                    fail_at(line_number_, "expected 'usemtl NAME', got no name");
+                }
+                defects_->report(path_, line_number_, "usemtl without a name",
+                                 "its faces take the shape's material");
+                rename(words_[0].end, words_.back().end, no_material_mark);
+                return;
+            }
+            const long line = line_of(words_[1].begin);
+            materials_.push_back({name_after_keyword(), line});
+            return;
         }
         for (std::size_t k = 1; k < words_.size(); ++k) {
             (library ? libraries_ : materials_)
                 .push_back({words_[k].text(), line_of(words_[k].begin)});
         }
+    }
+
+    // The name after the statement's keyword: the rest of the statement,
+    // trimmed, as the file wrote it. In the text, its blanks become
+    // material_name_mark, so that tinyobjloader reads it as one word
+    // (decode_material_name turns them back), and what follows the
+    // keyword becomes one blank and the name (tinyobjloader's newmtl takes
+    // all that follows its keyword and one blank, blanks and all).
+    std::string name_after_keyword() {
+        std::string name(words_[1].begin, words_.back().end);
+        std::string marked = name;
+        std::replace_if(
+            marked.begin(), marked.end(), [](char c) { return is_blank(c); }, material_name_mark);
+        edits_.push_back({static_cast<std::size_t>(words_[0].end - base_),
+                          static_cast<std::size_t>(statement_end_ - words_[0].end), " " + marked});
+        std::replace(name.begin(), name.end(), '\t', ' ');
+        return name;
+    }
+
+    // [from, to) of the text replaced by " " + name.
+    void rename(const char* from, const char* to, char name) {
+        edits_.push_back({static_cast<std::size_t>(from - base_),
+                          static_cast<std::size_t>(to - from), std::string(" ") + name});
     }
 
     // In an MTL file: the colours (Ka, Kd, Ks, Ke, Tf: r g b) and the numbers (Ns, Ni, d, Tr,
@@ -306,13 +350,34 @@ class ObjChecker {
             return std::any_of(list, list + n, [&](const char* w) { return is_word(key, w); });
         };
         const std::size_t values = words_.size() - 1;
+        if (is_word(key, "newmtl")) {
+            // The name: the rest of the line, trimmed (tinyobjloader's
+            // newmtl keeps its blanks, its usemtl only the first word).
+            if (values == 0) {
+                if (defects_ == nullptr || defects_->strict()) {
+                    fail_at(line_number_, "expected 'newmtl NAME', got no name");
+                }
+                defects_->report(path_, line_number_, "newmtl without a name",
+                                 "no usemtl can name it");
+                rename(key.end, key.end, material_name_mark);
+            } else {
+                name_after_keyword();
+            }
+            return;
+        }
         if (is_one_of(colours, 5)) {
-            // Three: tinyobjloader reads "Kd 0.5" as (0.5, 0, 0).
-            if (values != 3) {
+            // Three, or one for all three, as the MTL format allows
+            // (tinyobjloader reads "Kd 0.5" as (0.5, 0, 0)).
+            if (values != 3 && values != 1) {
                 fail_at(line_number_, "expected '" + key.text() + " r g b', three numbers, got " +
                                           std::to_string(values) + " values");
             }
             check_numbers("a " + key.text() + " value");
+            if (values == 1) {
+                const std::string v = words_[1].text();
+                edits_.push_back(
+                    {static_cast<std::size_t>(words_[1].end - base_), 0, " " + v + " " + v});
+            }
         } else if (is_one_of(numbers, 5)) {
             if (values != 1) {
                 fail_at(line_number_, "expected '" + key.text() + " N', one number, got " +
@@ -469,12 +534,30 @@ class ObjChecker {
     std::vector<ObjNameRef> materials_;
     std::vector<ObjNameRef> libraries_;
     std::vector<Word> words_;
-    std::vector<const char*> breaks_;  // the statement's continuations, in order
+    // Rewrites of the checked text (where tinyobjloader would misread a
+    // statement), in order, applied once every line is checked.
+    struct Edit {
+        std::size_t offset;
+        std::size_t length;
+        std::string with;
+    };
+    std::vector<Edit> edits_;
+    const char* base_ = nullptr;           // the text's first byte
+    const char* statement_end_ = nullptr;  // the end of the statement being checked
+    std::vector<const char*> breaks_;      // the statement's continuations, in order
 };
 
 }  // namespace
 
 std::string checked_obj_text(const std::string& path) { return check_obj(path).text; }
+
+std::string decode_material_name(std::string name) {
+    if (name == std::string(1, material_name_mark)) {
+        return "";  // a newmtl without a name
+    }
+    std::replace(name.begin(), name.end(), material_name_mark, ' ');
+    return name;
+}
 
 CheckedObj check_obj(const std::string& path, ModelDefects* defects) {
     ObjChecker checker(path, false, defects);
@@ -485,8 +568,8 @@ CheckedObj check_obj(const std::string& path, ModelDefects* defects) {
     return out;
 }
 
-std::string checked_mtl_text(const std::string& path) {
-    return ObjChecker(path, true).checked_text();
+std::string checked_mtl_text(const std::string& path, ModelDefects* defects) {
+    return ObjChecker(path, true, defects).checked_text();
 }
 
 }  // namespace trac0r

@@ -37,11 +37,27 @@ struct CheckedObj {
 // error, one of 3 repeating a vertex is kept.
 CheckedObj check_obj(const std::string& path, ModelDefects* defects = nullptr);
 
+// What stands for a blank within a material name in checked text (so that
+// tinyobjloader reads "usemtl Hard Shiny Plastic" as one name), and for
+// the name of a newmtl that has none; and the name of a usemtl without
+// one (which no newmtl has).
+const char material_name_mark = '\x1f';
+const char no_material_mark = '\x1e';
+
+// A material name as tinyobjloader read it from checked text, as the file
+// wrote it (marks back to blanks; "" for a newmtl without a name).
+std::string decode_material_name(std::string name);
+
 // The text of the MTL file `path` once its colours (Ka, Kd, Ks, Ke, Tf)
 // and numbers (Ns, Ni, d, Tr, illum) are checked: decimal numbers, finite
 // in float, three for a colour and one for a number. Throws std::runtime_error
 // "path:line: ..." at the first mistake.
-std::string checked_mtl_text(const std::string& path);
+// Each material's name is the rest of its newmtl line (blanks and all,
+// trimmed; decode_material_name), and a colour of one number is that
+// number in all three channels, as the MTL format allows. `defects`: where
+// a newmtl without a name is reported (the material cannot be named);
+// nullptr: it is an error.
+std::string checked_mtl_text(const std::string& path, ModelDefects* defects = nullptr);
 
 }  // namespace trac0r
 

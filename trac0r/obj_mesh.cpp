@@ -70,7 +70,7 @@ class CheckedMtlReader : public tinyobj::MaterialReader {
         }
         std::string text;
         try {
-            text = checked_mtl_text(file);
+            text = checked_mtl_text(file, defects_);
         } catch (const std::runtime_error& e) {
             // Named by the OBJ's mtllib line as well.
             throw std::runtime_error(obj_path_ + ":" + std::to_string(line) + ": mtllib '" + name +
@@ -107,6 +107,9 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
     if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &text,
                           read_mtl ? &reader : nullptr, true)) {
         throw std::runtime_error(path + ": cannot read OBJ mesh" + (err.empty() ? "" : ": " + err));
+    }
+    for (tinyobj::material_t& m : materials) {
+        m.name = decode_material_name(m.name);
     }
     // An OBJ without mtllib names materials it does not have: its usemtl
     // are ignored, and every face takes `material`.
