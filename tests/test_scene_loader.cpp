@@ -895,7 +895,7 @@ TEST_CASE("OBJ meshes: materials from the MTL files, split by usemtl", "[scene_l
 
         dir.write("m.mtl", "newmtl red\nKd 1.5 0 0\n");
         CHECK_THAT(scene_file_error(mesh_scene("")),
-                   EndsWith(mtl + ": material 'red': Kd (1.5, 0, 0): expected each in [0, 1]"));
+                   EndsWith(mtl + ":2: Kd 1.5: expected a number in [0, 1]"));
         dir.write("m.obj", "mtllib m.mtl\n" + quad + "usemtl\nf 1 2 3\n");
         CHECK_THAT(scene_file_error(mesh_scene("")),
                    EndsWith(obj + ":6: expected 'usemtl NAME', got no name"));

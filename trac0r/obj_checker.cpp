@@ -8,7 +8,9 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstdio>
 #include <cstring>
+#include <map>
 #include <stdexcept>
 #include <vector>
 
@@ -361,7 +363,16 @@ class ObjChecker {
                                  "no usemtl can name it");
                 rename(key.end, key.end, material_name_mark);
             } else {
-                name_after_keyword();
+                const long line = line_of(words_[1].begin);
+                const std::string name = name_after_keyword();
+                const auto first = newmtl_lines_.emplace(name, line);
+                if (!first.second) {
+                    // tinyobjloader's usemtl finds the first of the name.
+                    report_or_fail(line,
+                                   "newmtl '" + printable(name, 60) + "' again (first on line " +
+                                       std::to_string(first.first->second) + ")",
+                                   "the first is used");
+                }
             }
             return;
         }
@@ -373,10 +384,12 @@ class ObjChecker {
                                           std::to_string(values) + " values");
             }
             check_numbers("a " + key.text() + " value");
+            // Reflectances and transmission in [0, 1]; emission >= 0.
+            const std::vector<std::string> v =
+                ranged_values(0.0, is_word(key, "Ke") ? 1e30 : 1.0, false);
             if (values == 1) {
-                const std::string v = words_[1].text();
                 edits_.push_back(
-                    {static_cast<std::size_t>(words_[1].end - base_), 0, " " + v + " " + v});
+                    {static_cast<std::size_t>(words_[1].end - base_), 0, " " + v[0] + " " + v[0]});
             }
         } else if (is_one_of(numbers, 5)) {
             if (values != 1) {
@@ -384,7 +397,56 @@ class ObjChecker {
                                           std::to_string(values) + " values");
             }
             check_numbers("a " + key.text() + " value");
+            if (is_word(key, "d") || is_word(key, "Tr")) {
+                ranged_values(0.0, 1.0, false);
+            } else if (is_word(key, "Ns")) {
+                ranged_values(0.0, 1000.0, false);  // the MTL format's range, as Blender clamps
+            } else if (is_word(key, "illum")) {
+                ranged_values(0.0, 10.0, true);
+            }
         }
+    }
+
+    // A defect at `line`: reported (lenient), else the error it names.
+    void report_or_fail(long line, const std::string& what, const std::string& done) {
+        if (defects_ == nullptr) {
+            fail_at(line, what);
+        }
+        defects_->report(path_, line, what, done);  // throws when strict
+    }
+
+    // The statement's values (checked numbers) within [lo, hi] (whole
+    // numbers where `whole`): one outside is a defect, taken as the
+    // nearest value within (its text rewritten for tinyobjloader; a
+    // fraction of a whole number cut off, as tinyobjloader reads it).
+    // Returns the values' texts as tinyobjloader will read them.
+    std::vector<std::string> ranged_values(double lo, double hi, bool whole) {
+        std::vector<std::string> out;
+        for (std::size_t k = 1; k < words_.size(); ++k) {
+            const Word& w = words_[k];
+            std::string text = w.text();
+            const double value = std::strtod(text.c_str(), nullptr);
+            double taken = std::min(hi, std::max(lo, value));
+            if (whole) {
+                taken = std::trunc(taken);
+            }
+            if (taken != value) {
+                char shown_value[32];
+                std::snprintf(shown_value, sizeof shown_value, "%g", taken);
+                char range[64];
+                std::snprintf(range, sizeof range,
+                              whole ? "a whole number from %g to %g" : "a number in [%g, %g]", lo,
+                              hi);
+                report_or_fail(line_of(w.begin),
+                               words_[0].text() + " " + shown(w) + ": expected " + range,
+                               std::string("taken as ") + shown_value);
+                edits_.push_back({static_cast<std::size_t>(w.begin - base_),
+                                  static_cast<std::size_t>(w.end - w.begin), shown_value});
+                text = shown_value;
+            }
+            out.push_back(text);
+        }
+        return out;
     }
 
     // Each word after the first a decimal number finite in float; `what`
@@ -542,9 +604,10 @@ class ObjChecker {
         std::string with;
     };
     std::vector<Edit> edits_;
-    const char* base_ = nullptr;           // the text's first byte
-    const char* statement_end_ = nullptr;  // the end of the statement being checked
-    std::vector<const char*> breaks_;      // the statement's continuations, in order
+    const char* base_ = nullptr;                // the text's first byte
+    const char* statement_end_ = nullptr;       // the end of the statement being checked
+    std::map<std::string, long> newmtl_lines_;  // an MTL's material names, their lines
+    std::vector<const char*> breaks_;           // the statement's continuations, in order
 };
 
 }  // namespace

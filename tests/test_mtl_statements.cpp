@@ -1,6 +1,8 @@
-// Material names and colours in OBJ and MTL files as Blender and assimp
+// Material names and values in OBJ and MTL files as Blender and assimp
 // read them (trac0r/obj_checker.h): a name is the rest of its usemtl or
-// newmtl line, blanks and all; a colour of one number is grey.
+// newmtl line, blanks and all; a colour of one number is grey; a value out
+// of the MTL format's range is taken as the nearest within, with a
+// warning (an error when strict).
 #include "test_support.h"
 
 using namespace trac0r;
@@ -65,5 +67,54 @@ TEST_CASE("a usemtl or newmtl without a name: a warning, refused when strict",
     } catch (const SceneError& e) {
         CHECK_THAT(e.what(),
                    Catch::Matchers::EndsWith("/m.obj:7: expected 'usemtl NAME', got no name"));
+    }
+}
+
+TEST_CASE("MTL values out of range: one rule, a warning each, refused when strict",
+          "[mtl][mesh][defects]") {
+    TempDir dir;
+    // The reproducers' values (shared/repro/mtl_silently_accepted): each
+    // was taken silently, d -1 as glass, Tf -1 as white glass, illum 3.7
+    // as 3, a second newmtl of a name in place of the first.
+    dir.write("m.mtl",
+              "newmtl a\nKd 1.5 0.5 -0.25\nd 2\nNs 2000\n"
+              "newmtl b\nKd 0.5 0.5 0.5\nd -1\nTf -1 0 0\nillum 3.7\n"
+              "newmtl a\nKd 0 1 0\n");
+    dir.write("m.obj", "mtllib m.mtl\n" + triangle + "usemtl a\nf 1 2 3\nusemtl b\nf 1 3 2\n");
+    const std::string json =
+        dir.write("s.json", R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},
+                      "shapes": [{"type": "mesh", "file": "m.obj"}]})");
+    const Scene scene = load_scene_file(json);
+    const std::string mtl = dir.path() + "/m.mtl";
+    const std::vector<std::string> expected = {
+        mtl + ":2: warning: Kd 1.5: expected a number in [0, 1]; taken as 1 (--strict refuses it)",
+        mtl +
+            ":2: warning: Kd -0.25: expected a number in [0, 1]; taken as 0 (--strict refuses "
+            "it)",
+        mtl + ":3: warning: d 2: expected a number in [0, 1]; taken as 1 (--strict refuses it)",
+        mtl +
+            ":4: warning: Ns 2000: expected a number in [0, 1000]; taken as 1000 (--strict "
+            "refuses it)",
+        mtl + ":7: warning: d -1: expected a number in [0, 1]; taken as 0 (--strict refuses it)",
+        mtl + ":8: warning: Tf -1: expected a number in [0, 1]; taken as 0 (--strict refuses it)",
+        mtl +
+            ":9: warning: illum 3.7: expected a whole number from 0 to 10; taken as 3 "
+            "(--strict refuses it)",
+        mtl +
+            ":10: warning: newmtl 'a' again (first on line 1); the first is used (--strict "
+            "refuses it)"};
+    CHECK(scene.warnings == expected);
+    REQUIRE(scene.shapes.size() == 2);
+    const Material& a = material_of(scene, 0);
+    CHECK(a.name == "a");
+    CHECK(a.color == glm::vec3(1.0f, 0.5f, 0.0f));
+    LoadOptions strict;
+    strict.strict = true;
+    try {
+        load_scene_file(json, strict);
+        FAIL("loaded strictly");
+    } catch (const SceneError& e) {
+        CHECK_THAT(e.what(),
+                   Catch::Matchers::EndsWith(mtl + ":2: Kd 1.5: expected a number in [0, 1]"));
     }
 }
