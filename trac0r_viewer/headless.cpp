@@ -429,6 +429,14 @@ int run_batch(trac0r::Renderer& renderer, const Options& options, Cluster& clust
         }
     }
     save_outputs(image, options, renderer.scene().render.view, &renderer, &accumulator);
+    // A signal that came while the outputs were written (they are whole:
+    // output_file.h) still says so in the exit status.
+    const int late = interrupt_signal;
+    if (code == 0 && late != 0) {
+        std::fprintf(stderr, "%s: interrupted by %s while the image was written (it is whole)\n",
+                     program_name(), late == SIGINT ? "SIGINT" : "SIGTERM");
+        return 128 + late;
+    }
     return code;
 }
 
