@@ -4,6 +4,7 @@
 #include "startup.h"
 #include "window_session.h"
 
+#include "trac0r/model_scene.h"
 #include "trac0r/version.h"
 
 #include <csignal>
@@ -37,6 +38,24 @@ int main(int argc, char** argv) {
                     "with no other option or scene");
             }
             return trac0r_viewer::list_devices();
+        }
+        if (options.print_scene) {
+            if (!trac0r::is_model_path(options.scene_path)) {
+                throw UsageError("--print-scene: expected a model file (.obj, .ply, .gltf, "
+                                 ".glb) to make a scene around, got " +
+                                 (options.scene_path.empty() ? std::string("none")
+                                                             : "'" + options.scene_path + "'"));
+            }
+            startup.prepare(options);
+            trac0r::LoadOptions load;
+            load.strict = options.strict;
+            std::string json;
+            const trac0r::Scene scene = trac0r::model_scene(options.scene_path, load, &json);
+            for (const std::string& line : scene.warnings) {
+                std::fprintf(stderr, "%s\n", line.c_str());
+            }
+            std::fputs(json.c_str(), stdout);
+            return std::fflush(stdout) == 0 ? 0 : 1;
         }
         startup.prepare(options);
         const trac0r::Scene& scene = startup.load(options);

@@ -104,7 +104,9 @@ const char* const viewer_description =
 // Every option at most once but --output, which may name several files:
 // a second value would silently replace the first.
 void define_options(trac0r_cli::CommandLine& cl, Options& o) {
-    cl.positional("SCENE.json", &o.scene_path, "the scene (default: the built-in Cornell box)");
+    cl.positional("SCENE.json", &o.scene_path,
+                  "the scene (default: the built-in Cornell box), or a model file (.obj, .ply, "
+                  ".gltf, .glb) to see on its own: framed by the camera, under a white sky");
     cl.group("Rendering");
     cl.choice("--backend", &o.backend, "cpu|opencl", "backend (default cpu)");
     cl.integer("--device", &o.device, 0, 1023, "OpenCL device index (see --list-devices)");
@@ -146,6 +148,9 @@ void define_options(trac0r_cli::CommandLine& cl, Options& o) {
               "how PNG outputs and the window show radiance: each channel clipped at 1 "
               "(standard), or AgX, highlights rolled off to white as in Blender (filmic); "
               "default: the scene's render.view, else standard; never changes .pfm or .exr");
+    cl.flag("--print-scene", &o.print_scene,
+            "with a model file, print the scene made around it as scene-file JSON (to start "
+            "editing from) and exit");
     cl.flag("--strict", &o.strict,
             "refuse a model file with a defect that other importers pass over (a face of two "
             "vertices, a usemtl naming no material, a texture that is not there), which is "

@@ -42,7 +42,8 @@ struct Options {
     std::string replay_path;            // --replay: scripted window input (replay.h)
     long max_input_mb = 0;              // --max-input-mb; 0: the library's limit (4000)
     bool verbose = false;
-    bool strict = false;  // --strict: a model file's defects are errors (trac0r::LoadOptions)
+    bool strict = false;
+    bool print_scene = false;  // --print-scene: the scene around a model file, as JSON  // --strict: a model file's defects are errors (trac0r::LoadOptions)
     bool list_devices = false;
     bool help = false;
     bool version = false;

@@ -9,6 +9,7 @@
 #include "trac0r/input_checks.h"
 #include "trac0r/opencl_backend.h"
 #include "trac0r/output_file.h"
+#include "trac0r/model_scene.h"
 #include "trac0r/scene_loader.h"
 
 #include <algorithm>
@@ -112,7 +113,9 @@ trac0r::Scene load_scene(const Options& o) {
     trac0r::LoadOptions load;
     load.strict = o.strict;
     trac0r::Scene scene = o.scene_path.empty() ? trac0r::builtin_scene()
-                                               : trac0r::load_scene_file(o.scene_path, load);
+                          : trac0r::is_model_path(o.scene_path)
+                              ? trac0r::model_scene(o.scene_path, load)
+                              : trac0r::load_scene_file(o.scene_path, load);
     if (o.width > 0) {
         scene.render.width = o.width;
     }
