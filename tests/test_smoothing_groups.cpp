@@ -107,3 +107,43 @@ TEST_CASE("an OBJ without vn is smooth within its smoothing groups, flat without
         REQUIRE(flat.normals.empty());
     }
 }
+
+TEST_CASE("\"smooth_angle\" smooths a mesh without normals or groups below the angle",
+          "[smoothing][scene_loader]") {
+    TempDir dir;
+    // The roof's two faces, without vn or s, meet at 90 degrees.
+    dir.write("roof.obj", "v 0 1 0\nv 1 1 0\nv 0.5 0 1\nv 0.5 0 -1\nf 1 3 2\nf 2 4 1\n");
+    const auto load = [&](const std::string& keys) {
+        const std::string json =
+            dir.write("s.json", R"({"materials": {"w": {"type": "diffuse", "color": [1, 1, 1]}},
+                          "shapes": [{"type": "mesh", "file": "roof.obj", "material": "w")" +
+                                    keys + "}]}");
+        return load_scene_file(json);
+    };
+    const float s = 1.0f / std::sqrt(2.0f);
+    // Above 90 degrees: smooth across the ridge (straight up there).
+    const Scene smooth = load(R"(, "smooth_angle": 100)");
+    REQUIRE(smooth.shapes[0].normals.size() == 2);
+    require_vec(smooth.shapes[0].normals[0][0], glm::vec3(0, 1, 0));
+    require_vec(smooth.shapes[0].normals[0][1], glm::vec3(0, s, s));
+    // Below: each face its own normal (sharp, as flat).
+    const Scene sharp = load(R"(, "smooth_angle": 80)");
+    REQUIRE(sharp.shapes[0].normals.size() == 2);
+    require_vec(sharp.shapes[0].normals[0][0], glm::vec3(0, s, s));
+    require_vec(sharp.shapes[0].normals[1][0], glm::vec3(0, s, -s));
+    // Without the key, or with "smooth": false: flat, as the file is.
+    CHECK(load("").shapes[0].normals.empty());
+    CHECK(load(R"(, "smooth_angle": 100, "smooth": false)").shapes[0].normals.empty());
+    // A file's own normals win.
+    dir.write("roof.obj",
+              "v 0 1 0\nv 1 1 0\nv 0.5 0 1\nv 0.5 0 -1\nvn 1 0 0\n"
+              "f 1//1 3//1 2//1\nf 2//1 4//1 1//1\n");
+    require_vec(load(R"(, "smooth_angle": 100)").shapes[0].normals[0][0], glm::vec3(1, 0, 0));
+    try {
+        load(R"(, "smooth_angle": 200)");
+        FAIL("loaded");
+    } catch (const SceneError& e) {
+        CHECK_THAT(e.what(), Catch::Matchers::Contains("/shapes/0/smooth_angle: expected degrees "
+                                                       "in [0, 180], got 200"));
+    }
+}

@@ -50,6 +50,7 @@
 // | mesh.file              | string  | required; .obj/.ply/.gltf/.glb path      |                 |
 // | mesh.scale             | [3]     | finite, non-zero (negative mirrors)     | [1, 1, 1]       |
 // | mesh.smooth            | boolean | shade with the file's vertex normals    | true            |
+// | mesh.smooth_angle      | number  | degrees in [0, 180]: auto smooth        | none            |
 // | mesh.file_materials    | boolean | faces take the file's materials (MTL...) | true           |
 // | environment            | object  | optional: "color" or "map" (below)      | none (black)    |
 // | environment.color      | [3]     | >= 0: a constant environment            |                 |
@@ -74,6 +75,7 @@
 // order nlohmann iterates the materials object (by name).
 #include "trac0r/scene_loader.h"
 
+#include "trac0r/auto_smooth.h"
 #include "trac0r/input_checks.h"
 #include "trac0r/input_file.h"
 #include "trac0r/json_diagnostics.h"
@@ -235,6 +237,12 @@ std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
     const glm::vec3 scale = o.optional_vec3("scale", NumberRule::non_zero, glm::vec3(1.0f));
     const bool smooth = o.optional_bool("smooth", true);
     const bool file_materials = o.optional_bool("file_materials", true);
+    // Blender's auto smooth, for files with neither normals nor groups.
+    const bool auto_smoothed = o.has("smooth_angle");
+    const float smooth_angle = auto_smoothed ? o.required_float("smooth_angle", NumberRule::non_negative) : 0.0f;
+    if (smooth_angle > 180.0f) {
+        fail(o.at("smooth_angle"), "expected degrees in [0, 180], got " + describe(o["smooth_angle"]));
+    }
     try {
         const std::string path = resolve_path(context.base_dir, file.get<std::string>());
         // The file's textures are counted against the scene's room before
@@ -290,6 +298,9 @@ std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
             part.shape.source = path;
             shapes.push_back(std::move(part.shape));
         }
+        if (auto_smoothed && smooth) {
+            auto_smooth(shapes, smooth_angle);
+        }
         return shapes;
     } catch (const std::runtime_error& e) {
         // tinyobjloader's messages end in a newline; ours are one line.
@@ -305,7 +316,7 @@ const std::map<std::string, std::vector<std::string>>& shape_type_keys() {
         {"plane", {"size"}},
         {"box", {"size"}},
         {"icosphere", {"radius", "subdivisions"}},
-        {"mesh", {"file", "scale", "smooth", "file_materials"}}};
+        {"mesh", {"file", "scale", "smooth", "smooth_angle", "file_materials"}}};
     return keys;
 }
 

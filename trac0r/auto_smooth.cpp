@@ -1,0 +1,102 @@
+#include "trac0r/auto_smooth.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <unordered_map>
+
+namespace trac0r {
+
+namespace {
+
+struct PositionHash {
+    std::size_t operator()(const glm::vec3& p) const {
+        std::uint64_t h = 1469598103934665603ull;
+        for (int k = 0; k < 3; ++k) {
+            const float v = p[k] + 0.0f;  // -0 and +0 alike
+            std::uint32_t bits;
+            std::memcpy(&bits, &v, sizeof bits);
+            h = (h ^ bits) * 1099511628211ull;
+        }
+        return static_cast<std::size_t>(h);
+    }
+};
+
+struct Corner {
+    glm::dvec3 normal;  // its triangle's, unit
+    double angle;       // the triangle's angle there
+};
+
+bool flat(const Shape& s, std::size_t t) {
+    return t >= s.normals.size() || !(glm::length(s.normals[t][0]) > 0.0f);
+}
+
+}  // namespace
+
+void auto_smooth(std::vector<Shape>& shapes, float degrees) {
+    const double cos_limit =
+        std::cos(static_cast<double>(degrees) * 3.14159265358979323846 / 180.0);
+    // Per position, the corners of the triangles without normals there.
+    std::unordered_map<glm::vec3, std::vector<Corner>, PositionHash> at;
+    for (const Shape& s : shapes) {
+        for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+            if (!flat(s, t)) {
+                continue;
+            }
+            const Triangle& tri = s.triangles[t];
+            const glm::vec3 p[3] = {tri.v0, tri.v1, tri.v2};
+            const glm::dvec3 n = glm::cross(glm::dvec3(p[1] - p[0]), glm::dvec3(p[2] - p[0]));
+            const double length = glm::length(n);
+            if (!(length > 0.0) || !std::isfinite(length)) {
+                continue;
+            }
+            for (int k = 0; k < 3; ++k) {
+                const glm::dvec3 e1 = glm::dvec3(p[(k + 1) % 3] - p[k]);
+                const glm::dvec3 e2 = glm::dvec3(p[(k + 2) % 3] - p[k]);
+                const double l = glm::length(e1) * glm::length(e2);
+                const double angle =
+                    l > 0.0 ? std::acos(std::min(1.0, std::max(-1.0, glm::dot(e1, e2) / l))) : 0.0;
+                at[p[k]].push_back({n / length, angle});
+            }
+        }
+    }
+    for (Shape& s : shapes) {
+        for (std::size_t t = 0; t < s.triangles.size(); ++t) {
+            if (!flat(s, t)) {
+                continue;
+            }
+            const Triangle& tri = s.triangles[t];
+            const glm::vec3 p[3] = {tri.v0, tri.v1, tri.v2};
+            const glm::dvec3 n = glm::cross(glm::dvec3(p[1] - p[0]), glm::dvec3(p[2] - p[0]));
+            const double length = glm::length(n);
+            if (!(length > 0.0) || !std::isfinite(length)) {
+                continue;
+            }
+            const glm::dvec3 own = n / length;
+            VertexNormalTriple normals{};
+            bool usable = true;
+            for (int k = 0; k < 3 && usable; ++k) {
+                glm::dvec3 sum(0.0);
+                for (const Corner& c : at[p[k]]) {
+                    if (glm::dot(c.normal, own) >= cos_limit - 1e-12) {
+                        sum += c.normal * c.angle;
+                    }
+                }
+                const double l = glm::length(sum);
+                usable = l > 0.0 && std::isfinite(l);
+                normals[k] = usable ? glm::vec3(sum / l) : glm::vec3(0.0f);
+            }
+            if (!usable) {
+                continue;
+            }
+            if (s.normals.size() != s.triangles.size()) {
+                s.normals.assign(s.triangles.size(), VertexNormalTriple{});
+            }
+            s.normals[t] = normals;
+        }
+    }
+}
+
+}  // namespace trac0r
