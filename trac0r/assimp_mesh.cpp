@@ -258,8 +258,32 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     }
     // The file's materials (and their textures) as the parts use them.
     MeshParts files;
-    const std::vector<float> strengths =
-        ply ? std::vector<float>() : gltf_emissive_strengths(gltf_json_text(text, !gltf), path);
+    const std::vector<GltfMaterialExtras> json_extras =
+        ply ? std::vector<GltfMaterialExtras>()
+            : gltf_material_extras(gltf_json_text(text, !gltf), path);
+    // The extras by assimp's material index: assimp 5.2 orders a glTF's
+    // materials its own way (ClearCoatTest's and TextureTransformTest's
+    // differ from the file's), so each is found by its name, the first
+    // of that name not yet taken; by its index where no name matches.
+    std::vector<GltfMaterialExtras> extras(scene->mNumMaterials);
+    std::vector<bool> taken(json_extras.size(), false);
+    for (unsigned i = 0; i < scene->mNumMaterials && !json_extras.empty(); ++i) {
+        aiString name;
+        scene->mMaterials[i]->Get(AI_MATKEY_NAME, name);
+        std::size_t found = json_extras.size();
+        for (std::size_t j = 0; j < json_extras.size() && found == json_extras.size(); ++j) {
+            if (!taken[j] && !json_extras[j].name.empty() && json_extras[j].name == name.C_Str()) {
+                found = j;
+            }
+        }
+        if (found == json_extras.size() && i < json_extras.size() && !taken[i]) {
+            found = i;
+        }
+        if (found < json_extras.size()) {
+            taken[found] = true;
+            extras[i] = json_extras[found];
+        }
+    }
     // A texture as assimp_texture reads it; one that is not there or does
     // not decode is a defect (-1: the material's factor alone).
     ModelDefects defects(strict);
@@ -284,7 +308,8 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
             return -1;
         }
         Material out = material_from_assimp(
-            m, path, static_cast<std::size_t>(id) < strengths.size() ? strengths[id] : 1.0f);
+            m, path,
+            static_cast<std::size_t>(id) < extras.size() ? extras[id].emissive_strength : 1.0f);
         if (out.type == MaterialType::principled && out.emission != glm::vec3(0.0f)) {
             out.emission_texture = texture_of(m, {aiTextureType_EMISSIVE}, "emissive");
         }
@@ -320,8 +345,23 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
         return static_cast<int>(files.materials.size()) - 1;
     };
     std::vector<int> part_materials;
-    for (int key : parts.key) {
+    for (std::size_t part = 0; part < parts.key.size(); ++part) {
+        const int key = parts.key[part];
         part_materials.push_back(material_of(key));
+        // KHR_texture_transform, applied to the part's coordinates (in
+        // glTF's, v down from the image's top; assimp gives v up).
+        if (key >= 0 && static_cast<std::size_t>(key) < extras.size() &&
+            extras[static_cast<std::size_t>(key)].uv_transform) {
+            const std::vector<double>& m = extras[static_cast<std::size_t>(key)].uv_matrix;
+            for (TriangleUv& t : parts.uvs[part]) {
+                for (glm::vec2& uv : t.uv) {
+                    const double u = uv.x;
+                    const double v = 1.0 - static_cast<double>(uv.y);
+                    uv = glm::vec2(static_cast<float>(m[0] * u + m[1] * v + m[2]),
+                                   static_cast<float>(1.0 - (m[3] * u + m[4] * v + m[5])));
+                }
+            }
+        }
     }
     files.warnings = defects.lines();
     return mesh_to_wire(parts, part_materials, files);

@@ -1,0 +1,122 @@
+// glTF extensions that Debian's assimp (5.2) does not read, read by
+// trac0r from the file's JSON (trac0r/gltf_json.h): KHR_texture_transform
+// applied to the coordinates, matched to assimp's materials by name
+// (assimp orders a file's materials its own way).
+#include "test_support.h"
+
+#include "trac0r/gltf_json.h"
+
+#include <cmath>
+
+using namespace trac0r;
+
+namespace {
+
+// Two triangles in the xy plane with coordinates (x, y) at their
+// vertices: the first of material 0 ("moved": a base-colour texture with
+// KHR_texture_transform `transform`), the second of material 1 ("plain":
+// the same texture, none).
+std::string two_materials_gltf(const std::string& transform) {
+    const float values[30] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0, 3, 0, 0,
+                              2, 1, 0, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+    const std::string buffer(reinterpret_cast<const char*>(values), sizeof values);
+    Rgb8Image image;
+    image.width = 1;
+    image.height = 1;
+    image.bytes = {200, 100, 50};
+    TempDir png_dir;
+    const std::string png_path = png_dir.path() + "/t.png";
+    write_png(png_path, image);
+    std::ifstream png_file(png_path, std::ios::binary);
+    const std::string png((std::istreambuf_iterator<char>(png_file)),
+                          std::istreambuf_iterator<char>());
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0}, {"mesh": 1}],
+  "extensionsUsed": ["KHR_texture_transform"],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 2}, "material": 0}]},
+             {"primitives": [{"attributes": {"POSITION": 1, "TEXCOORD_0": 3}, "material": 1}]}],
+  "materials": [{"name": "moved", "pbrMetallicRoughness": {"metallicFactor": 0,
+                  "baseColorTexture": {"index": 0, "extensions": {"KHR_texture_transform": )" +
+           transform + R"(}}}},
+                {"name": "plain", "pbrMetallicRoughness": {"metallicFactor": 0,
+                  "baseColorTexture": {"index": 0}}}],
+  "textures": [{"source": 0}], "images": [{"uri": "data:image/png;base64,)" +
+           base64(png) + R"("}],
+  "buffers": [{"byteLength": 120, "uri": "data:application/octet-stream;base64,)" +
+           base64(buffer) + R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 72},
+                  {"buffer": 0, "byteOffset": 72, "byteLength": 48}],
+  "accessors": [
+    {"bufferView": 0, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+     "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 0, "byteOffset": 36, "componentType": 5126, "count": 3, "type": "VEC3",
+     "min": [2, 0, 0], "max": [3, 1, 0]},
+    {"bufferView": 1, "byteOffset": 0, "componentType": 5126, "count": 3, "type": "VEC2"},
+    {"bufferView": 1, "byteOffset": 24, "componentType": 5126, "count": 3, "type": "VEC2"}]})";
+}
+
+}  // namespace
+
+TEST_CASE("KHR_texture_transform moves a material's texture coordinates", "[gltf][texture]") {
+    // The buffer's coordinates (glTF's: v down from the image's top) are
+    // (0, 0), (1, 0), (0, 1) on both triangles; assimp gives v up (1 - v).
+    // The transform: offset (0.25, 0.5), rotation 90 degrees, scale
+    // (2, 3): (u, v) -> (c 2u + s 3v + 0.25, -s 2u + c 3v + 0.5).
+    TempDir dir;
+    const std::string path = dir.write(
+        "t.gltf",
+        two_materials_gltf(
+            R"({"offset": [0.25, 0.5], "rotation": 1.5707963267948966, "scale": [2, 3]})"));
+    const MeshParts mesh =
+        load_mesh_parts(path, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f), 0, true, true);
+    REQUIRE(mesh.parts.size() == 2);
+    const glm::vec2 gltf_uv[3] = {{0, 0}, {1, 0}, {0, 1}};
+    for (const MeshPart& part : mesh.parts) {
+        const std::string& name = mesh.materials[static_cast<std::size_t>(part.material)].name;
+        CAPTURE(name);
+        REQUIRE(part.shape.uvs.size() == 1);
+        for (int k = 0; k < 3; ++k) {
+            // The vertex's own coordinates, by its x (the second triangle
+            // is the first moved by 2 in x).
+            const float x = part.shape.triangles[0].v0.x >= 2.0f ? 2.0f : 0.0f;
+            const glm::vec3 p =
+                k == 0 ? part.shape.triangles[0].v0
+                       : (k == 1 ? part.shape.triangles[0].v1 : part.shape.triangles[0].v2);
+            const glm::vec2 g =
+                gltf_uv[static_cast<int>(p.x - x + 0.5f) + 2 * static_cast<int>(p.y + 0.5f)];
+            glm::dvec2 expected(g.x, g.y);
+            if (name == "moved") {
+                expected = glm::dvec2(3.0 * g.y + 0.25, -2.0 * g.x + 0.5);
+            }
+            const glm::vec2 got = part.shape.uvs[0].uv[k];
+            CAPTURE(k, g.x, g.y, got.x, got.y);
+            CHECK(got.x == Approx(expected.x).margin(1e-6));
+            CHECK(got.y == Approx(1.0 - expected.y).margin(1e-6));
+        }
+    }
+}
+
+TEST_CASE("gltf_material_extras: transforms as matrices, their differences, bad values", "[gltf]") {
+    const std::string json = R"({"materials": [
+      {"name": "a", "emissiveTexture": {"index": 0},
+       "pbrMetallicRoughness": {"baseColorTexture": {"index": 0, "extensions":
+          {"KHR_texture_transform": {"offset": [1, 2]}}}}},
+      {"name": "b", "normalTexture": {"index": 0, "extensions":
+          {"KHR_texture_transform": {"scale": [2, 2]}}}},
+      {"name": "c"}]})";
+    const std::vector<GltfMaterialExtras> extras = gltf_material_extras(json, "f.gltf");
+    REQUIRE(extras.size() == 3);
+    CHECK(extras[0].name == "a");
+    CHECK(extras[0].uv_transform);
+    CHECK(extras[0].uv_matrix == std::vector<double>{1, 0, 1, -0.0, 1, 2});
+    CHECK(extras[0].transforms_differ);  // its emissive texture has none
+    CHECK(extras[1].uv_transform);
+    CHECK(extras[1].uv_matrix == std::vector<double>{2, 0, 0, -0.0, 2, 0});
+    CHECK_FALSE(extras[1].transforms_differ);
+    CHECK_FALSE(extras[2].uv_transform);
+    CHECK_THROWS_WITH(gltf_material_extras(R"({"materials": [{"name": "x", "normalTexture":
+        {"index": 0, "extensions": {"KHR_texture_transform": {"offset": [1, "a"]}}}}]})",
+                                           "f.gltf"),
+                      Catch::Contains("f.gltf: material 'x': KHR_texture_transform: offset "
+                                      "[1,\"a\"]: expected two finite numbers"));
+}
