@@ -6,6 +6,8 @@
 
 #include "trac0r/model_scene.h"
 
+#include <cstring>
+
 using namespace trac0r;
 using Catch::Matchers::Contains;
 
@@ -102,4 +104,82 @@ TEST_CASE("trac0r_viewer opens a model on its own; --print-scene's scene renders
     CHECK(wrong.exit_code != 0);
     CHECK_THAT(wrong.err, Contains("--print-scene: expected a model file (.obj, .ply, .gltf, "
                                    ".glb) to make a scene around, got '"));
+}
+
+TEST_CASE("a glTF's own camera and KHR_lights_punctual lights make its scene", "[model_scene]") {
+    // One triangle; a camera at (0, 1, 5) turned 90 degrees about y (so
+    // it looks along -x) with yfov 0.5 and aspect 2; a point light of 683
+    // cd (1 W/sr) at (1, 2, 3); a red spot of 1366 cd under a parent node
+    // moved by (0, 10, 0), turned to point down (-90 degrees about x), its
+    // cone 0.2 to 0.4 rad; a directional light of 6830 lux pointing down.
+    const float values[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const std::string buffer(reinterpret_cast<const char*>(values), sizeof values);
+    const double h = std::sqrt(0.5);
+    char rotations[256];
+    std::snprintf(rotations, sizeof rotations, "[0, %.17g, 0, %.17g]|[%.17g, 0, 0, %.17g]", h, h,
+                  -h, h);
+    const std::string turn_y(rotations, std::strchr(rotations, '|'));
+    const std::string turn_down(std::strchr(rotations, '|') + 1);
+    TempDir dir;
+    const std::string path =
+        dir.write("lit.gltf", R"({"asset": {"version": "2.0"}, "scene": 0,
+  "scenes": [{"nodes": [0, 1, 2, 3, 5]}],
+  "extensionsUsed": ["KHR_lights_punctual"],
+  "extensions": {"KHR_lights_punctual": {"lights": [
+    {"type": "point", "intensity": 683},
+    {"type": "spot", "intensity": 1366, "color": [1, 0, 0],
+     "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.4}},
+    {"type": "directional", "intensity": 6830}]}},
+  "nodes": [{"mesh": 0},
+            {"camera": 0, "translation": [0, 1, 5], "rotation": )" +
+                                  turn_y + R"(},
+            {"translation": [1, 2, 3], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+            {"translation": [0, 10, 0], "children": [4]},
+            {"rotation": )" + turn_down +
+                                  R"(, "extensions": {"KHR_lights_punctual": {"light": 1}}},
+            {"rotation": )" + turn_down +
+                                  R"(, "extensions": {"KHR_lights_punctual": {"light": 2}}}],
+  "cameras": [{"type": "perspective", "perspective": {"yfov": 0.5, "aspectRatio": 2.0,
+                                                       "znear": 0.1}}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" +
+                                  base64(buffer) + R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 0]}]})");
+    std::string json;
+    const Scene scene = model_scene(path, LoadOptions(), &json);
+    CAPTURE(json);
+    const glm::dvec3 eye = glm::dvec3(scene.camera.position) + scene.origin;
+    CHECK(eye.x == Approx(0.0).margin(1e-6));
+    CHECK(eye.y == Approx(1.0));
+    CHECK(eye.z == Approx(5.0));
+    // -z turned 90 degrees about y: -x.
+    CHECK(scene.camera.direction.x == Approx(-1.0f));
+    CHECK(scene.camera.direction.z == Approx(0.0f).margin(1e-6));
+    CHECK(scene.camera.vertical_fov == Approx(0.5 * 180.0 / 3.14159265358979323846));
+    CHECK(scene.render.width == 1200);
+    CHECK(scene.render.height == 600);
+    CHECK_FALSE(scene.environment.present);  // the file's lights instead
+    REQUIRE(scene.lamps.size() == 3);
+    const Lamp& point = scene.lamps[0];
+    CHECK(point.type == LampType::point);
+    CHECK(point.power == Approx(1.0f));
+    CHECK(glm::dvec3(point.position) + scene.origin == glm::dvec3(1, 2, 3));
+    const Lamp& spot = scene.lamps[1];
+    CHECK(spot.type == LampType::spot);
+    CHECK(spot.power == Approx(2.0f));
+    CHECK(spot.color == glm::vec3(1, 0, 0));
+    CHECK((glm::dvec3(spot.position) + scene.origin).y == Approx(10.0));
+    CHECK(spot.direction.y == Approx(-1.0f));
+    CHECK(spot.angle == Approx(2.0 * 0.4 * 180.0 / 3.14159265358979323846));
+    CHECK(spot.blend == Approx(0.5f));
+    const Lamp& sun = scene.lamps[2];
+    CHECK(sun.type == LampType::sun);
+    CHECK(sun.power == Approx(10.0f));
+    CHECK(sun.direction.y == Approx(1.0f));  // towards the sun: up
+    CHECK(sun.angle == 0.0f);
+    // The printed scene loads back to it.
+    const std::string printed = dir.write("printed.json", json);
+    CHECK(scene_digest(load_scene_file(printed)) == scene_digest(scene));
 }

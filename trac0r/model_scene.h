@@ -14,10 +14,12 @@ namespace trac0r {
 bool is_model_path(const std::string& path);
 
 // A scene around the model: the model where its file puts it, its faces
-// with the file's materials (else the default grey), lit by a constant
-// white environment, seen from in front (+z, glTF's and Blender's front
-// view), to the right and above, by a camera of 45 degrees that frames
-// the sphere around its bounds. `json` (where given) receives the scene
+// with the file's materials (else the default grey); lit by a glTF's own
+// lights (KHR_lights_punctual, gltf_view.h), else by a constant white
+// environment; seen by a glTF's first camera (at its aspect ratio, 600
+// rows), else from in front (+z, glTF's and Blender's front view), to the
+// right and above, by a camera of 45 degrees that frames the sphere
+// around its bounds. `json` (where given) receives the scene
 // as scene-file JSON, which loads back to this scene (--print-scene), the
 // model by its absolute path. Throws SceneError as load_scene_file.
 Scene model_scene(const std::string& model_path, const LoadOptions& options,
