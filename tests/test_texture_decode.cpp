@@ -4,6 +4,7 @@
 // would fill the rest with zeros). The inputs are shared/repro's.
 #include "test_support.h"
 
+#include "trac0r/isolated_texture.h"
 #include "trac0r/texture.h"
 
 using namespace trac0r;
@@ -99,4 +100,41 @@ TEST_CASE("only the formats the docs list; every refusal has a printable reason"
     CAPTURE(none);
     CHECK_THAT(none, Contains("cannot decode texture ("));
     CHECK(none.find("()") == std::string::npos);
+}
+
+TEST_CASE("an image decoded in a child process: the same texture, the same refusals",
+          "[texture][isolated]") {
+    TempDir dir;
+    Rgb8Image image;
+    image.width = 2;
+    image.height = 1;
+    image.bytes = {255, 0, 0, 10, 20, 30};
+    const std::string png = dir.path() + "/a.png";
+    write_png(png, image);
+    const Texture here = load_texture_file("w", png);
+    const Texture there = load_texture_file_isolated("w", png, max_scene_texels);
+    CHECK(there.width == 2);
+    CHECK(there.height == 1);
+    CHECK(there.texels == here.texels);
+    CHECK(there.source == here.source);
+    const std::string short_tga = dir.write("s.tga", tga(2, 2, 11));
+    const auto message = [&](bool isolated) {
+        try {
+            if (isolated) {
+                load_texture_file_isolated("w", short_tga, max_scene_texels);
+            } else {
+                load_texture_file("w", short_tga);
+            }
+        } catch (const TextureUnreadable& e) {
+            return std::string(e.what());
+        }
+        return std::string("no TextureUnreadable");
+    };
+    CHECK(message(true) == message(false));
+    CHECK_THAT(message(true), Contains("it is cut short"));
+    // Over the scene's room: an error, not a defect, from the child too.
+    CHECK_THROWS_WITH(load_texture_file_isolated("w", png, 1),
+                      Contains("more than the scene has room"));
+    CHECK_THROWS_AS(load_texture_file_isolated("w", dir.path() + "/none.png", max_scene_texels),
+                    TextureUnreadable);
 }

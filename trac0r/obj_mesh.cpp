@@ -2,6 +2,7 @@
 
 #include "trac0r/file_materials.h"
 #include "trac0r/input_checks.h"
+#include "trac0r/isolated_texture.h"
 #include "trac0r/mesh_parts.h"
 #include "trac0r/obj_checker.h"
 #include "trac0r/smoothing_groups.h"
@@ -245,10 +246,10 @@ MeshParts load_obj(const std::string& path, const glm::vec3& position, const glm
                 const std::string texture = texture_path_beside(file, map);
                 try {
                     return texture_index(mesh, texture, [&] {
-                        return load_texture_file(file + ": material '" + printable(m.name, 60) +
-                                                     "': " + key + " '" + printable(map, 200) + "'",
-                                                 texture,
-                                                 texel_budget - texel_count(mesh.textures));
+                        return load_texture_file_isolated(
+                            file + ": material '" + printable(m.name, 60) + "': " + key + " '" +
+                                printable(map, 200) + "'",
+                            texture, texel_budget - texel_count(mesh.textures));
                     });
                 } catch (const TextureUnreadable& e) {
                     if (defects == nullptr || defects->strict()) {
