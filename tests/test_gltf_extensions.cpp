@@ -5,6 +5,7 @@
 #include "test_support.h"
 
 #include "trac0r/gltf_json.h"
+#include "trac0r/gltf_size.h"
 
 #include <cmath>
 
@@ -119,4 +120,35 @@ TEST_CASE("gltf_material_extras: transforms as matrices, their differences, bad 
                                            "f.gltf"),
                       Catch::Contains("f.gltf: material 'x': KHR_texture_transform: offset "
                                       "[1,\"a\"]: expected two finite numbers"));
+}
+
+TEST_CASE("a glTF's promised triangles, and a file promising more than the machine holds",
+          "[gltf]") {
+    // Mesh 0: 30 indices (10 triangles) and a strip of 5 vertices (3);
+    // mesh 1: 9 vertices without indices (3). Node 0 and node 2 (a child
+    // of node 1) instance mesh 0, node 3 mesh 1; node 4 is in no scene.
+    const std::string json = R"({"scene": 0, "scenes": [{"nodes": [0, 1, 3]}],
+      "nodes": [{"mesh": 0}, {"children": [2]}, {"mesh": 0}, {"mesh": 1}, {"mesh": 1}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 1}, "indices": 0},
+                                 {"attributes": {"POSITION": 1}, "mode": 5}]},
+                 {"primitives": [{"attributes": {"POSITION": 2}}]}],
+      "accessors": [{"count": 30}, {"count": 5}, {"count": 9}]})";
+    CHECK(gltf_promised_triangles(json) == 2 * (10 + 3) + 3);
+    CHECK(gltf_promised_triangles("not json") == 0);
+    // 10^12 triangles: refused before the reader sees the file (its
+    // buffer does not even exist).
+    TempDir dir;
+    const std::string path = dir.write("huge.gltf", R"({"asset": {"version": "2.0"}, "scene": 0,
+      "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 1}, "indices": 0}]}],
+      "buffers": [{"byteLength": 4, "uri": "missing.bin"}],
+      "bufferViews": [{"buffer": 0, "byteLength": 4}],
+      "accessors": [{"bufferView": 0, "componentType": 5125, "count": 3000000000000,
+                     "type": "SCALAR"},
+                    {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 1]}]})");
+    CHECK_THROWS_WITH(
+        load_mesh_parts(path, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f), 0, true, true),
+        Catch::Contains("huge.gltf: cannot read mesh: it promises 1000000000000 "
+                        "triangles, which would take about "));
 }

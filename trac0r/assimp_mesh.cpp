@@ -2,6 +2,7 @@
 
 #include "trac0r/file_materials.h"
 #include "trac0r/gltf_json.h"
+#include "trac0r/gltf_size.h"
 #include "trac0r/input_checks.h"
 #include "trac0r/input_file.h"
 #include "trac0r/isolated_call.h"
@@ -401,6 +402,19 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
     // it past 18 GB): such a file is refused before it sees it.
     if (ply) {
         check_ply_header(path, text);
+    } else {
+        // A glTF that promises more triangles than the machine can hold
+        // is refused before its reader allocates them.
+        const std::uint64_t triangles =
+            gltf_promised_triangles(gltf_json_text(text, has_extension(path, ".glb")));
+        const std::uint64_t memory = 2 * mesh_import_memory();
+        if (memory > 0 && triangles > memory / bytes_per_loaded_triangle) {
+            throw std::runtime_error(
+                path + ": cannot read mesh: it promises " + std::to_string(triangles) +
+                " triangles, which would take about " +
+                std::to_string(triangles * bytes_per_loaded_triangle >> 30) + " GB, more than this " +
+                "machine's " + std::to_string(memory >> 30) + " GB");
+        }
     }
     const std::string reader = assimp_reader_name(ply);
     const IsolatedOutcome outcome = run_isolated(
