@@ -17,8 +17,6 @@
 #include <assimp/importerdesc.h>
 #include <assimp/scene.h>
 
-#include <unistd.h>
-
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -372,15 +370,8 @@ double mesh_import_seconds = 300.0;
 
 // How much more memory than trac0r's own the reader's child may take:
 // half the machine's, so that a file that drives it to allocate without
-// end (a glTF's 1 GiB buffer took it past 8 GB) stops there.
-std::uint64_t mesh_import_memory() {
-    const long pages = sysconf(_SC_PHYS_PAGES);
-    const long page = sysconf(_SC_PAGE_SIZE);
-    if (pages <= 0 || page <= 0) {
-        return 0;  // unknown: no limit
-    }
-    return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2u;
-}
+// end stops there.
+std::uint64_t mesh_import_memory() { return half_machine_memory(); }
 
 }  // namespace
 

@@ -1,8 +1,10 @@
 #include "trac0r/gltf_size.h"
 
+#include "trac0r/gltf_nodes.h"
+
 #include <nlohmann/json.hpp>
 
-#include <functional>
+#include <stdexcept>
 #include <vector>
 
 namespace trac0r {
@@ -59,50 +61,21 @@ std::uint64_t gltf_promised_triangles(const std::string& json_text) {
         !doc["nodes"].is_array() || !doc.contains("meshes") || !doc["meshes"].is_array()) {
         return 0;
     }
-    const json& nodes = doc["nodes"];
     const json& meshes = doc["meshes"];
     std::vector<std::uint64_t> per_mesh(meshes.size());
     for (std::size_t m = 0; m < meshes.size(); ++m) {
         per_mesh[m] = mesh_triangles(doc, meshes[m]);
     }
-    std::vector<std::size_t> roots;
-    if (doc.contains("scenes") && doc["scenes"].is_array() && !doc["scenes"].empty()) {
-        std::size_t scene = 0;
-        if (doc.contains("scene") && doc["scene"].is_number_unsigned() &&
-            doc["scene"].get<std::size_t>() < doc["scenes"].size()) {
-            scene = doc["scene"].get<std::size_t>();
-        }
-        const json& s = doc["scenes"][scene];
-        if (s.is_object() && s.contains("nodes") && s["nodes"].is_array()) {
-            for (const json& n : s["nodes"]) {
-                if (n.is_number_unsigned() && n.get<std::size_t>() < nodes.size()) {
-                    roots.push_back(n.get<std::size_t>());
-                }
-            }
-        }
-    }
     std::uint64_t total = 0;
-    std::vector<bool> seen(nodes.size(), false);
-    const std::function<void(std::size_t, int)> walk = [&](std::size_t i, int depth) {
-        if (depth > 256 || seen[i] || !nodes[i].is_object()) {
-            return;
-        }
-        seen[i] = true;
-        const json& node = nodes[i];
-        if (node.contains("mesh") && node["mesh"].is_number_unsigned() &&
-            node["mesh"].get<std::size_t>() < per_mesh.size()) {
-            total += per_mesh[node["mesh"].get<std::size_t>()];
-        }
-        if (node.contains("children") && node["children"].is_array()) {
-            for (const json& c : node["children"]) {
-                if (c.is_number_unsigned() && c.get<std::size_t>() < nodes.size()) {
-                    walk(c.get<std::size_t>(), depth + 1);
-                }
+    try {
+        walk_gltf_nodes(doc, "", [&](std::size_t, const json& node, const glm::dmat4&) {
+            if (node.contains("mesh") && node["mesh"].is_number_unsigned() &&
+                node["mesh"].get<std::size_t>() < per_mesh.size()) {
+                total += per_mesh[node["mesh"].get<std::size_t>()];
             }
-        }
-    };
-    for (std::size_t r : roots) {
-        walk(r, 0);
+        });
+    } catch (const std::runtime_error&) {
+        // A transform that is not finite: the reader refuses the file.
     }
     return total;
 }

@@ -1,13 +1,11 @@
 #include "trac0r/gltf_view.h"
 
+#include "trac0r/gltf_nodes.h"
 #include "trac0r/input_checks.h"
 
 #include <nlohmann/json.hpp>
 
-#include <glm/gtc/quaternion.hpp>
-
 #include <cmath>
-#include <functional>
 #include <stdexcept>
 
 namespace trac0r {
@@ -20,57 +18,11 @@ const double pi = 3.14159265358979323846;
 // Luminous efficacy at 555 nm: candela to W/sr, lux to W/m^2.
 const double lumens_per_watt = 683.0;
 
-// The numbers of `value` (n of them, finite), or throws naming `what`.
-std::vector<double> numbers(const json& value, std::size_t n, const std::string& what) {
-    if (!value.is_array() || value.size() != n) {
-        throw std::runtime_error(what + ": expected " + std::to_string(n) + " numbers, got " +
-                                 printable(value.dump(), 60));
-    }
-    std::vector<double> out;
-    for (const json& v : value) {
-        if (!v.is_number() || !std::isfinite(v.get<double>())) {
-            throw std::runtime_error(what + ": expected finite numbers, got " +
-                                     printable(value.dump(), 60));
-        }
-        out.push_back(v.get<double>());
-    }
-    return out;
-}
-
 double number(const json& object, const char* key, double fallback, const std::string& what) {
     if (!object.is_object() || !object.contains(key)) {
         return fallback;
     }
-    return numbers(json::array({object[key]}), 1, what + ": " + key)[0];
-}
-
-// A node's own transform: its matrix, else T R S.
-glm::dmat4 local_transform(const json& node, const std::string& what) {
-    if (node.contains("matrix")) {
-        const std::vector<double> m = numbers(node["matrix"], 16, what + ": matrix");
-        glm::dmat4 out;
-        for (int c = 0; c < 4; ++c) {
-            for (int r = 0; r < 4; ++r) {
-                out[c][r] = m[static_cast<std::size_t>(4 * c + r)];  // column-major
-            }
-        }
-        return out;
-    }
-    glm::dmat4 out(1.0);
-    if (node.contains("translation")) {
-        const std::vector<double> t = numbers(node["translation"], 3, what + ": translation");
-        out[3] = glm::dvec4(t[0], t[1], t[2], 1.0);
-    }
-    if (node.contains("rotation")) {
-        const std::vector<double> q = numbers(node["rotation"], 4, what + ": rotation");
-        out = out * glm::mat4_cast(glm::dquat(q[3], q[0], q[1], q[2]));
-    }
-    if (node.contains("scale")) {
-        const std::vector<double> s = numbers(node["scale"], 3, what + ": scale");
-        out = out * glm::dmat4(glm::dvec4(s[0], 0, 0, 0), glm::dvec4(0, s[1], 0, 0),
-                               glm::dvec4(0, 0, s[2], 0), glm::dvec4(0, 0, 0, 1));
-    }
-    return out;
+    return gltf_numbers(json::array({object[key]}), 1, what + ": " + key)[0];
 }
 
 glm::dvec3 unit_or(const glm::dvec3& v, const glm::dvec3& fallback) {
@@ -87,7 +39,6 @@ GltfView gltf_view(const std::string& json_text, const std::string& path) {
         !doc["nodes"].is_array()) {
         return view;
     }
-    const json& nodes = doc["nodes"];
     const json no_lights = json::array();
     const json* lights = &no_lights;
     if (doc.contains("extensions") && doc["extensions"].is_object() &&
@@ -97,120 +48,77 @@ GltfView gltf_view(const std::string& json_text, const std::string& path) {
         doc["extensions"]["KHR_lights_punctual"]["lights"].is_array()) {
         lights = &doc["extensions"]["KHR_lights_punctual"]["lights"];
     }
-    // The default scene's root nodes (or scene 0's; every node where the
-    // file has no scenes).
-    std::vector<std::size_t> roots;
-    if (doc.contains("scenes") && doc["scenes"].is_array() && !doc["scenes"].empty()) {
-        std::size_t scene = 0;
-        if (doc.contains("scene") && doc["scene"].is_number_unsigned() &&
-            doc["scene"].get<std::size_t>() < doc["scenes"].size()) {
-            scene = doc["scene"].get<std::size_t>();
+    walk_gltf_nodes(doc, path, [&](std::size_t index, const json& node, const glm::dmat4& world) {
+        const std::string what = path + ": node " + std::to_string(index);
+        const glm::dvec3 origin = glm::dvec3(world * glm::dvec4(0, 0, 0, 1));
+        const glm::dvec3 forward =
+            unit_or(glm::dvec3(world * glm::dvec4(0, 0, -1, 0)), glm::dvec3(0, 0, -1));
+        if (!view.has_camera && node.contains("camera") && node["camera"].is_number_unsigned() &&
+            doc.contains("cameras") && doc["cameras"].is_array() &&
+            node["camera"].get<std::size_t>() < doc["cameras"].size()) {
+            const json& camera = doc["cameras"][node["camera"].get<std::size_t>()];
+            if (camera.is_object() && camera.value("type", "") == "perspective" &&
+                camera.contains("perspective")) {
+                const std::string at = what + ": camera";
+                const double yfov = number(camera["perspective"], "yfov", -1.0, at);
+                if (!(yfov > 0.0 && yfov < pi)) {
+                    throw std::runtime_error(at + ": yfov: expected radians in (0, pi)");
+                }
+                view.has_camera = true;
+                view.position = origin;
+                view.direction = forward;
+                view.up = unit_or(glm::dvec3(world * glm::dvec4(0, 1, 0, 0)), glm::dvec3(0, 1, 0));
+                view.vertical_fov = yfov * 180.0 / pi;
+                view.aspect = number(camera["perspective"], "aspectRatio", 0.0, at);
+            }
         }
-        const json& s = doc["scenes"][scene];
-        if (s.is_object() && s.contains("nodes") && s["nodes"].is_array()) {
-            for (const json& n : s["nodes"]) {
-                if (n.is_number_unsigned() && n.get<std::size_t>() < nodes.size()) {
-                    roots.push_back(n.get<std::size_t>());
+        if (node.contains("extensions") && node["extensions"].is_object() &&
+            node["extensions"].contains("KHR_lights_punctual")) {
+            const json& ref = node["extensions"]["KHR_lights_punctual"];
+            if (ref.is_object() && ref.contains("light") && ref["light"].is_number_unsigned() &&
+                ref["light"].get<std::size_t>() < lights->size()) {
+                const std::size_t li = ref["light"].get<std::size_t>();
+                const json& light = (*lights)[li];
+                const std::string at = path + ": KHR_lights_punctual light " + std::to_string(li);
+                Lamp lamp;
+                const std::string type = light.is_object() ? light.value("type", "") : "";
+                if (light.contains("color")) {
+                    const std::vector<double> c = gltf_numbers(light["color"], 3, at + ": color");
+                    lamp.color = glm::vec3(c[0], c[1], c[2]);
                 }
+                const double intensity = number(light, "intensity", 1.0, at);
+                if (!(intensity >= 0.0) || lamp.color.x < 0.0f || lamp.color.y < 0.0f ||
+                    lamp.color.z < 0.0f) {
+                    throw std::runtime_error(at + ": expected intensity and colour >= 0");
+                }
+                lamp.power = static_cast<float>(intensity / lumens_per_watt);
+                lamp.position = glm::vec3(origin);
+                lamp.direction = glm::vec3(forward);
+                if (type == "point") {
+                    lamp.type = LampType::point;
+                } else if (type == "spot") {
+                    lamp.type = LampType::spot;
+                    const json spot = light.contains("spot") ? light["spot"] : json::object();
+                    const double outer = number(spot, "outerConeAngle", pi / 4.0, at);
+                    const double inner = number(spot, "innerConeAngle", 0.0, at);
+                    if (!(outer > 0.0 && outer <= pi / 2.0 && inner >= 0.0 && inner < outer)) {
+                        throw std::runtime_error(
+                            at + ": expected 0 <= innerConeAngle < outerConeAngle <= pi/2");
+                    }
+                    lamp.angle = static_cast<float>(2.0 * outer * 180.0 / pi);
+                    lamp.blend = static_cast<float>((outer - inner) / outer);
+                } else if (type == "directional") {
+                    lamp.type = LampType::sun;
+                    lamp.direction = -glm::vec3(forward);  // towards the sun
+                    lamp.angle = 0.0f;
+                } else {
+                    throw std::runtime_error(at + ": type '" + printable(type, 20) +
+                                             "': expected point, spot or directional");
+                }
+                view.lamps.push_back(lamp);
             }
         }
-    } else {
-        for (std::size_t i = 0; i < nodes.size(); ++i) {
-            roots.push_back(i);
-        }
-    }
-    std::vector<bool> seen(nodes.size(), false);
-    const std::function<void(std::size_t, const glm::dmat4&, int)> walk =
-        [&](std::size_t index, const glm::dmat4& parent, int depth) {
-            if (depth > 256 || seen[index] || !nodes[index].is_object()) {
-                return;  // a cycle or a nest deeper than the mesh reader takes
-            }
-            seen[index] = true;
-            const json& node = nodes[index];
-            const std::string what = path + ": node " + std::to_string(index);
-            const glm::dmat4 world = parent * local_transform(node, what);
-            const glm::dvec3 origin = glm::dvec3(world * glm::dvec4(0, 0, 0, 1));
-            const glm::dvec3 forward =
-                unit_or(glm::dvec3(world * glm::dvec4(0, 0, -1, 0)), glm::dvec3(0, 0, -1));
-            if (!view.has_camera && node.contains("camera") &&
-                node["camera"].is_number_unsigned() && doc.contains("cameras") &&
-                doc["cameras"].is_array() &&
-                node["camera"].get<std::size_t>() < doc["cameras"].size()) {
-                const json& camera = doc["cameras"][node["camera"].get<std::size_t>()];
-                if (camera.is_object() && camera.value("type", "") == "perspective" &&
-                    camera.contains("perspective")) {
-                    const std::string at = what + ": camera";
-                    const double yfov = number(camera["perspective"], "yfov", -1.0, at);
-                    if (!(yfov > 0.0 && yfov < pi)) {
-                        throw std::runtime_error(at + ": yfov: expected radians in (0, pi)");
-                    }
-                    view.has_camera = true;
-                    view.position = origin;
-                    view.direction = forward;
-                    view.up =
-                        unit_or(glm::dvec3(world * glm::dvec4(0, 1, 0, 0)), glm::dvec3(0, 1, 0));
-                    view.vertical_fov = yfov * 180.0 / pi;
-                    view.aspect = number(camera["perspective"], "aspectRatio", 0.0, at);
-                }
-            }
-            if (node.contains("extensions") && node["extensions"].is_object() &&
-                node["extensions"].contains("KHR_lights_punctual")) {
-                const json& ref = node["extensions"]["KHR_lights_punctual"];
-                if (ref.is_object() && ref.contains("light") && ref["light"].is_number_unsigned() &&
-                    ref["light"].get<std::size_t>() < lights->size()) {
-                    const std::size_t li = ref["light"].get<std::size_t>();
-                    const json& light = (*lights)[li];
-                    const std::string at =
-                        path + ": KHR_lights_punctual light " + std::to_string(li);
-                    Lamp lamp;
-                    const std::string type = light.is_object() ? light.value("type", "") : "";
-                    if (light.contains("color")) {
-                        const std::vector<double> c = numbers(light["color"], 3, at + ": color");
-                        lamp.color = glm::vec3(c[0], c[1], c[2]);
-                    }
-                    const double intensity = number(light, "intensity", 1.0, at);
-                    if (!(intensity >= 0.0) || lamp.color.x < 0.0f || lamp.color.y < 0.0f ||
-                        lamp.color.z < 0.0f) {
-                        throw std::runtime_error(at + ": expected intensity and colour >= 0");
-                    }
-                    lamp.power = static_cast<float>(intensity / lumens_per_watt);
-                    lamp.position = glm::vec3(origin);
-                    lamp.direction = glm::vec3(forward);
-                    if (type == "point") {
-                        lamp.type = LampType::point;
-                    } else if (type == "spot") {
-                        lamp.type = LampType::spot;
-                        const json spot = light.contains("spot") ? light["spot"] : json::object();
-                        const double outer = number(spot, "outerConeAngle", pi / 4.0, at);
-                        const double inner = number(spot, "innerConeAngle", 0.0, at);
-                        if (!(outer > 0.0 && outer <= pi / 2.0 && inner >= 0.0 && inner < outer)) {
-                            throw std::runtime_error(
-                                at + ": expected 0 <= innerConeAngle < outerConeAngle <= pi/2");
-                        }
-                        lamp.angle = static_cast<float>(2.0 * outer * 180.0 / pi);
-                        lamp.blend = static_cast<float>((outer - inner) / outer);
-                    } else if (type == "directional") {
-                        lamp.type = LampType::sun;
-                        lamp.direction = -glm::vec3(forward);  // towards the sun
-                        lamp.angle = 0.0f;
-                    } else {
-                        throw std::runtime_error(at + ": type '" + printable(type, 20) +
-                                                 "': expected point, spot or directional");
-                    }
-                    view.lamps.push_back(lamp);
-                }
-            }
-            if (node.contains("children") && node["children"].is_array()) {
-                for (const json& c : node["children"]) {
-                    if (c.is_number_unsigned() && c.get<std::size_t>() < nodes.size()) {
-                        walk(c.get<std::size_t>(), world, depth + 1);
-                    }
-                }
-            }
-        };
-    for (std::size_t r : roots) {
-        walk(r, glm::dmat4(1.0), 0);
-    }
+    });
     return view;
 }
 

@@ -157,6 +157,14 @@ void limit_child_memory(std::uint64_t bytes) {
 
 }  // namespace
 
+std::uint64_t half_machine_memory() {
+    const long pages = sysconf(_SC_PHYS_PAGES);
+    const long page = sysconf(_SC_PAGE_SIZE);
+    return pages > 0 && page > 0
+               ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2u
+               : 0u;
+}
+
 std::string signal_name(int signal) {
     switch (signal) {
     case SIGSEGV:

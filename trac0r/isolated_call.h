@@ -46,6 +46,11 @@ struct IsolatedOutcome {
 IsolatedOutcome run_isolated(const std::function<std::string()>& work,
                              double time_limit_seconds, std::uint64_t memory_limit_bytes = 0);
 
+// Half the machine's physical memory (0 where it cannot be known): what
+// a reader's child may take beyond the program's own (run_isolated's
+// memory limit for the mesh and image readers).
+std::uint64_t half_machine_memory();
+
 // "SIGSEGV" for SIGSEGV, ...; "signal N" for one it does not know.
 std::string signal_name(int signal);
 

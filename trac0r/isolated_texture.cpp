@@ -5,26 +5,10 @@
 #include "trac0r/isolated_call.h"
 #include "trac0r/shape.h"
 
-#include <unistd.h>
-
 #include <cstring>
 #include <stdexcept>
 
 namespace trac0r {
-
-namespace {
-
-// Half the machine's memory beyond the program's own, as the mesh
-// reader's child has (0: unknown, no limit).
-std::uint64_t decoder_memory() {
-    const long pages = sysconf(_SC_PHYS_PAGES);
-    const long page = sysconf(_SC_PAGE_SIZE);
-    return pages > 0 && page > 0
-               ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page) / 2u
-               : 0u;
-}
-
-}  // namespace
 
 Texture load_texture_file_isolated(const std::string& where, const std::string& path,
                                    std::uint64_t max_texels) {
@@ -54,7 +38,7 @@ Texture load_texture_file_isolated(const std::string& where, const std::string& 
             std::memcpy(&out[8], t.texels.data(), 4 * t.texels.size());
             return out;
         },
-        mesh_import_time_limit(), decoder_memory());
+        mesh_import_time_limit(), half_machine_memory());
     using Kind = IsolatedOutcome::Kind;
     switch (outcome.kind) {
     case Kind::result:
