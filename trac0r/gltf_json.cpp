@@ -120,7 +120,7 @@ std::vector<GltfMaterialExtras> gltf_material_extras(const std::string& json_tex
                 if (!(v >= 0.0 && v <= 1e30)) {
                     throw std::runtime_error(
                         where + "KHR_materials_emissive_strength: emissiveStrength " +
-                        printable(value.dump(), 40) + ": expected a number >= 0");
+                        printable(value.dump(), 40) + ": expected a number in [0, 1e30]");
                 }
                 extras.emissive_strength = static_cast<float>(v);
             }

@@ -33,7 +33,7 @@ struct GltfMaterialExtras {
 // Each material's extras, in the order of the file's materials (which
 // assimp does not keep: match them by name). Empty where the JSON cannot be read (assimp refuses it
 // first). Throws std::runtime_error naming the file, material and key for
-// a strength that is not a number >= 0 or a transform that is not
+// a strength that is not a number in [0, 1e30] or a transform that is not
 // finite numbers.
 std::vector<GltfMaterialExtras> gltf_material_extras(const std::string& json_text,
                                                      const std::string& path);
