@@ -1,5 +1,7 @@
 #include "trac0r/auto_smooth.h"
 
+#include "trac0r/geometry.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -38,7 +40,10 @@ bool flat(const Shape& s, std::size_t t) {
 void auto_smooth(std::vector<Shape>& shapes, float degrees) {
     const double cos_limit =
         std::cos(static_cast<double>(degrees) * 3.14159265358979323846 / 180.0);
-    // Per position, the corners of the triangles without normals there.
+    // Per triangle without normals (in shapes' order), its unit normal;
+    // zero where it has no area. Per position, the corners of those
+    // triangles there.
+    std::vector<glm::dvec3> units;
     std::unordered_map<glm::vec3, std::vector<Corner>, PositionHash> at;
     for (const Shape& s : shapes) {
         for (std::size_t t = 0; t < s.triangles.size(); ++t) {
@@ -49,32 +54,30 @@ void auto_smooth(std::vector<Shape>& shapes, float degrees) {
             const glm::vec3 p[3] = {tri.v0, tri.v1, tri.v2};
             const glm::dvec3 n = glm::cross(glm::dvec3(p[1] - p[0]), glm::dvec3(p[2] - p[0]));
             const double length = glm::length(n);
-            if (!(length > 0.0) || !std::isfinite(length)) {
+            const bool area = length > 0.0 && std::isfinite(length);
+            units.push_back(area ? n / length : glm::dvec3(0.0));
+            if (!area) {
                 continue;
             }
             for (int k = 0; k < 3; ++k) {
-                const glm::dvec3 e1 = glm::dvec3(p[(k + 1) % 3] - p[k]);
-                const glm::dvec3 e2 = glm::dvec3(p[(k + 2) % 3] - p[k]);
-                const double l = glm::length(e1) * glm::length(e2);
-                const double angle =
-                    l > 0.0 ? std::acos(std::min(1.0, std::max(-1.0, glm::dot(e1, e2) / l))) : 0.0;
-                at[p[k]].push_back({n / length, angle});
+                at[p[k]].push_back(
+                    {units.back(), corner_angle(glm::dvec3(p[k]), glm::dvec3(p[(k + 1) % 3]),
+                                                glm::dvec3(p[(k + 2) % 3]))});
             }
         }
     }
+    std::size_t next = 0;  // into units
     for (Shape& s : shapes) {
         for (std::size_t t = 0; t < s.triangles.size(); ++t) {
             if (!flat(s, t)) {
                 continue;
             }
-            const Triangle& tri = s.triangles[t];
-            const glm::vec3 p[3] = {tri.v0, tri.v1, tri.v2};
-            const glm::dvec3 n = glm::cross(glm::dvec3(p[1] - p[0]), glm::dvec3(p[2] - p[0]));
-            const double length = glm::length(n);
-            if (!(length > 0.0) || !std::isfinite(length)) {
+            const glm::dvec3 own = units[next++];
+            if (own == glm::dvec3(0.0)) {
                 continue;
             }
-            const glm::dvec3 own = n / length;
+            const Triangle& tri = s.triangles[t];
+            const glm::vec3 p[3] = {tri.v0, tri.v1, tri.v2};
             VertexNormalTriple normals{};
             bool usable = true;
             for (int k = 0; k < 3 && usable; ++k) {

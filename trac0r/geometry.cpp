@@ -1,5 +1,6 @@
 #include "trac0r/geometry.h"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 
@@ -36,6 +37,13 @@ AABB Triangle::bounds() const {
 
 bool is_finite(const glm::vec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+double corner_angle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b) {
+    const glm::dvec3 e1 = a - p;
+    const glm::dvec3 e2 = b - p;
+    const double l = glm::length(e1) * glm::length(e2);
+    return l > 0.0 ? std::acos(std::min(1.0, std::max(-1.0, glm::dot(e1, e2) / l))) : 0.0;
 }
 
 bool usable_triangle(const Triangle& t) {

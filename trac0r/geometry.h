@@ -42,6 +42,11 @@ struct Triangle {
 // Whether every component of v is finite.
 bool is_finite(const glm::vec3& v);
 
+// The angle (radians) at corner p of the triangle p, a, b; 0 where an
+// edge there has no length. For weighting a corner's share of a vertex
+// normal (smoothing_groups.h, auto_smooth.h).
+double corner_angle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b);
+
 // Whether the renderer can use t: finite vertices and a finite area of at
 // least FLT_MIN (not a denormal). pack_scene leaves the others out (and
 // counts them); the scene loader refuses a shape that has none left.

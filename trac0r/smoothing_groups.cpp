@@ -29,12 +29,8 @@ std::vector<VertexNormalTriple> smoothing_group_normals(
         }
         unit[t] = n / length;
         for (int k = 0; k < 3; ++k) {
-            const glm::dvec3 e1 = p[(k + 1) % 3] - p[k];
-            const glm::dvec3 e2 = p[(k + 2) % 3] - p[k];
-            const double l = glm::length(e1) * glm::length(e2);
-            const double angle =
-                l > 0.0 ? std::acos(std::min(1.0, std::max(-1.0, glm::dot(e1, e2) / l))) : 0.0;
-            sums[{tri.vertex[k], tri.group}] += unit[t] * angle;
+            sums[{tri.vertex[k], tri.group}] +=
+                unit[t] * corner_angle(p[k], p[(k + 1) % 3], p[(k + 2) % 3]);
         }
     }
     for (std::size_t t = 0; t < triangles.size(); ++t) {
