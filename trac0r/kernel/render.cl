@@ -9,14 +9,15 @@
 // The kernel's view of the packed buffers (PackedScene::view on the host).
 // A kernel that reads no materials, lights, normals, tangents, textures or
 // environment (the ray-cast benchmark's) passes 0 for them.
-SceneView scene_view(__global const TriangleRecord* triangles, __global const ShapeRecord* shapes,
-                     __global const MaterialRecord* materials, __global const BvhNode* nodes,
-                     __global const TrianglePacket* packets, __global const LightRecord* lights,
-                     __global const VertexNormals* normals, __global const TriangleUVs* uvs,
-                     __global const VertexTangents* tangents,
-                     __global const TextureRecord* textures, __global const uint* texels,
-                     __global const float4* environment, __global const LightTreeNode* light_nodes,
-                     uint shape_count, uint light_count, uint distant_count) {
+T0_INLINE SceneView
+scene_view(__global const TriangleRecord* triangles, __global const ShapeRecord* shapes,
+           __global const MaterialRecord* materials, __global const BvhNode* nodes,
+           __global const TrianglePacket* packets, __global const LightRecord* lights,
+           __global const VertexNormals* normals, __global const TriangleUVs* uvs,
+           __global const VertexTangents* tangents, __global const TextureRecord* textures,
+           __global const uint* texels, __global const float4* environment,
+           __global const LightTreeNode* light_nodes, uint shape_count, uint light_count,
+           uint distant_count) {
     SceneView scene;
     scene.triangles = triangles;
     scene.shapes = shapes;
@@ -42,7 +43,8 @@ SceneView scene_view(__global const TriangleRecord* triangles, __global const Sh
 // (the host launches them so), as the CPU backend's render_tile does:
 // tile_pixel makes the work-item's pixel's generator and camera ray, and
 // whether the pixel is in the image (the last tiles may be cut off).
-int tile_pixel(const SceneView* scene, CameraRecord camera, ulong seed, uint frame, PixelSample* s, uint* pixel) {
+T0_INLINE int tile_pixel(const SceneView* scene, CameraRecord camera, ulong seed, uint frame,
+                         PixelSample* s, uint* pixel) {
     // The global id, not the group's: a frame may be launched in parts
     // (a global offset of whole tiles).
     const TileRect tile =
@@ -73,8 +75,8 @@ typedef struct TileShared {
 // do not share an origin: the leaf count is -1, and each ray traverses the
 // tree. (The barriers stay on every path: PoCL gave wrong results with an
 // early return before them, though the condition is the group's own.)
-Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside, const Ray* ray,
-                    __local TileShared* shared) {
+T0_INLINE Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside,
+                              const Ray* ray, __local TileShared* shared) {
     const uint item = (uint)get_local_id(0);
     __local float4* inverse = shared->inverse;
     inverse[item] =
