@@ -219,6 +219,20 @@ int same_hits(const Scene& scene, const std::vector<kernel::Ray>& rays) {
         REQUIRE(kernel::occluded(&bvh_view, &ray, limit) ==
                 kernel::occluded(&flat_view, &ray, limit));
         REQUIRE(kernel::occluded(&bvh_view, &ray, limit) == (b.triangle >= 0 && b.t < limit));
+        // The GPU's walk (T0_LANE_TRAVERSAL) visits what the CPU's does, in
+        // the same order: the same hit, bit for bit, the nearest and the
+        // first below a limit.
+        for (const float t_max : {T0_NO_HIT, limit}) {
+            for (const int any_hit : {0, 1}) {
+                const kernel::Hit s = kernel::traverse_bvh_sorted(&bvh_view, &ray, t_max, any_hit);
+                const kernel::Hit g = kernel::traverse_bvh_groups(&bvh_view, &ray, t_max, any_hit);
+                CAPTURE(t_max, any_hit, s.t, g.t);
+                REQUIRE(s.triangle == g.triangle);
+                REQUIRE(bits_of(s.t) == bits_of(g.t));
+                REQUIRE(bits_of(s.u) == bits_of(g.u));
+                REQUIRE(bits_of(s.v) == bits_of(g.v));
+            }
+        }
     }
     return hits;
 }

@@ -218,6 +218,36 @@ TEST_CASE("OpenCL and CPU images of the microfacet materials agree",
     compare_backends("materials_demo.json", Accel::bvh, SamplerKind::sobol);
 }
 
+TEST_CASE("a GPU's program renders what the CPU device's does, bit for bit", "[opencl][gpu]") {
+    // The program as a GPU builds it (T0_GPU=1: traverse_bvh_groups, a
+    // triangle and a child at a time, kernel/tuning.h) against PoCL's own,
+    // both on PoCL: the same hits in the same order, so the same image.
+    struct Options {
+        explicit Options(const char* o) { setenv("TRAC0R_OPENCL_OPTIONS", o, 1); }
+        ~Options() { unsetenv("TRAC0R_OPENCL_OPTIONS"); }
+    };
+    for (const char* name : {"cornell.json", "texture_demo.json", "materials_demo.json"}) {
+        const Scene scene = load_test_scene(name, 61, 45);
+        PackOptions options;
+        options.accel = Accel::bvh;
+        std::vector<Image> images;
+        for (const char* o : {"-Werror", "-DT0_GPU=1 -Werror"}) {
+            const Options set(o);
+            Renderer r(scene, std::make_unique<OpenClBackend>(0), 11, options);
+            for (int i = 0; i < 4; ++i) {
+                r.render_frame();
+            }
+            images.push_back(r.image());
+        }
+        int differ = 0;
+        for (std::size_t i = 0; i < images[0].pixels.size(); ++i) {
+            differ += images[0].pixels[i] == images[1].pixels[i] ? 0 : 1;
+        }
+        CAPTURE(name);
+        REQUIRE(differ == 0);
+    }
+}
+
 TEST_CASE("furnace on the OpenCL backend", "[opencl][furnace]") {
     // scenes/furnace.json: diffuse walls of albedo rho = 0.5 that emit
     // Le = colour x emittance = 0.5.
@@ -392,8 +422,9 @@ struct DeviceTiles {
 // BVH) on device 0: every pixel written once, by the work-item of its own
 // tile (its ray is the host's begin_pixel ray, to within rounding), and
 // every camera ray's hit among its tile's leaves is its hit through the
-// tree, bit for bit.
-DeviceTiles device_tile_hits(const Scene& scene, int width, int height) {
+// tree, bit for bit. With `gpu`, the program a GPU gets (T0_GPU: its
+// traversal stack, kernel/tuning.h).
+DeviceTiles device_tile_hits(const Scene& scene, int width, int height, bool gpu = false) {
     PackOptions options;
     options.accel = Accel::bvh;
     const PackedScene packed = pack_scene(scene, options);
@@ -402,7 +433,7 @@ DeviceTiles device_tile_hits(const Scene& scene, int width, int height) {
     const kernel::SceneView view = packed.view();
     const OpenClQueue cl = shared_opencl_queue(0);
     cl_program program =
-        embedded_opencl_program(cl, tile_hits_kernel_source, opencl_build_options(packed.features));
+        embedded_opencl_program(cl, tile_hits_kernel_source, opencl_build_options(packed.features, gpu));
     cl_int status = CL_SUCCESS;
     const OpenClKernel owned_kernel(clCreateKernel(program, "tile_hits", &status));
     require_cl(status, "clCreateKernel");
@@ -524,6 +555,17 @@ TEST_CASE("a tile's camera rays find the same hits among their leaves on OpenCL"
     CAPTURE(sphere.bundled_tiles, sphere.traversed_tiles);
     REQUIRE(sphere.traversed_tiles > 0);
     REQUIRE(sphere.bundled_tiles > 0);
+}
+
+TEST_CASE("a GPU's program finds the same camera hits, traversing with its own stack",
+          "[opencl][gpu]") {
+    // The program built as for a GPU (T0_GPU=1: the group stack of
+    // traverse_bvh_groups), run on PoCL: the tiles that traverse find the
+    // hits that their leaves give, bit for bit.
+    const DeviceTiles sphere = device_tile_hits(cornell_with_dense_sphere(), 96, 72, true);
+    CAPTURE(sphere.bundled_tiles, sphere.traversed_tiles, sphere.hits);
+    REQUIRE(sphere.traversed_tiles > 0);
+    REQUIRE(sphere.hits > 96 * 72 / 2);
 }
 
 TEST_CASE("an unknown device index is an error", "[opencl]") {

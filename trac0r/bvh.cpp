@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace trac0r {
@@ -508,9 +509,9 @@ Bvh build_bvh(const std::vector<AABB>& triangle_bounds, int max_leaf_size) {
     const int leaf_size = std::min(std::max(1, max_leaf_size), 4);  // one packet
     const std::vector<BinaryNode> binary = Builder(std::move(items)).build(bvh.order);
     // The traversal stack holds at most seven entries per level, and one
-    // more for a moment (kernel/traverse.h). The optimal tree may be as
-    // deep as the binary one; where that is too deep, the collapse by
-    // levels divides the depth by three.
+    // more for a moment (kernel/traverse.h; the GPU's, one per level). The
+    // optimal tree may be as deep as the binary one; where that is too
+    // deep, the collapse by levels divides the depth by three.
     Collapser(binary, true, leaf_size).collapse(bvh);
     if (7 * bvh.depth + 1 > T0_BVH_STACK_SIZE) {
         Collapser(binary, false, leaf_size).collapse(bvh);
@@ -518,6 +519,11 @@ Bvh build_bvh(const std::vector<AABB>& triangle_bounds, int max_leaf_size) {
     }
     if (7 * bvh.depth + 1 > T0_BVH_STACK_SIZE) {
         throw std::runtime_error("build_bvh: tree too deep for the traversal stack");
+    }
+    // The GPU's stack entry names its node in 24 bits (node_group).
+    if (bvh.nodes.size() > (std::size_t{1} << 24)) {
+        throw std::runtime_error("build_bvh: " + std::to_string(bvh.nodes.size()) +
+                                 " nodes, more than the 2^24 that the traversal can name");
     }
     return bvh;
 }

@@ -341,10 +341,13 @@ OpenClQueue shared_opencl_queue(int device_index) {
     return {d->device, d->context.get(), d->queue.get(), d->description, d};
 }
 
-std::string opencl_build_options(std::uint32_t features) {
+std::string opencl_build_options(std::uint32_t features, bool gpu) {
     char mask[32];
     std::snprintf(mask, sizeof mask, "0x%xu", features);
     std::string options = std::string("-cl-std=CL1.2 -DT0_FEATURES=") + mask;
+    if (gpu) {
+        options += " -DT0_GPU=1";
+    }
     if (const char* extra = std::getenv("TRAC0R_OPENCL_OPTIONS")) {
         options += std::string(" ") + extra;
     }
@@ -410,7 +413,8 @@ std::string OpenClBackend::build_options() const { return state_->options; }
 
 void OpenClBackend::set_scene(const PackedScene& scene) {
     state_->scale = scene.scale;
-    const std::string options = opencl_build_options(scene.features);
+    const std::string options =
+        opencl_build_options(scene.features, type_name(state_->device->device) != "CPU");
     cl_program program = nullptr;
     {
         std::lock_guard<std::mutex> lock(shared_mutex);

@@ -35,8 +35,10 @@ OpenClQueue shared_opencl_queue(int device_index);
 void check_opencl(cl_int status, const char* what);
 
 // The build options of the renderer's program for feature mask `features`:
-// the OpenCL C version, the mask, and $TRAC0R_OPENCL_OPTIONS.
-std::string opencl_build_options(std::uint32_t features);
+// the OpenCL C version, the mask, T0_GPU=1 where `gpu` (a device that is not
+// a CPU: the kernels' GPU choices, kernel/tuning.h), and
+// $TRAC0R_OPENCL_OPTIONS.
+std::string opencl_build_options(std::uint32_t features, bool gpu = false);
 
 // opencl_kernel_source() followed by appended_source, built with options on
 // cl's device, or the program already built from the same. cl's cache owns

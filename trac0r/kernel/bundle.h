@@ -97,12 +97,14 @@ T0_INLINE void bundle_axis(T0_GLOBAL const BvhNode* n, const RayBundle* b, int a
 // leaf finds it here; with it every triangle that ray hits.
 T0_INLINE int bundle_leaves(const SceneView* scene, const RayBundle* b,
                             T0_LOCAL LeafCandidate* out) {
-    t0_u32 stack[T0_BVH_STACK_SIZE];
+    // Depth first, the last child first: a node's inner children that wait
+    // are one stack entry (node_group), as in traverse_bvh.
+    t0_u32 stack[T0_BVH_GROUP_STACK_SIZE];
     int top = 0;
     int count = 0;
-    stack[top++] = 0u;
-    while (top > 0) {
-        T0_GLOBAL const BvhNode* n = &scene->nodes[stack[--top]];
+    t0_u32 node = 0u;
+    for (;;) {
+        T0_GLOBAL const BvhNode* n = &scene->nodes[node];
         t0_wide entry = wide_splat(0.0f);
         t0_wide exit = wide_splat(T0_INFINITY);
         for (int axis = 0; axis < 3; ++axis) {
@@ -114,13 +116,12 @@ T0_INLINE int bundle_leaves(const SceneView* scene, const RayBundle* b,
                 exit = wide_min(exit, far_hi);
             }
         }
-        float entries[T0_BVH_WIDTH];
-        wide_store(entry, entries);
+        int inner = 0;
         for (int m = wide_mask_bits(wide_le(entry, exit)); m != 0; m &= m - 1) {
             const int i = lowest_set_bit(m);
             const t0_u32 child = node_child(n, i);
             if ((child & T0_BVH_LEAF) == 0u) {
-                stack[top++] = child;
+                inner |= 1 << i;
                 continue;
             }
             if (count == T0_BUNDLE_LEAVES) {
@@ -128,15 +129,31 @@ T0_INLINE int bundle_leaves(const SceneView* scene, const RayBundle* b,
             }
             // Kept in order of entry (insertion; ties keep the order found).
             int k = count++;
-            while (k > 0 && out[k - 1].entry > entries[i]) {
+            const float e = wide_lane(entry, i);
+            while (k > 0 && out[k - 1].entry > e) {
                 out[k] = out[k - 1];
                 --k;
             }
             out[k].packet = child & ~T0_BVH_LEAF;
-            out[k].entry = entries[i];
+            out[k].entry = e;
+        }
+        if (inner != 0) {
+            stack[top++] = node_group(node, inner);
+        }
+        if (top == 0) {
+            return count;
+        }
+        // The top entry's last child next; its others go on waiting.
+        const t0_u32 group = stack[top - 1];
+        const int waiting = group_waiting(group);
+        const int last = highest_set_bit(waiting);
+        node = node_child(&scene->nodes[group_node(group)], last);
+        if ((waiting & ~(1 << last)) != 0) {
+            stack[top - 1] = node_group(group_node(group), waiting & ~(1 << last));
+        } else {
+            --top;
         }
     }
-    return count;
 }
 
 // The leaves that the rays of bundle b may enter (bundle_leaves), or -1
@@ -161,11 +178,18 @@ T0_INLINE int bundle_finish_leaves(const SceneView* scene, const RayBundle* b,
 T0_INLINE Hit intersect_bundle_leaves(const SceneView* scene, T0_LOCAL const LeafCandidate* leaves,
                                       int count, const Ray* ray) {
     Hit hit = no_hit(T0_NO_HIT);
+#if T0_LANE_TRAVERSAL
+    // A GPU's: a triangle at a time (leaf_lane_hits), the same hits.
+    for (int k = 0; k < count && leaves[k].entry < hit.t; ++k) {
+        leaf_lane_hits(scene, leaves[k].packet, ray, &hit);
+    }
+#else
     const RayLanes lanes = make_ray_lanes(*ray);
     t0_lanes limit = lanes_splat(T0_NO_HIT);
     for (int k = 0; k < count && leaves[k].entry < hit.t; ++k) {
         leaf_hits(scene, leaves[k].packet, ray, &lanes, &limit, &hit);
     }
+#endif
     return hit;
 }
 

@@ -76,9 +76,18 @@ T0_INLINE int wide_mask_bits(t0_wide_mask m) {
 #endif
 }
 T0_INLINE void wide_store(t0_wide v, float* out) { vstore8(v, 0, out); }
+// Lane i of v (0 to 7), by choices rather than through memory: a GPU keeps
+// v in registers.
+T0_INLINE float wide_lane(t0_wide v, int i) {
+    const float4 four = (i & 4) != 0 ? v.hi : v.lo;
+    const float2 two = (i & 2) != 0 ? four.hi : four.lo;
+    return (i & 1) != 0 ? two.y : two.x;
+}
 // The index of the lowest set bit of m (m != 0): the first lane of a mask's
 // bits.
 T0_INLINE int lowest_set_bit(int m) { return 31 - (int)clz(m & -m); }
+// The index of the highest set bit of m (m != 0).
+T0_INLINE int highest_set_bit(int m) { return 31 - (int)clz(m); }
 
 #else  // C++
 
@@ -90,6 +99,7 @@ T0_NAMESPACE_BEGIN
 
 // The index of the lowest set bit of m (m != 0), as the OpenCL side's.
 inline int lowest_set_bit(int m) { return __builtin_ctz(static_cast<unsigned>(m)); }
+inline int highest_set_bit(int m) { return 31 - __builtin_clz(static_cast<unsigned>(m)); }
 
 // Four floats that one instruction works on (see the OpenCL side): SSE,
 // which every x86-64 CPU has, or a plain array elsewhere. Not OpenCL's
@@ -190,6 +200,11 @@ inline int wide_mask_bits(t0_wide_mask m) { return mask_bits(m.lo) | (mask_bits(
 inline void wide_store(t0_wide v, float* out) {
     lanes_store(v.lo, out);
     lanes_store(v.hi, out + 4);
+}
+inline float wide_lane(t0_wide v, int i) {
+    float lanes[8];
+    wide_store(v, lanes);
+    return lanes[i];
 }
 
 T0_NAMESPACE_END

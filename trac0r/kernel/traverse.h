@@ -53,6 +53,17 @@ T0_INLINE Hit traverse_flat(const SceneView* scene, const Ray* ray, float t_max,
 // three binary levels per 8-wide node: at most 21 levels).
 #define T0_BVH_STACK_SIZE 148
 
+// Entries the GPU's traversal stack holds (T0_LANE_TRAVERSAL): one per level
+// of the tree at most (a node's children that wait are one entry, a node
+// group), 21 by the bound above.
+#define T0_BVH_GROUP_STACK_SIZE ((T0_BVH_STACK_SIZE - 1) / 7)
+
+// A stack entry: node `node`'s children whose bits `waiting` holds (bit i:
+// child i), in one word (bvh.cpp keeps node indices below 2^24).
+T0_INLINE t0_u32 node_group(t0_u32 node, int waiting) { return (node << 8) | (t0_u32)waiting; }
+T0_INLINE t0_u32 group_node(t0_u32 group) { return group >> 8; }
+T0_INLINE int group_waiting(t0_u32 group) { return (int)(group & 0xffu); }
+
 // Plane p's coordinate of node n's child i (0 to 7): lane i of the plane.
 T0_INLINE float node_plane(T0_GLOBAL const BvhNode* n, int p, int i) {
     return buffer_component(&n->bounds[2 * p + (i >> 2)], i & 3);
@@ -157,12 +168,12 @@ T0_INLINE int leaf_hits(const SceneView* scene, t0_u32 packet, const Ray* ray, c
     return found;
 }
 
-// Nearest hit below t_max through the 8-wide BVH; with any_hit, stops at
-// the first hit (shadow rays). Of a node's children that the ray enters,
+// Nearest hit below t_max through the 8-wide BVH (the CPU's: T0_LANE_TRAVERSAL
+// 0); with any_hit, stops at the first hit (shadow rays). Of a node's children that the ray enters,
 // the nearest is visited next and the others wait on the stack with their
 // entry distances, farthest at the bottom; one is skipped if a hit has come
 // closer since.
-T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, int any_hit) {
+T0_INLINE Hit traverse_bvh_sorted(const SceneView* scene, const Ray* ray, float t_max, int any_hit) {
     Hit hit = no_hit(t_max);
     t0_u32 stack_child[T0_BVH_STACK_SIZE];
     float stack_entry[T0_BVH_STACK_SIZE];
@@ -240,6 +251,169 @@ T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, 
             }
         }
     }
+}
+
+// leaf_hits for a GPU: the packet's triangles one at a time
+// (packet_lane_hit), the same hits in the same order.
+T0_INLINE int leaf_lane_hits(const SceneView* scene, t0_u32 packet, const Ray* ray, Hit* hit) {
+    T0_GLOBAL const TrianglePacket* p = &scene->packets[packet];
+    int found = 0;
+    for (int i = 0; i < 4; ++i) {
+        float u = 0.0f;
+        float v = 0.0f;
+        const float t = packet_lane_hit(p, ray, i, hit->t, &u, &v);
+        if (t < hit->t) {
+            const int triangle = (int)buffer_uint_component(&p->triangle, i);
+            if (T0_HAS_FEATURE(scene, T0_FEATURE_ALPHA) &&
+                passes_through(scene, ray, triangle, u, v)) {
+                continue;
+            }
+            hit->t = t;
+            hit->u = u;
+            hit->v = v;
+            hit->triangle = triangle;
+            found = 1;
+        }
+    }
+    return found;
+}
+
+// child_entries' lane i alone, the same floats: the distance at which the
+// ray enters child i's box, and in *entered whether it does over [0, t_max]
+// (inv_far: the ray's inv_direction widened, as RayLanes.inv_direction_far).
+// The near plane of each slab is the minimum (plane 2 axis) for a positive
+// direction component, else the maximum (2 axis + 1), as make_ray_lanes
+// picks them.
+T0_INLINE float child_entry(T0_GLOBAL const BvhNode* n, const Ray* ray, float3 inv_far, int i,
+                            float t_max, int* entered) {
+    const float3 lo = make_float3(node_plane(n, 0, i), node_plane(n, 2, i), node_plane(n, 4, i));
+    const float3 hi = make_float3(node_plane(n, 1, i), node_plane(n, 3, i), node_plane(n, 5, i));
+    if (ray->any_parallel) {
+        const float t = lo.x <= hi.x ? aabb_entry(lo, hi, *ray, t_max) : T0_NO_HIT;
+        *entered = t < T0_NO_HIT;
+        return t;
+    }
+    const float near_x = ((ray->inv_direction.x < 0.0f ? hi.x : lo.x) - ray->origin.x) *
+                         ray->inv_direction.x;
+    const float far_x = ((ray->inv_direction.x < 0.0f ? lo.x : hi.x) - ray->origin.x) * inv_far.x;
+    const float near_y = ((ray->inv_direction.y < 0.0f ? hi.y : lo.y) - ray->origin.y) *
+                         ray->inv_direction.y;
+    const float far_y = ((ray->inv_direction.y < 0.0f ? lo.y : hi.y) - ray->origin.y) * inv_far.y;
+    const float near_z = ((ray->inv_direction.z < 0.0f ? hi.z : lo.z) - ray->origin.z) *
+                         ray->inv_direction.z;
+    const float far_z = ((ray->inv_direction.z < 0.0f ? lo.z : hi.z) - ray->origin.z) * inv_far.z;
+    // wide_max and wide_min lane by lane: a > b ? a : b, a < b ? a : b.
+    const float xy_near = near_x > near_y ? near_x : near_y;
+    const float z_near = near_z > 0.0f ? near_z : 0.0f;
+    const float t_near = xy_near > z_near ? xy_near : z_near;
+    const float xy_far = far_x < far_y ? far_x : far_y;
+    const float t_far = xy_far < far_z ? xy_far : far_z;
+    *entered = t_near <= (t_far < t_max ? t_far : t_max);
+    return t_near;
+}
+
+// traverse_bvh_sorted's walk, the same nodes and leaves in the same order,
+// for a GPU (T0_LANE_TRAVERSAL 1), whose work-item is one lane, not eight:
+// - a node's children are tested one at a time (child_entry), and the
+//   nearest picked as they come, rather than eight at once into an array;
+// - its children that wait are one stack entry, their node and their bits
+//   (node_group), visited nearest first as the entry comes back to the top
+//   (ties as there: of two the first, of three or more the last), each
+//   skipped if a hit has come as close since. Their distances are not kept
+//   but computed again from the node then (the same floats).
+// So the stack holds a word per level, not seven words and distances. A
+// CPU, for which the second node test costs 9 % of a path's instructions,
+// keeps the sorted stack (docs/gpu.md).
+T0_INLINE Hit traverse_bvh_groups(const SceneView* scene, const Ray* ray, float t_max, int any_hit) {
+    Hit hit = no_hit(t_max);
+    t0_u32 stack[T0_BVH_GROUP_STACK_SIZE];
+    int top = 0;
+    const float3 inv_far = ray->inv_direction * (1.0f + 2.0f * T0_GAMMA4);
+    t0_u32 child = 0u;  // what is visited: node 0, the root, or a leaf (T0_BVH_LEAF)
+    for (;;) {
+        if ((child & T0_BVH_LEAF) != 0u) {
+            if (leaf_lane_hits(scene, child & ~T0_BVH_LEAF, ray, &hit) && any_hit) {
+                return hit;
+            }
+        } else {
+            T0_GLOBAL const BvhNode* n = &scene->nodes[child];
+            int mask = 0;
+            int first = 0;  // the first child entered
+            float first_entry = 0.0f;
+            int near = 0;  // the nearest, the last of equals
+            float near_entry = 0.0f;
+            for (int i = 0; i < T0_BVH_WIDTH; ++i) {
+                int entered = 0;
+                const float e = child_entry(n, ray, inv_far, i, hit.t, &entered);
+                if (entered) {
+                    if (mask == 0) {
+                        first = i;
+                        first_entry = e;
+                    }
+                    if (mask == 0 || e <= near_entry) {
+                        near = i;
+                        near_entry = e;
+                    }
+                    mask |= 1 << i;
+                }
+            }
+            if (mask != 0) {
+                const int rest = mask & ~(1 << first);
+                // Of two at the same distance, the first.
+                near = rest != 0 && (rest & (rest - 1)) == 0 && first_entry <= near_entry ? first
+                                                                                       : near;
+                if (rest != 0) {
+                    stack[top++] = node_group(child, mask & ~(1 << near));
+                }
+                child = node_child(n, near);
+                continue;
+            }
+        }
+        // The next waiting child that can still hold a nearer hit: the top
+        // entry's nearest, whose siblings go on waiting.
+        for (;;) {
+            if (top == 0) {
+                return hit;
+            }
+            const t0_u32 group = stack[top - 1];
+            T0_GLOBAL const BvhNode* n = &scene->nodes[group_node(group)];
+            int waiting = 0;
+            int near = 0;
+            float near_entry = 0.0f;
+            for (int m = group_waiting(group); m != 0; m &= m - 1) {
+                const int i = lowest_set_bit(m);
+                int entered = 0;
+                const float e = child_entry(n, ray, inv_far, i, hit.t, &entered);
+                if (e < hit.t) {
+                    if (waiting == 0 || e <= near_entry) {
+                        near = i;
+                        near_entry = e;
+                    }
+                    waiting |= 1 << i;
+                }
+            }
+            if (waiting == 0) {
+                --top;
+                continue;
+            }
+            waiting &= ~(1 << near);
+            if (waiting != 0) {
+                stack[top - 1] = node_group(group_node(group), waiting);
+            } else {
+                --top;
+            }
+            child = node_child(n, near);
+            break;
+        }
+    }
+}
+
+T0_INLINE Hit traverse_bvh(const SceneView* scene, const Ray* ray, float t_max, int any_hit) {
+#if T0_LANE_TRAVERSAL
+    return traverse_bvh_groups(scene, ray, t_max, any_hit);
+#else
+    return traverse_bvh_sorted(scene, ray, t_max, any_hit);
+#endif
 }
 
 T0_INLINE Hit intersect_scene(const SceneView* scene, const Ray* ray) {

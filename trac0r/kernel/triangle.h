@@ -184,6 +184,44 @@ T0_NOINLINE int packet_outside_exactly(T0_GLOBAL const TrianglePacket* p, const 
     return outside_exactly(v[0], v[1], v[2]);
 }
 
+// intersect_packet's lane i alone, the same floats, for a GPU (whose
+// work-item is one lane; traverse_bvh_groups): the distance at which
+// triangle i of the packet is hit below t_max, with its barycentrics in
+// *u, *v, or T0_NO_HIT.
+T0_INLINE float packet_lane_hit(T0_GLOBAL const TrianglePacket* p, const Ray* ray, int i,
+                                float t_max, float* u, float* v) {
+    float3 w[3];  // the vertices in the ray's frame
+    for (int k = 0; k < 3; ++k) {
+        const float z = buffer_component(&p->vertex[3 * k + ray->kz], i) - ray->permuted_origin.z;
+        const float x = buffer_component(&p->vertex[3 * k + ray->kx], i) - ray->permuted_origin.x;
+        const float y = buffer_component(&p->vertex[3 * k + ray->ky], i) - ray->permuted_origin.y;
+        w[k] = make_float3(x - ray->shear.x * z, y - ray->shear.y * z, z);
+    }
+    const float weight0 = w[2].x * w[1].y - w[2].y * w[1].x;
+    const float weight1 = w[0].x * w[2].y - w[0].y * w[2].x;
+    const float weight2 = w[1].x * w[0].y - w[1].y * w[0].x;
+    // lanes_min and lanes_max: a < b ? a : b, a > b ? a : b.
+    const float min01 = weight0 < weight1 ? weight0 : weight1;
+    const float smallest = min01 < weight2 ? min01 : weight2;
+    const float max01 = weight0 > weight1 ? weight0 : weight1;
+    const float largest = max01 > weight2 ? max01 : weight2;
+    const float det = weight0 + weight1 + weight2;
+    const float inv_det = 1.0f / det;
+    const float distance =
+        (weight0 * w[0].z + weight1 * w[1].z + weight2 * w[2].z) * ray->shear.z * inv_det;
+    const int outside = smallest < 0.0f && 0.0f < largest;
+    const int upright = buffer_component(&p->area, i) * ray->parallel_det < fabs(det);
+    if (outside || !upright || !(0.0f < distance && distance < t_max)) {
+        return T0_NO_HIT;
+    }
+    if (smallest * largest == 0.0f && outside_exactly(w[0], w[1], w[2])) {
+        return T0_NO_HIT;
+    }
+    *u = weight1 * inv_det;
+    *v = weight2 * inv_det;
+    return distance;
+}
+
 // intersect_triangle for the four triangles of a packet at once, with the
 // same floats lane for lane: bit i of the result is set when triangle i is
 // hit at a distance below t_max (in every lane), which then goes to t[i]

@@ -20,6 +20,15 @@
 //     C++     0, taken as one with two, whose farther child is pushed
 //             without being counted: one branch less to mispredict,
 //             1.2 % of a BVH frame on cornell.json.
+//   T0_LANE_TRAVERSAL, traverse_bvh: traverse_bvh_groups, a stack word
+//   a level and a node's children and a packet's triangles one at a time
+//     OpenCL  on a GPU (the host's -DT0_GPU=1), 1: its work-item is one
+//             lane; eight lanes at once filled its registers and put the
+//             children's distances and a 148-entry stack in scratch, which
+//             is DRAM (docs/gpu.md). On PoCL's CPU device 0, as C++.
+//     C++     0, the sorted stack of eight lanes at once: the group
+//             stack's second test of a node took 9.9 % more instructions
+//             a path on cornell.json (instructions_per_path.sh).
 //   component3, largest_axis, next_axis (make_ray, on a ray's axes)
 //     OpenCL  choices, which LLVM makes selects: PoCL's frames were 6 %
 //             slower with the arithmetic largest axis.
@@ -63,6 +72,12 @@ T0_INLINE float choose_by_bits(int condition, float a, float b) {
 
 #define T0_ONE_CHILD_APART 1
 
+#ifdef T0_GPU
+#define T0_LANE_TRAVERSAL 1
+#else
+#define T0_LANE_TRAVERSAL 0
+#endif
+
 // Component k (0, 1, 2) of a vector that is not in a buffer, the axis of
 // a's largest component (the lower axis on a tie), and the axis after k
 // (0 1 2 to 1 2 0).
@@ -79,6 +94,8 @@ T0_INLINE int next_axis(int k) { return k == 2 ? 0 : k + 1; }
 #define choose_f(condition, a, b) ((condition) ? (a) : (b))
 
 #define T0_ONE_CHILD_APART 0
+
+#define T0_LANE_TRAVERSAL 0
 
 T0_NAMESPACE_BEGIN
 
