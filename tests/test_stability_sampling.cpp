@@ -131,10 +131,11 @@ TEST_CASE(
             for (float u1 : extremes) {
                 for (float u2 : extremes) {
                     CAPTURE(m.type.x, pick, u1, u2);
-                    const glm::vec3 radiance =
+                    const kernel::ShadowedLight sample =
                         kernel::sample_light(&glossy_view, &m, glm::vec3(1.0f), glm::vec2(1.0f), 1,
                                              incoming, up, up, position, 1.0f,
                                              pick, 0.0f, glm::vec2(u1, u2));
+                    const glm::vec3 radiance = sample.sent;  // its shadow ray traced
                     REQUIRE(finite(radiance));
                     REQUIRE(radiance.x >= 0.0f);
                     REQUIRE(radiance.y >= 0.0f);

@@ -90,12 +90,65 @@ T0_INLINE float3 leaving_side(const SceneView* scene, float3 direction, float3 f
     return dot(direction, facing_geometric) > 0.0f ? facing_geometric : -facing_geometric;
 }
 
+// A light sample as sample_light makes it: what it sends through the
+// material, and the shadow ray that decides whether that arrives: from
+// origin along direction, clear up to length. A length of 0: no ray, and
+// nothing sent. On a CPU the ray is traced at once (an occluded sample
+// sends nothing); on a GPU (T0_SHADOW_RAY_LAST) the caller traces it
+// (shadow_ray_clear) once the vertex is shaded, so that less state is held
+// across the traversal (docs/gpu.md).
+typedef struct ShadowedLight {
+    float3 sent;
+    float3 origin;
+    float3 direction;
+    float length;
+} ShadowedLight;
+
+T0_INLINE ShadowedLight no_light_sample(void) {
+    ShadowedLight s;
+    s.sent = float3_splat(0.0f);
+    s.origin = float3_splat(0.0f);
+    s.direction = float3_splat(0.0f);
+    s.length = 0.0f;
+    return s;
+}
+
+T0_INLINE ShadowedLight shadowed_light(float3 sent, float3 origin, float3 direction, float length) {
+    ShadowedLight s;
+    s.sent = sent;
+    s.origin = origin;
+    s.direction = direction;
+    s.length = length;
+    return s;
+}
+
+// Where the shadow ray is traced at once (a CPU): whether something lies on
+// the ray from origin along direction before length.
+T0_INLINE int occluded_now(const SceneView* scene, float3 origin, float3 direction, float length) {
+    if (T0_SHADOW_RAY_LAST) {
+        return 0;
+    }
+    const Ray ray = make_ray(origin, direction);
+    return occluded(scene, &ray, length);
+}
+
+// Whether a light sample's shadow ray is clear (nothing on it), and so its
+// light arrives.
+T0_INLINE int shadow_ray_clear(const SceneView* scene, const ShadowedLight* s) {
+    if (!(s->length > 0.0f)) {
+        return 0;
+    }
+    const Ray ray = make_ray(s->origin, s->direction);
+    return !occluded(scene, &ray, s->length);
+}
+
 // Next-event estimation of a light that is not a triangle (lamps.h): the
-// sample's radiance through the material, if nothing is in between; with
+// sample's radiance through the material, if nothing is in between (its
+// shadow ray: ShadowedLight); with
 // its MIS weight where the light has an area (the sun's disc, the
 // environment), in full for a delta light. pick is the light's
 // probability.
-T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord* light, float pick,
+T0_INLINE ShadowedLight sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord* light, float pick,
                              T0_GLOBAL const MaterialRecord* m, float3 texture, float2 rm,
                              int front, float3 incoming, float3 facing_normal, float3 facing_geometric,
                              float3 position, float magnitude, float2 u) {
@@ -109,55 +162,56 @@ T0_INLINE float3 sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord
         ls = sample_point_lamp(light, position);
     }
     if (!(ls.radiance.x > 0.0f || ls.radiance.y > 0.0f || ls.radiance.z > 0.0f)) {
-        return float3_splat(0.0f);
+        return no_light_sample();
     }
     const MaterialEval e =
         eval_material(scene, m, texture, rm, front, incoming, facing_normal, ls.direction);
     if (!(e.pdf > 0.0f)) {
-        return float3_splat(0.0f);
+        return no_light_sample();
     }
     if ((T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) || T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) &&
         on_other_side(ls.direction, facing_normal, facing_geometric)) {
-        return float3_splat(0.0f);
+        return no_light_sample();
     }
     const float3 origin = offset_ray_origin(
         position, leaving_side(scene, ls.direction, facing_geometric), magnitude);
-    Ray shadow_ray;
+    float3 shadow_direction = ls.direction;
     float shadow_length = T0_NO_HIT;
     if (ls.distance < T0_NO_HIT) {
         // To the lamp's point itself, from the moved origin.
         const float3 shadow = xyz(light->a) - origin;
         shadow_length = length(shadow);
         if (!(shadow_length > 0.0f)) {
-            return float3_splat(0.0f);
+            return no_light_sample();
         }
-        shadow_ray = make_ray(origin, shadow / shadow_length);
-    } else {
-        shadow_ray = make_ray(origin, ls.direction);
+        shadow_direction = shadow / shadow_length;
     }
-    if (occluded(scene, &shadow_ray, shadow_length)) {
-        return float3_splat(0.0f);
+    if (occluded_now(scene, origin, shadow_direction, shadow_length)) {
+        return no_light_sample();
     }
     if (!(ls.pdf > 0.0f)) {
-        return e.f_cos * ls.radiance / pick;
+        return shadowed_light(e.f_cos * ls.radiance / pick, origin, shadow_direction,
+                              shadow_length);
     }
     const float light_pdf = pick * ls.pdf;
-    return e.f_cos * ls.radiance * (power_heuristic(light_pdf, e.pdf) / light_pdf);
+    return shadowed_light(e.f_cos * ls.radiance * (power_heuristic(light_pdf, e.pdf) / light_pdf),
+                          origin, shadow_direction, shadow_length);
 }
 
 // Next-event estimation at a surface point: picks an emitting triangle in
 // proportion to its power and a uniform point on it, and returns the
 // radiance it sends back along -incoming through the material, if nothing
-// is in between, weighted by MIS against the material's own sampling (whose
-// hits on emitters carry the complementary weight). facing_normal is the
-// shading normal the material is evaluated with, facing_geometric the
+// is in between (its shadow ray: ShadowedLight), weighted by MIS against
+// the material's own sampling (whose hits on emitters carry the
+// complementary weight). facing_normal is the shading normal the material
+// is evaluated with, facing_geometric the
 // triangle's normal on the incoming side (the side the light must be on,
 // and the shadow ray leaves from); both the same for a flat triangle.
 // magnitude is hit_magnitude of position; u_pick chooses the light (with
 // the light tree: a distant one or the tree, and u_tree the way down it)
 // and u the point on it (or the direction to it).
-T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                              float3 texture, float2 rm, int front, float3 incoming,
+T0_FORCE_INLINE ShadowedLight sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
+                                     float3 texture, float2 rm, int front, float3 incoming,
                               float3 facing_normal, float3 facing_geometric,
                               float3 position, float magnitude, float u_pick, float u_tree,
                               float2 u) {
@@ -169,7 +223,7 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE) && u_pick >= distant) {
         const LightPick tree = light_tree_pick(scene, position, facing_normal, u_tree);
         if (!(tree.pmf > 0.0f)) {
-            return float3_splat(0.0f);
+            return no_light_sample();
         }
         light = &scene->lights[tree.light];
         pick = (1.0f - distant) * tree.pmf;
@@ -196,7 +250,7 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     const float3 to_light = point - position;
     const float distance2 = dot(to_light, to_light);
     if (!(distance2 > 0.0f)) {
-        return float3_splat(0.0f);
+        return no_light_sample();
     }
     const float distance = sqrt(distance2);
     const float3 direction = to_light / distance;
@@ -205,16 +259,16 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     const MaterialEval e =
         eval_material(scene, m, texture, rm, front, incoming, facing_normal, direction);
     if (!(cos_light > 0.0f) || !(e.pdf > 0.0f)) {
-        return float3_splat(0.0f);  // edge-on, or outside the material's lobe
+        return no_light_sample();  // edge-on, or outside the material's lobe
     }
     if ((T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) || T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) &&
         on_other_side(direction, facing_normal, facing_geometric)) {
-        return float3_splat(0.0f);  // in the shading normal's lobe, across the triangle
+        return no_light_sample();  // in the shading normal's lobe, across the triangle
     }
     T0_GLOBAL const MaterialRecord* emitter = &scene->materials[tri->ids.x];
     if (T0_HAS_FEATURE(scene, T0_FEATURE_ONE_SIDED) && material_one_sided(emitter) &&
         !(dot(direction, light_normal) < 0.0f)) {
-        return float3_splat(0.0f);  // the back of a one-sided emitter
+        return no_light_sample();  // the back of a one-sided emitter
     }
     // The shadow ray runs between the two points, each moved off its surface
     // towards the other, so neither surface can block it.
@@ -225,11 +279,10 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
     const float3 shadow = target - origin;
     const float shadow_length = length(shadow);
     if (!(shadow_length > 0.0f)) {
-        return float3_splat(0.0f);
+        return no_light_sample();
     }
-    const Ray shadow_ray = make_ray(origin, shadow / shadow_length);
-    if (occluded(scene, &shadow_ray, shadow_length)) {
-        return float3_splat(0.0f);
+    if (occluded_now(scene, origin, shadow / shadow_length, shadow_length)) {
+        return no_light_sample();
     }
     const float light_pdf = area_to_solid_angle(pick_per_area, distance2, cos_light);
     float3 emitted = material_emission(emitter);
@@ -241,7 +294,8 @@ T0_INLINE float3 sample_light(const SceneView* scene, T0_GLOBAL const MaterialRe
         at.triangle = (int)light->ids.x;
         emitted *= emission_texture(scene, emitter, at);  // its emission texture there
     }
-    return e.f_cos * emitted * (power_heuristic(light_pdf, e.pdf) / light_pdf);
+    return shadowed_light(e.f_cos * emitted * (power_heuristic(light_pdf, e.pdf) / light_pdf),
+                          origin, shadow / shadow_length, shadow_length);
 }
 
 T0_NAMESPACE_END

@@ -50,7 +50,7 @@ T0_INLINE float nudged_divisor(float d) {
     return is_parallel_component(d) ? copysign(1e-30f, d) : d;
 }
 
-T0_INLINE Ray make_ray(float3 origin, float3 direction) {
+T0_FORCE_INLINE Ray make_ray(float3 origin, float3 direction) {
     Ray r;
     r.origin = origin;
     r.direction = direction;

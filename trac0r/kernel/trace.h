@@ -116,6 +116,20 @@ T0_INLINE float3 shading_normal(const SceneView* scene, Hit hit, float3 incoming
     return unit;
 }
 
+// On a GPU (T0_SHADOW_RAY_LAST), a vertex's light sample's shadow ray is
+// traced last, once the vertex is shaded, as the path goes on or ends: what
+// the shading needed is then no longer held in registers across the
+// traversal (docs/gpu.md). Its light still counts before the next vertex's
+// emission, as it does when traced straight after sampling (the CPU's
+// order, where an occluded sample's MIS weight is never computed): the same
+// sums.
+T0_INLINE void add_light_last(const SceneView* scene, const ShadowedLight* light,
+                              float3* radiance) {
+    if (T0_SHADOW_RAY_LAST && shadow_ray_clear(scene, light)) {
+        *radiance += light->sent;
+    }
+}
+
 // One path from the camera; returns its radiance estimate. With next-event
 // estimation (T0_FEATURE_NEE), each diffuse or rough glossy hit also samples
 // a light; emission that the next scattered ray finds is then weighted by
@@ -222,6 +236,7 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
         // Not at the last vertex a path may have: the light sample stands
         // for the next vertex, which max_depth does not allow.
         lights_sampled = 0;
+        ShadowedLight light = no_light_sample();
         if (nee && depth + 1 < max_depth && scene->light_count > 0u &&
             material_samples_lights(scene, m)) {
             const float u_pick = vertex_1d(sampler, draws.light_pick);
@@ -229,10 +244,12 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
             const float u_tree = T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)
                                      ? sample_1d(sampler, T0_DIM_LIGHT_TREE(depth))
                                      : 0.0f;
-            radiance += throughput * tint *
-                        sample_light(scene, m, texture, rm, front, ray.direction, facing_normal,
-                                     facing_geometric, position, magnitude, u_pick, u_tree,
-                                     u_point);
+            light = sample_light(scene, m, texture, rm, front, ray.direction, facing_normal,
+                                 facing_geometric, position, magnitude, u_pick, u_tree, u_point);
+            light.sent = throughput * tint * light.sent;
+            if (!T0_SHADOW_RAY_LAST) {
+                radiance += light.sent;  // its shadow ray traced (sample_light)
+            }
             lights_sampled = 1;
             if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)) {
                 sampled_from = position;
@@ -240,38 +257,49 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
             }
         }
 
-        if (nee && !survives_roulette(nee_continuation_probability(depth, max_depth, throughput),
-                                      &throughput, vertex_1d(sampler, draws.roulette))) {
+        // Whether the path goes on: the roulette, then the material's sample.
+        int goes_on = !nee || survives_roulette(
+                                  nee_continuation_probability(depth, max_depth, throughput),
+                                  &throughput, vertex_1d(sampler, draws.roulette));
+        float3 next_origin = position;
+        float3 next_direction = geometric_normal;
+        if (goes_on) {
+            // Glass needs one number, the others two.
+            const float2 u = m->type.x == T0_MATERIAL_GLASS
+                                 ? make_float2(vertex_1d(sampler, draws.material.x), 0.0f)
+                                 : vertex_2d(sampler, draws.material);
+            const float u_lobe =
+                material_draws_lobe(scene, m) ? sample_1d(sampler, T0_DIM_LOBE(depth)) : 0.0f;
+            const ScatterSample s = scatter_material(scene, m, texture, rm, front, ray.direction,
+                                                     shading, facing_normal, u, u_lobe);
+            goes_on = s.weight.x > 0.0f || s.weight.y > 0.0f || s.weight.z > 0.0f;
+            // With a shading normal, a direction the material scattered to
+            // one side of it may lie on the other side of the triangle:
+            // absorbed, not let through (a reflection stays on the incoming
+            // side).
+            if ((T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) ||
+                 T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) &&
+                (dot(s.direction, facing_geometric) > 0.0f) !=
+                    (dot(s.direction, facing_normal) > 0.0f)) {
+                goes_on = 0;
+            }
+            if (goes_on) {
+                throughput *= s.weight * tint;
+                scatter_pdf = s.pdf;
+                // Continue from just off the surface, on the side the new
+                // ray leaves.
+                const float3 side = dot(s.direction, geometric_normal) > 0.0f
+                                        ? geometric_normal
+                                        : -geometric_normal;
+                next_origin = offset_ray_origin(position, side, magnitude);
+                next_direction = s.direction;
+            }
+        }
+        add_light_last(scene, &light, &radiance);
+        if (!goes_on) {
             break;
         }
-
-        // Sample the material: glass needs one number, the others two.
-        const float2 u = m->type.x == T0_MATERIAL_GLASS
-                             ? make_float2(vertex_1d(sampler, draws.material.x), 0.0f)
-                             : vertex_2d(sampler, draws.material);
-        const float u_lobe =
-            material_draws_lobe(scene, m) ? sample_1d(sampler, T0_DIM_LOBE(depth)) : 0.0f;
-        const ScatterSample s =
-            scatter_material(scene, m, texture, rm, front, ray.direction, shading, facing_normal,
-                             u, u_lobe);
-        if (!(s.weight.x > 0.0f || s.weight.y > 0.0f || s.weight.z > 0.0f)) {
-            break;
-        }
-        // With a shading normal, a direction the material scattered to one
-        // side of it may lie on the other side of the triangle: absorbed,
-        // not let through (a reflection stays on the incoming side).
-        if ((T0_HAS_FEATURE(scene, T0_FEATURE_SMOOTH) || T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) &&
-            (dot(s.direction, facing_geometric) > 0.0f) !=
-                (dot(s.direction, facing_normal) > 0.0f)) {
-            break;
-        }
-        throughput *= s.weight * tint;
-        scatter_pdf = s.pdf;
-
-        // Continue from just off the surface, on the side the new ray leaves.
-        const float3 side =
-            dot(s.direction, geometric_normal) > 0.0f ? geometric_normal : -geometric_normal;
-        ray = make_ray(offset_ray_origin(position, side, magnitude), s.direction);
+        ray = make_ray(next_origin, next_direction);
     }
     return radiance;
 }

@@ -29,6 +29,12 @@
 //     C++     0, the sorted stack of eight lanes at once: the group
 //             stack's second test of a node took 9.9 % more instructions
 //             a path on cornell.json (instructions_per_path.sh).
+//   T0_SHADOW_RAY_LAST, when NEE's shadow ray is traced
+//     OpenCL  on a GPU, 1: after the vertex's shading, which then holds
+//             no registers across the traversal: 129 to 114 VGPRs on
+//             gfx1030 (cornell.json, docs/gpu.md).
+//     C++     0, straight after the light sample, whose MIS weight is
+//             then not computed where the ray is blocked.
 //   component3, largest_axis, next_axis (make_ray, on a ray's axes)
 //     OpenCL  choices, which LLVM makes selects: PoCL's frames were 6 %
 //             slower with the arithmetic largest axis.
@@ -74,8 +80,10 @@ T0_INLINE float choose_by_bits(int condition, float a, float b) {
 
 #ifdef T0_GPU
 #define T0_LANE_TRAVERSAL 1
+#define T0_SHADOW_RAY_LAST 1
 #else
 #define T0_LANE_TRAVERSAL 0
+#define T0_SHADOW_RAY_LAST 0
 #endif
 
 // Component k (0, 1, 2) of a vector that is not in a buffer, the axis of
@@ -96,6 +104,7 @@ T0_INLINE int next_axis(int k) { return k == 2 ? 0 : k + 1; }
 #define T0_ONE_CHILD_APART 0
 
 #define T0_LANE_TRAVERSAL 0
+#define T0_SHADOW_RAY_LAST 0
 
 T0_NAMESPACE_BEGIN
 
