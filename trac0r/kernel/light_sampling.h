@@ -113,23 +113,25 @@ T0_INLINE ShadowedLight no_light_sample(void) {
     return s;
 }
 
-T0_INLINE ShadowedLight shadowed_light(float3 sent, float3 origin, float3 direction, float length) {
+T0_INLINE ShadowedLight shadowed_light(float3 sent, float3 origin, float3 direction,
+                                       float clear_to) {
     ShadowedLight s;
     s.sent = sent;
     s.origin = origin;
     s.direction = direction;
-    s.length = length;
+    s.length = clear_to;
     return s;
 }
 
 // Where the shadow ray is traced at once (a CPU): whether something lies on
-// the ray from origin along direction before length.
-T0_INLINE int occluded_now(const SceneView* scene, float3 origin, float3 direction, float length) {
+// the ray from origin along direction before clear_to.
+T0_INLINE int occluded_now(const SceneView* scene, float3 origin, float3 direction,
+                           float clear_to) {
     if (T0_SHADOW_RAY_LAST) {
         return 0;
     }
     const Ray ray = make_ray(origin, direction);
-    return occluded(scene, &ray, length);
+    return occluded(scene, &ray, clear_to);
 }
 
 // Whether a light sample's shadow ray is clear (nothing on it), and so its
@@ -204,17 +206,18 @@ T0_INLINE ShadowedLight sample_lamp(const SceneView* scene, T0_GLOBAL const Ligh
 // is in between (its shadow ray: ShadowedLight), weighted by MIS against
 // the material's own sampling (whose hits on emitters carry the
 // complementary weight). facing_normal is the shading normal the material
-// is evaluated with, facing_geometric the
-// triangle's normal on the incoming side (the side the light must be on,
-// and the shadow ray leaves from); both the same for a flat triangle.
+// is evaluated with, facing_geometric the triangle's normal on the
+// incoming side (the side the light must be on, and the shadow ray leaves
+// from); both the same for a flat triangle.
 // magnitude is hit_magnitude of position; u_pick chooses the light (with
 // the light tree: a distant one or the tree, and u_tree the way down it)
 // and u the point on it (or the direction to it).
-T0_FORCE_INLINE ShadowedLight sample_light(const SceneView* scene, T0_GLOBAL const MaterialRecord* m,
-                                     float3 texture, float2 rm, int front, float3 incoming,
-                              float3 facing_normal, float3 facing_geometric,
-                              float3 position, float magnitude, float u_pick, float u_tree,
-                              float2 u) {
+T0_FORCE_INLINE ShadowedLight sample_light(const SceneView* scene,
+                                           T0_GLOBAL const MaterialRecord* m, float3 texture,
+                                           float2 rm, int front, float3 incoming,
+                                           float3 facing_normal, float3 facing_geometric,
+                                           float3 position, float magnitude, float u_pick,
+                                           float u_tree, float2 u) {
     T0_GLOBAL const LightRecord* light;
     float pick;           // the light's probability
     float pick_per_area;  // for a triangle, over its area

@@ -122,7 +122,7 @@ T0_INLINE float3 shading_normal(const SceneView* scene, Hit hit, float3 incoming
 // traversal (docs/gpu.md). Its light still counts before the next vertex's
 // emission, as it does when traced straight after sampling (the CPU's
 // order, where an occluded sample's MIS weight is never computed): the same
-// sums.
+// sums, for a finite throughput (the CPU adds an occluded sample's zero).
 T0_INLINE void add_light_last(const SceneView* scene, const ShadowedLight* light,
                               float3* radiance) {
     if (T0_SHADOW_RAY_LAST && shadow_ray_clear(scene, light)) {

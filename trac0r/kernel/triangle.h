@@ -186,8 +186,9 @@ T0_NOINLINE int packet_outside_exactly(T0_GLOBAL const TrianglePacket* p, const 
 
 // intersect_packet's lane i alone, the same floats, for a GPU (whose
 // work-item is one lane; traverse_bvh_groups): the distance at which
-// triangle i of the packet is hit below t_max, with its barycentrics in
-// *u, *v, or T0_NO_HIT.
+// triangle i of the packet is hit below t_max (at most T0_NO_HIT, so that
+// a miss is never below it), with its barycentrics in *u, *v, or
+// T0_NO_HIT.
 T0_INLINE float packet_lane_hit(T0_GLOBAL const TrianglePacket* p, const Ray* ray, int i,
                                 float t_max, float* u, float* v) {
     float3 w[3];  // the vertices in the ray's frame
