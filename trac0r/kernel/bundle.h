@@ -148,11 +148,7 @@ T0_INLINE int bundle_leaves(const SceneView* scene, const RayBundle* b,
         const int waiting = group_waiting(group);
         const int last = highest_set_bit(waiting);
         node = node_child(&scene->nodes[group_node(group)], last);
-        if ((waiting & ~(1 << last)) != 0) {
-            stack[top - 1] = node_group(group_node(group), waiting & ~(1 << last));
-        } else {
-            --top;
-        }
+        keep_waiting(stack, &top, group, waiting & ~(1 << last));
     }
 }
 

@@ -104,15 +104,6 @@ typedef struct ShadowedLight {
     float length;
 } ShadowedLight;
 
-T0_INLINE ShadowedLight no_light_sample(void) {
-    ShadowedLight s;
-    s.sent = float3_splat(0.0f);
-    s.origin = float3_splat(0.0f);
-    s.direction = float3_splat(0.0f);
-    s.length = 0.0f;
-    return s;
-}
-
 T0_INLINE ShadowedLight shadowed_light(float3 sent, float3 origin, float3 direction,
                                        float clear_to) {
     ShadowedLight s;
@@ -121,6 +112,11 @@ T0_INLINE ShadowedLight shadowed_light(float3 sent, float3 origin, float3 direct
     s.direction = direction;
     s.length = clear_to;
     return s;
+}
+
+T0_INLINE ShadowedLight no_light_sample(void) {
+    const float3 zero = float3_splat(0.0f);
+    return shadowed_light(zero, zero, zero, 0.0f);
 }
 
 // Where the shadow ray is traced at once (a CPU): whether something lies on

@@ -64,6 +64,16 @@ T0_INLINE t0_u32 node_group(t0_u32 node, int waiting) { return (node << 8) | (t0
 T0_INLINE t0_u32 group_node(t0_u32 group) { return group >> 8; }
 T0_INLINE int group_waiting(t0_u32 group) { return (int)(group & 0xffu); }
 
+// The top entry, `group`, after one of its children is taken: its children
+// in `rest` go on waiting, or it leaves the stack where none is left.
+T0_INLINE void keep_waiting(t0_u32* stack, int* top, t0_u32 group, int rest) {
+    if (rest != 0) {
+        stack[*top - 1] = node_group(group_node(group), rest);
+    } else {
+        --*top;
+    }
+}
+
 // Plane p's coordinate of node n's child i (0 to 7): lane i of the plane.
 T0_INLINE float node_plane(T0_GLOBAL const BvhNode* n, int p, int i) {
     return buffer_component(&n->bounds[2 * p + (i >> 2)], i & 3);
@@ -396,12 +406,7 @@ T0_INLINE Hit traverse_bvh_groups(const SceneView* scene, const Ray* ray, float 
                 --top;
                 continue;
             }
-            waiting &= ~(1 << near);
-            if (waiting != 0) {
-                stack[top - 1] = node_group(group_node(group), waiting);
-            } else {
-                --top;
-            }
+            keep_waiting(stack, &top, group, waiting & ~(1 << near));
             child = node_child(n, near);
             break;
         }

@@ -171,17 +171,21 @@ T0_INLINE PacketVertex packet_vertex_in_ray_frame(T0_GLOBAL const TrianglePacket
     return v;
 }
 
+// Vertex k of triangle i of a packet in the ray's frame, computed as the
+// packet test computes it, lane i (packet_vertex_in_ray_frame).
+T0_INLINE float3 packet_lane_vertex(T0_GLOBAL const TrianglePacket* p, const Ray* ray, int i,
+                                    int k) {
+    const float x = buffer_component(&p->vertex[3 * k + ray->kx], i) - ray->permuted_origin.x;
+    const float y = buffer_component(&p->vertex[3 * k + ray->ky], i) - ray->permuted_origin.y;
+    const float z = buffer_component(&p->vertex[3 * k + ray->kz], i) - ray->permuted_origin.z;
+    return make_float3(x - ray->shear.x * z, y - ray->shear.y * z, z);
+}
+
 // outside_exactly for triangle i of a packet, its vertices in the ray's
 // frame computed as the packet test computes them, lane i.
 T0_NOINLINE int packet_outside_exactly(T0_GLOBAL const TrianglePacket* p, const Ray* ray, int i) {
-    float3 v[3];
-    for (int k = 0; k < 3; ++k) {
-        const float x = buffer_component(&p->vertex[3 * k + ray->kx], i) - ray->permuted_origin.x;
-        const float y = buffer_component(&p->vertex[3 * k + ray->ky], i) - ray->permuted_origin.y;
-        const float z = buffer_component(&p->vertex[3 * k + ray->kz], i) - ray->permuted_origin.z;
-        v[k] = make_float3(x - ray->shear.x * z, y - ray->shear.y * z, z);
-    }
-    return outside_exactly(v[0], v[1], v[2]);
+    return outside_exactly(packet_lane_vertex(p, ray, i, 0), packet_lane_vertex(p, ray, i, 1),
+                           packet_lane_vertex(p, ray, i, 2));
 }
 
 // intersect_packet's lane i alone, the same floats, for a GPU (whose
@@ -193,10 +197,7 @@ T0_INLINE float packet_lane_hit(T0_GLOBAL const TrianglePacket* p, const Ray* ra
                                 float t_max, float* u, float* v) {
     float3 w[3];  // the vertices in the ray's frame
     for (int k = 0; k < 3; ++k) {
-        const float z = buffer_component(&p->vertex[3 * k + ray->kz], i) - ray->permuted_origin.z;
-        const float x = buffer_component(&p->vertex[3 * k + ray->kx], i) - ray->permuted_origin.x;
-        const float y = buffer_component(&p->vertex[3 * k + ray->ky], i) - ray->permuted_origin.y;
-        w[k] = make_float3(x - ray->shear.x * z, y - ray->shear.y * z, z);
+        w[k] = packet_lane_vertex(p, ray, i, k);
     }
     const float weight0 = w[2].x * w[1].y - w[2].y * w[1].x;
     const float weight1 = w[0].x * w[2].y - w[0].y * w[2].x;
