@@ -102,14 +102,13 @@ def amd_kernels(mask, target, tmp):
             "agpr": field("agpr_count"),
             "sgpr": field("sgpr_count"),
             "vspill": field("vgpr_spill_count"),
-            "sspill": field("sgpr_spill_count"),
             "scratch": field("private_segment_fixed_size"),
             "lds": field("group_segment_fixed_size"),
         }
     return kernels
 
 
-def waves_per_simd(k, target, group_items):
+def waves_per_simd(k, target):
     t = AMD_TARGETS[target]
     # On gfx90a and gfx940 .vgpr_count already holds the AGPRs (the
     # unified file); gfx1030 has none.
@@ -117,7 +116,8 @@ def waves_per_simd(k, target, group_items):
     waves = min(t["waves"], t["vgprs"] // max(registers, 1))
     if k["lds"] > 0:
         groups = LDS_PER_CU // k["lds"]
-        group_waves = math.ceil(group_items / float(t["wave"]))
+        # Only render_frame's BVH path has local memory: a tile a work-group.
+        group_waves = math.ceil(TILE_ITEMS / float(t["wave"]))
         waves = min(waves, groups * group_waves // t["simds"])
     return waves
 
@@ -129,7 +129,7 @@ def nvptx_kernels(mask, tmp):
     text = open(ptx).read()
     kernels = {}
     # Each .entry's body up to the next function: its __local_depot is its
-    # local frame; calls to other functions add theirs (none inline).
+    # local frame. Functions it calls would add theirs: such PTX is refused.
     parts = re.split(r"\n(?=\.(?:visible )?\.?(?:entry|func) )", text)
     functions = 0
     for part in parts:
@@ -238,10 +238,9 @@ def main():
         print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
         for mask in masks:
             k = results[mask][target][kernel]
-            group = TILE_ITEMS if k["lds"] > 0 else 256
             print("| 0x%x | %s | %d | %d | %d | %d | %d | %d | %d |" %
                   (mask, ", ".join(scenes_of[mask]), k["vgpr"], k["agpr"], k["sgpr"], k["vspill"],
-                   k["scratch"], k["lds"], waves_per_simd(k, target, group)))
+                   k["scratch"], k["lds"], waves_per_simd(k, target)))
     # The other kernels do not depend on the mask: once, from the first.
     print("\nThe other kernels (the same for every mask):\n")
     print("| kernel | target | VGPRs | SGPRs | spills | scratch B | LDS B / PTX local B |")
