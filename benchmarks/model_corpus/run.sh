@@ -127,6 +127,18 @@ format_of() {
     esac
 }
 
+# Whether an OBJ file is a textured OBJ + MTL model: one of its mtllib files
+# is there and has a map_Kd statement.
+textured_obj() {
+    local f=$1 lib
+    [[ $(format_of "$f") == OBJ ]] || return 1
+    while IFS= read -r lib; do
+        [[ -f "$(dirname "$f")/$lib" ]] && grep -qE '^[[:space:]]*map_Kd[[:space:]]' \
+            "$(dirname "$f")/$lib" && return 0
+    done < <(sed -n -e 's/\r$//' -e 's/^[[:space:]]*mtllib[[:space:]]\+//p' "$f")
+    return 1
+}
+
 json_string() {  # a JSON string literal of $1
     local s=$1
     s=${s//\\/\\\\}
@@ -201,6 +213,10 @@ EOF
     count[$grp,$lc]=$((${count[$grp,$lc]:-0} + 1))
     count[all,$lc]=$((${count[all,$lc]:-0} + 1))
     count[strict,$sc]=$((${count[strict,$sc]:-0} + 1))
+    if [[ $grp == valid ]] && textured_obj "$abs"; then
+        count[textured,$lc]=$((${count[textured,$lc]:-0} + 1))
+        count[textured,n]=$((${count[textured,n]:-0} + 1))
+    fi
     count[$fmt,n]=$((${count[$fmt,n]:-0} + 1))
     count[$grp,n]=$((${count[$grp,n]:-0} + 1))
     line="$lc	$grp	$fmt	${f#"$assimp/"}"
@@ -233,6 +249,11 @@ v=${count[valid,n]:-0}
 vr=$((${count[valid,clean]:-0} + ${count[valid,warn]:-0}))
 if ((v > 0)); then
     echo "valid files rendered with no flag: $vr of $v ($((1000 * vr / v / 10)).$((1000 * vr / v % 10)) %, rounded down)"
+fi
+t=${count[textured,n]:-0}
+tr=$((${count[textured,clean]:-0} + ${count[textured,warn]:-0}))
+if ((t > 0)); then
+    echo "textured OBJ + MTL models (valid) rendered with no flag: $tr of $t"
 fi
 vn=$((v + ${count[no-surface,n]:-0}))
 vnr=$((vr + ${count[no-surface,clean]:-0} + ${count[no-surface,warn]:-0}))
