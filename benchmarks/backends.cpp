@@ -239,6 +239,9 @@ int main(int argc, char** argv) {
             for (Accel accel : config.accels) {
                 PackOptions options;
                 options.accel = accel;
+                // The thesis' paths, which docs/performance.md's figures time.
+                options.integrator = Integrator::naive;
+                options.sampler = SamplerKind::random;
                 const PackedScene packed = pack_scene(scene, options);
                 PackedScene full = packed;
                 full.features |= all_materials;

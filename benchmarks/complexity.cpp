@@ -258,9 +258,13 @@ Level measure_level(const Options& o, const Backends& backends, int subdivisions
     scene.render.height = o.height;
     Level level;
     level.subdivisions = subdivisions;
+    // The thesis' paths (naive, xorshift), which docs/performance.md's
+    // figures time.
     PackOptions flat_options;
     flat_options.accel = Accel::flat;
-    PackOptions bvh_options;
+    flat_options.integrator = Integrator::naive;
+    flat_options.sampler = SamplerKind::random;
+    PackOptions bvh_options = flat_options;
     bvh_options.accel = Accel::bvh;
     const Clock::time_point pack_start = Clock::now();
     const PackedScene bvh = pack_scene(scene, bvh_options);

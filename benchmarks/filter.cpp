@@ -11,7 +11,6 @@
 //
 // See --help. Timings live here, never in the tests.
 #include "cli.h"
-#include "viewer_like.h"
 #include "timing.h"
 
 #include "trac0r/cpu_backend.h"
@@ -57,8 +56,8 @@ struct Options {
 };
 
 std::unique_ptr<Renderer> render(const Scene& scene, std::uint64_t seed, int spp) {
-    std::unique_ptr<Renderer> r(new Renderer(scene, std::make_unique<CpuBackend>(), seed,
-                                             trac0r_bench::viewer_pack_options()));
+    std::unique_ptr<Renderer> r(
+        new Renderer(scene, std::make_unique<CpuBackend>(), seed, trac0r::PackOptions()));
     for (int i = 0; i < spp; ++i) {
         r->render_frame();
     }

@@ -195,7 +195,7 @@ std::string scene_stem(const Options& o) {
 
 std::unique_ptr<Renderer> make_renderer(const Scene& scene, std::uint64_t seed) {
     return std::make_unique<Renderer>(scene, std::make_unique<CpuBackend>(), seed,
-                                      trac0r_bench::viewer_pack_options());
+                                      trac0r::PackOptions());
 }
 
 // The converged reference of the scene's view: from the cache, or rendered

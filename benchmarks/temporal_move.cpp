@@ -102,7 +102,7 @@ std::unique_ptr<Renderer> make_renderer(Scene scene, int width, int height, std:
     scene.render.width = width;
     scene.render.height = height;
     return std::make_unique<Renderer>(scene, std::make_unique<CpuBackend>(), seed,
-                                      trac0r_bench::viewer_pack_options());
+                                      trac0r::PackOptions());
 }
 
 int run(int argc, char** argv) {

@@ -1,7 +1,7 @@
-// What the benchmarks that measure the window's display (bench_filter,
-// bench_temporal, bench_frame_budget) share with trac0r_viewer: its
-// default integrator and sampler, and the scene size its camera speed
-// follows.
+// What the benchmarks that measure the window's display (bench_temporal,
+// bench_frame_budget) share with trac0r_viewer: the scene size its camera
+// speed follows. (Its integrator and sampler are the library's defaults,
+// trac0r::PackOptions.)
 #ifndef TRAC0R_BENCHMARKS_VIEWER_LIKE_H
 #define TRAC0R_BENCHMARKS_VIEWER_LIKE_H
 
@@ -11,14 +11,6 @@
 #include <glm/glm.hpp>
 
 namespace trac0r_bench {
-
-// The viewer's defaults: next-event estimation, Sobol samples.
-inline trac0r::PackOptions viewer_pack_options() {
-    trac0r::PackOptions pack;
-    pack.integrator = trac0r::Integrator::nee;
-    pack.sampler = trac0r::SamplerKind::sobol;
-    return pack;
-}
 
 // The diagonal of the box around every shape (1 for an empty scene).
 inline float scene_diagonal(const trac0r::Scene& scene) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # test_install: cmake --install the built tree into a fresh prefix, build
 # examples/ against it as a separate project (find_package(trac0r)), run
-# it on the built-in scene and check the PNG it writes.
+# it on the built-in scene and check the PNG it writes, and that at 64 spp
+# it renders trac0r_viewer's image bit for bit (one set of defaults).
 # Usage: tests/install_test.sh BUILD_DIR
 set -euo pipefail
 source_dir=$(cd "$(dirname "$0")/.." && pwd)
@@ -17,4 +18,9 @@ cmake --build "$work/build" >"$work/build.log" 2>&1 || { cat "$work/build.log" >
 (cd "$work" && OMP_NUM_THREADS=2 "$work/build/minimal" "" 2 out.png)
 head -c 8 "$work/out.png" | od -An -tx1 | grep -q "89 50 4e 47 0d 0a 1a 0a" ||
     { echo "minimal wrote no PNG" >&2; exit 1; }
-echo "test_install: installed, built examples/minimal against it, rendered out.png"
+(cd "$work" && "$work/build/minimal" "" 64 minimal.pfm >/dev/null)
+"$build/trac0r_viewer" --headless --spp 64 --output "$work/viewer.pfm" 2>/dev/null
+cmp "$work/minimal.pfm" "$work/viewer.pfm" ||
+    { echo "examples/minimal at 64 spp differs from trac0r_viewer --headless --spp 64" >&2; exit 1; }
+echo "test_install: installed, built examples/minimal against it, rendered out.png;" \
+    "at 64 spp it renders trac0r_viewer's image bit for bit"

@@ -37,6 +37,7 @@ void check_estimate(const std::string& name, std::uint32_t first_checkpoint,
     const Scene scene = small(name);
     PackOptions pack;
     pack.integrator = integrator;
+    pack.sampler = SamplerKind::random;  // independent samples: what the figures above measured
     // The reference: 32 times the samples of the last checkpoint, another
     // seed. Its own noise adds to the measured error (independent renders:
     // E[(L - L_ref)^2] = var L + var L_ref), so subtract its estimate (at

@@ -51,13 +51,17 @@ enum class LightSampler {
 // spot lamps) `automatic` builds the light tree.
 const std::size_t light_tree_min_lights = 32;
 
+// How a scene is packed for the kernel. The defaults are trac0r's, the same
+// for the library and every program (trac0r_viewer's flags start from
+// them): next-event estimation with MIS and Owen-scrambled Sobol points. The
+// thesis' algorithm is Integrator::naive with SamplerKind::random.
 struct PackOptions {
     Accel accel = Accel::automatic;
     // For automatic: from how many triangles a BVH is built; 0 for
     // auto_bvh_min_triangles, or with a Renderer its backend's.
     std::size_t auto_bvh_min_triangles = 0;
-    Integrator integrator = Integrator::naive;
-    SamplerKind sampler = SamplerKind::random;
+    Integrator integrator = Integrator::nee;
+    SamplerKind sampler = SamplerKind::sobol;
     LightSampler light_sampler = LightSampler::automatic;
 };
 

@@ -21,10 +21,14 @@ struct RenderStats {
 // The running mean of an accumulator of width x height pixels.
 Image accumulated_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height);
 
+// The seed of a render unless one is given: the library's and every
+// program's (--seed).
+const std::uint64_t default_seed = 1;
+
 class Renderer {
   public:
-    Renderer(const Scene& scene, std::unique_ptr<Backend> backend, std::uint64_t seed = 1,
-             const PackOptions& pack_options = PackOptions());
+    Renderer(const Scene& scene, std::unique_ptr<Backend> backend,
+             std::uint64_t seed = default_seed, const PackOptions& pack_options = PackOptions());
 
     const Scene& scene() const { return scene_; }
     // The kernel's camera of the current view (in the scene's coordinates:

@@ -11,6 +11,7 @@
 
 #include "trac0r/guides.h"
 #include "trac0r/packed_scene.h"
+#include "trac0r/renderer.h"
 
 namespace trac0r_viewer {
 
@@ -26,13 +27,14 @@ struct Options {
     std::vector<std::string> outputs;  // --output, may be repeated
     bool headless = false;
     long benchmark_frames = 0;
-    std::uint64_t seed = 1;
+    std::uint64_t seed = trac0r::default_seed;
     int max_depth = 0;  // 0: the scene's
     int threads = 0;    // 0: OpenMP's default
-    std::string accel = "auto";
-    std::string integrator = "nee";
-    std::string sampler = "sobol";
-    std::string light_sampler = "auto";
+    // The library's defaults (trac0r::PackOptions).
+    std::string accel = trac0r::to_string(trac0r::PackOptions().accel);
+    std::string integrator = trac0r::to_string(trac0r::PackOptions().integrator);
+    std::string sampler = trac0r::to_string(trac0r::PackOptions().sampler);
+    std::string light_sampler = trac0r::to_string(trac0r::PackOptions().light_sampler);
     double target_error = 0.0;
     float exposure = 1.0f;
     std::string view;                   // --view standard|filmic; empty: the scene's render.view
