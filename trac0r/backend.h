@@ -2,6 +2,8 @@
 #ifndef TRAC0R_BACKEND_H
 #define TRAC0R_BACKEND_H
 
+#include "trac0r/image_io.h"
+#include "trac0r/kernel/filter.h"
 #include "trac0r/kernel/types.h"
 #include "trac0r/packed_scene.h"
 
@@ -46,6 +48,12 @@ class Backend {
         return true;
     }
     virtual void read_accumulator(std::vector<kernel::AccumPixel>& out) = 0;
+    // The edge-preserving filter (filter.h) of an accumulation of width x
+    // height pixels, where this backend runs it: the same kernel code on its
+    // device. The default runs it on the CPU (filter.cpp).
+    virtual Image filter_accumulation(const std::vector<kernel::AccumPixel>& accumulator, int width,
+                                      int height, const std::vector<kernel::FilterGuide>& guides,
+                                      int passes);
 
   protected:
     Backend(std::string name, std::string device)

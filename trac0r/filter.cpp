@@ -1,5 +1,7 @@
 #include "trac0r/filter.h"
 
+#include "trac0r/backend.h"
+
 #include "trac0r/kernel/filter.h"
 
 #include <algorithm>
@@ -259,6 +261,12 @@ Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width
         out.pixels[i] = kernel::filter_output(a.pixel(i), guides[i]);
     }
     return out;
+}
+
+Image Backend::filter_accumulation(const std::vector<kernel::AccumPixel>& accumulator, int width,
+                                   int height, const std::vector<kernel::FilterGuide>& guides,
+                                   int passes) {
+    return filter_image(accumulator, width, height, guides, passes);
 }
 
 }  // namespace trac0r

@@ -1,5 +1,6 @@
 #include "trac0r/opencl_backend.h"
 
+#include "trac0r/filter.h"
 #include "trac0r/kernel/tile_grid.h"
 #include "trac0r/opencl_owner.h"
 #include "trac0r/opencl_program.h"
@@ -376,6 +377,7 @@ const std::size_t kTileItems = T0_TILE * T0_TILE;
 
 struct OpenClBackend::State {
     std::shared_ptr<SharedDevice> device;  // kept open while the backend lives
+    int device_index = 0;                  // list_opencl_devices' index of it
     float scale = 1.0f;                    // the packed scene's (scaled_camera)
     OpenClKernel kernel;
     SceneBuffers scene;
@@ -395,6 +397,7 @@ std::unique_ptr<OpenClBackend::State> opened_state(int device_index) {
     std::unique_ptr<OpenClBackend::State> state(new OpenClBackend::State);
     std::lock_guard<std::mutex> lock(shared_mutex);
     state->device = shared_device(device_index);
+    state->device_index = device_index;
     return state;
 }
 
@@ -589,6 +592,13 @@ void OpenClBackend::read_accumulator(std::vector<kernel::AccumPixel>& out) {
                               sizeof(kernel::AccumPixel) * state_->pixels, out.data(), 0, nullptr,
                               nullptr),
           "clEnqueueReadBuffer(accumulator)");
+}
+
+Image OpenClBackend::filter_accumulation(const std::vector<kernel::AccumPixel>& accumulator,
+                                         int width, int height,
+                                         const std::vector<kernel::FilterGuide>& guides,
+                                         int passes) {
+    return opencl_filter_image(state_->device_index, accumulator, width, height, guides, passes);
 }
 
 }  // namespace trac0r

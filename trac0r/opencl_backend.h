@@ -76,6 +76,10 @@ class OpenClBackend : public Backend {
                                   std::uint32_t frame, int max_depth,
                                   const CancelCheck& cancel) override;
     void read_accumulator(std::vector<kernel::AccumPixel>& out) override;
+    // On this backend's device (opencl_filter_image).
+    Image filter_accumulation(const std::vector<kernel::AccumPixel>& accumulator, int width,
+                              int height, const std::vector<kernel::FilterGuide>& guides,
+                              int passes) override;
 
     // Seconds the last set_scene spent building its program (0 if cached).
     double last_build_seconds() const;
