@@ -1,10 +1,8 @@
 #include "headless.h"
 
 #include "startup.h"
-#include "stop_rule.h"
 
-#include "trac0r/filter.h"
-#include "trac0r/guides.h"
+#include "trac0r/batch.h"
 #include "trac0r/image_io.h"
 #include "trac0r/noise.h"
 
@@ -12,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -32,57 +31,35 @@ double seconds_since(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// One progress line; on a terminal redrawn in place (at most 10 times a
-// second), in a log every 10%. The fraction done is the larger of the spp,
-// seconds and target-error fractions; for the error, E / estimate, since the
-// relative MSE falls as 1 / spp.
+// One progress line; on a terminal redrawn in place (render_batch reports
+// at most 10 times a second), in a log every 10%.
 class Progress {
   public:
-    explicit Progress(const StopRule& rule) : rule_(rule), tty_(isatty(2) != 0) {}
+    Progress() : tty_(isatty(2) != 0) {}
 
-    // Whether update() would draw now: the caller computes the noise
-    // estimate (a readback and a pass over the image) only then.
-    bool due(long spp, double elapsed, double estimate) const {
-        return tty_ ? elapsed - last_draw_ >= 0.1
-                    : fraction(spp, elapsed, estimate) >= next_log_fraction_;
-    }
-
-    void update(long spp, double elapsed, double paths_per_second, double estimate) {
-        last_draw_ = elapsed;
-        const double f = fraction(spp, elapsed, estimate);
-        next_log_fraction_ = std::floor(f * 10.0 + 1.0) / 10.0;
-        draw(spp, elapsed, paths_per_second, estimate, std::min(1.0, f));
+    void update(const trac0r::BatchProgress& p) {
+        if (!tty_ && p.fraction < next_log_fraction_) {
+            return;
+        }
+        next_log_fraction_ = std::floor(p.fraction * 10.0 + 1.0) / 10.0;
+        draw(p.spp, p.seconds, p.paths_per_second, p.estimate, p.fraction);
     }
 
     // The last line: 100 % for a render that ran to its rule, the fraction
     // done for one that was interrupted.
-    void finish(long spp, double elapsed, double paths_per_second, double estimate,
-                bool complete = true) {
-        if (!tty_ && spp == last_drawn_spp_) {
+    void finish(const trac0r::BatchResult& r, const trac0r::StopRule& rule) {
+        if (!tty_ && r.spp == last_drawn_spp_) {
             return;  // the log already has this line
         }
-        draw(spp, elapsed, paths_per_second, estimate,
-             complete ? 1.0 : std::min(1.0, fraction(spp, elapsed, estimate)));
+        const double fraction =
+            r.cancelled != 0 ? rule.fraction(r.spp, r.seconds, r.estimate) : 1.0;
+        draw(r.spp, r.seconds, r.paths_per_second, r.estimate, fraction);
         if (tty_) {
             std::fputc('\n', stderr);
         }
     }
 
   private:
-    double fraction(long spp, double elapsed, double estimate) const {
-        double f = 0.0;
-        if (rule_.spp > 0) {
-            f = std::max(f, static_cast<double>(spp) / rule_.spp);
-        }
-        if (rule_.seconds > 0.0) {
-            f = std::max(f, elapsed / rule_.seconds);
-        }
-        if (rule_.target_error > 0.0 && std::isfinite(estimate) && estimate > 0.0) {
-            f = std::max(f, rule_.target_error / estimate);
-        }
-        return f;
-    }
-
     void draw(long spp, double elapsed, double paths_per_second, double estimate, double fraction) {
         last_drawn_spp_ = spp;
         const int width = 30;
@@ -99,28 +76,16 @@ class Progress {
         std::fflush(stderr);
     }
 
-    StopRule rule_;
     bool tty_;
-    double last_draw_ = -1.0;
     double next_log_fraction_ = 0.0;
     long last_drawn_spp_ = -1;
 };
-
-// When --target-error next looks at the estimate: after 10% more samples
-// (so a render stops at most 10% of its samples past the target, and the
-// checks cost a fraction of a percent), but not before 8 spp, below which the
-// per-pixel variances are too rough to stop on.
-// Split across N ranks, the first check waits for 8 frames a rank: each
-// rank's estimate comes from its own frames.
-long next_error_check(long spp, long ranks) {
-    return std::max(8L * ranks, spp + std::max(1L, spp / 10));
-}
 
 // SIGINT or SIGTERM during a batch render (0: none yet). The frame in
 // flight finishes, the image so far is written, and the exit status says
 // which signal came (130, 143). The handler is reset by its first signal,
 // so a second one ends the program at once.
-volatile std::sig_atomic_t interrupt_signal = 0;
+std::atomic<int> interrupt_signal(0);  // lock-free: set from the handler
 
 extern "C" void on_interrupt(int signal_number) { interrupt_signal = signal_number; }
 
@@ -157,11 +122,10 @@ class InterruptHandlers {
 
 constexpr int InterruptHandlers::kSignals[2];
 
-// --spp, --seconds and --target-error; 64 spp when none of them is given.
-StopRule batch_stop_rule(const Options& options) {
-    StopRule rule;
-    rule.spp = options.spp > 0 ? options.spp
-                               : (options.seconds > 0.0 || options.target_error > 0.0 ? 0 : 64);
+// --spp, --seconds and --target-error (none: render_batch's default spp).
+trac0r::StopRule batch_stop_rule(const Options& options) {
+    trac0r::StopRule rule;
+    rule.spp = options.spp;
     rule.seconds = options.seconds;
     rule.target_error = options.target_error;
     return rule;
@@ -190,20 +154,17 @@ std::string json_escape(const std::string& s) {
 
 }  // namespace
 
+trac0r::BatchOptions image_options(const Options& options) {
+    trac0r::BatchOptions o;
+    o.filtered = options.filter;
+    o.layers = options.exr_layers;
+    return o;
+}
+
 void save_outputs(const trac0r::Image& image, const Options& options, trac0r::ViewTransform view,
-                  const trac0r::Renderer* renderer,
-                  const std::vector<trac0r::kernel::AccumPixel>* accumulator) {
-    const bool with_guides = renderer != nullptr && accumulator != nullptr;
-    // The guides, made once for the --exr-layers and the --filter.
-    trac0r::GuideImages guides;
-    if (with_guides && (options.filter || options.exr_layers.albedo || options.exr_layers.normal ||
-                        options.exr_layers.depth)) {
-        guides = trac0r::render_guides(renderer->packed(), renderer->camera_record());
-    }
-    std::vector<trac0r::ExrChannel> layers;
-    if (options.exr_layers.any() && with_guides) {
-        layers = trac0r::exr_layers(options.exr_layers, guides, *accumulator);
-    }
+                  const trac0r::BatchResult* result) {
+    static const std::vector<trac0r::ExrChannel> no_layers;
+    const std::vector<trac0r::ExrChannel>& layers = result != nullptr ? result->layers : no_layers;
     const trac0r::ExrPrecision precision =
         options.exr_half ? trac0r::ExrPrecision::Half : trac0r::ExrPrecision::Float;
     const auto write = [&](const std::string& path, const trac0r::Image& picture) {
@@ -214,27 +175,11 @@ void save_outputs(const trac0r::Image& image, const Options& options, trac0r::Vi
         }
         std::fprintf(stderr, "wrote %s\n", path.c_str());
     };
-    if (options.filter && with_guides) {
-        // The same kernel code on the backend that rendered.
-        const std::vector<trac0r::kernel::FilterGuide> g = trac0r::filter_guides(guides);
-        const int w = renderer->width();
-        const int h = renderer->height();
-        trac0r::Image filtered;
-        const Clock::time_point start = Clock::now();
-#ifdef TRAC0R_HAVE_OPENCL
-        if (renderer->backend().name() == "opencl") {
-            filtered = trac0r::opencl_filter_image(std::max(options.device, 0), *accumulator, w, h,
-                                                   g, T0_FILTER_PASSES);
-        } else
-#endif
-        {
-            filtered = trac0r::filter_image(*accumulator, w, h, g, T0_FILTER_PASSES);
-        }
-        std::fprintf(stderr, "filtered in %.3f s (%d passes)\n",
-                     std::chrono::duration<double>(Clock::now() - start).count(),
+    if (options.filter && result != nullptr && !result->filtered.pixels.empty()) {
+        std::fprintf(stderr, "filtered in %.3f s (%d passes)\n", result->filter_seconds,
                      T0_FILTER_PASSES);
         for (const std::string& path : options.outputs) {
-            write(path, filtered);
+            write(path, result->filtered);
             write(raw_output_path(path), image);
         }
         return;
@@ -244,194 +189,90 @@ void save_outputs(const trac0r::Image& image, const Options& options, trac0r::Vi
     }
 }
 
-int run_batch(trac0r::Renderer& renderer, const Options& options, Cluster& cluster) {
-    const StopRule rule = batch_stop_rule(options);
-    const bool by_error = rule.target_error > 0.0;
-    const int rank = cluster.rank();
-    const long ranks = cluster.size();
-    const bool first = rank == 0;  // draws the progress, merges, writes
-    // Rank r of N renders the frames r, r + N, ...: round k is the frames
-    // k N to k N + N - 1, one a rank (fewer when --spp ends inside it).
-    renderer.set_frame_sequence(static_cast<std::uint32_t>(rank),
-                                static_cast<std::uint32_t>(ranks));
-    const double pixels = static_cast<double>(renderer.width()) * renderer.height();
-    long spp = 0;  // frames rendered by all ranks together
-    // The noise estimate of the whole render from a rank's own: each falls
-    // as 1 / its frames, so the mean of (estimate x frames) over the ranks,
-    // over all frames, estimates the whole render's. With one process it is
-    // that process's estimate.
-    double last_estimate = std::numeric_limits<double>::infinity();
-    long estimate_spp = 0;  // of the last --target-error check
-    const auto own_estimate = [&] {
-        return trac0r::estimate_relative_mse(renderer.accumulator(), renderer.width(),
-                                             renderer.height());
+int run_batch(trac0r::Renderer& renderer, const Options& options, trac0r::Cluster& cluster) {
+    trac0r::BatchOptions batch = image_options(options);
+    batch.stop = batch_stop_rule(options);
+    batch.cluster = &cluster;
+    batch.cancel = &interrupt_signal;
+    Progress progress;
+    batch.progress = [&progress](const trac0r::BatchProgress& p) {
+        progress.update(p);
+        return true;
     };
-    Progress progress(rule);
     const InterruptHandlers interrupts;
-    const Clock::time_point start = Clock::now();
-    long error_check = next_error_check(0, ranks);
-    bool error_reached = false;
-    bool overflowed = false;
-    int signal_number = 0;  // the first signal any rank received
-    double now = 0.0;       // rank 0's clock: every rank decides by it
-    std::vector<RoundReport> reports;
-    StopReason stopped = StopReason::none;
-    for (;;) {
-        if (signal_number != 0 && spp > 0) {
-            break;
-        }
-        const bool full = spp >= static_cast<long>(trac0r::Renderer::max_frames);
-        stopped = rule.reason(spp, now, error_reached, full);
-        if (stopped == StopReason::full && first) {
-            std::fprintf(stderr,
-                         "%s: stopped at %u spp, the most a pixel's sample count "
-                         "(a float) holds exactly\n",
-                         program_name(), trac0r::Renderer::max_frames);
-        }
-        if (stopped != StopReason::none) {
-            break;
-        }
-        long round = std::min(ranks, static_cast<long>(trac0r::Renderer::max_frames) - spp);
-        if (rule.spp > 0) {
-            round = std::min(round, rule.spp - spp);
-        }
-        if (rank < round) {
-            renderer.render_frame();
-        }
-        spp += round;
-        RoundReport mine;
-        mine.signal = interrupt_signal;
-        mine.frames = renderer.frames();
-        mine.elapsed = seconds_since(start);
-        const bool check = by_error && spp >= error_check;
-        if (check) {
-            mine.estimate = own_estimate();
-            mine.overflowed = trac0r::noise_estimate_overflowed(renderer.accumulator());
-        }
-        reports = cluster.exchange(mine);
-        now = reports[0].elapsed;
-        for (const RoundReport& r : reports) {
-            if (signal_number == 0) {
-                signal_number = r.signal;
-            }
-        }
-        if (check) {
-            double weighted = 0.0;
-            overflowed = false;
-            for (const RoundReport& r : reports) {
-                if (r.frames > 0) {  // one with none has no estimate, and no weight
-                    weighted += r.estimate * static_cast<double>(r.frames);
-                }
-                overflowed = overflowed || r.overflowed != 0;
-            }
-            last_estimate = weighted / static_cast<double>(ranks) / static_cast<double>(spp);
-            estimate_spp = spp;
-            error_reached = rule.error_reached(last_estimate);
-            error_check = next_error_check(spp, ranks);
-            // Would never stop unless --spp or --seconds bounds it: say so,
-            // keep what was rendered.
-            if (!error_reached && rule.spp == 0 && rule.seconds <= 0.0 && overflowed) {
-                break;
-            }
-        }
-        if (first && progress.due(spp, now, last_estimate)) {
-            if (!by_error && renderer.frames() >= 2) {
-                // For the display: rank 0's own, scaled to all frames.
-                last_estimate = own_estimate() * static_cast<double>(renderer.frames()) /
-                                static_cast<double>(spp);
-            }
-            progress.update(spp, now, spp * pixels / now, last_estimate);
-        }
-    }
-    const bool cannot_reach = by_error && !error_reached && overflowed && rule.spp == 0 &&
-                              rule.seconds <= 0.0 && stopped == StopReason::none &&
-                              signal_number == 0;
-    // One process's accumulator as it is; the ranks' merged into a copy.
-    const std::vector<trac0r::kernel::AccumPixel>* merged = &renderer.accumulator();
-    std::vector<trac0r::kernel::AccumPixel> merged_copy;
-    const Clock::time_point merge_start = Clock::now();
-    if (ranks > 1) {
-        merged_copy = *merged;
-        cluster.merge_to_first(merged_copy);
-        merged = &merged_copy;
-    }
-    const std::vector<trac0r::kernel::AccumPixel>& accumulator = *merged;
-    const double merge_seconds = seconds_since(merge_start);
-    const int code = cannot_reach ? 1 : (signal_number != 0 ? 128 + signal_number : 0);
-    if (!first) {
+    const trac0r::BatchResult r = trac0r::render_batch(renderer, batch);
+    const int signal_number = r.cancelled > 0 ? r.cancelled : 0;
+    const int code = r.cannot_reach ? 1 : (signal_number != 0 ? 128 + signal_number : 0);
+    if (!r.first) {
         return code;
     }
-    const trac0r::Image image =
-        trac0r::accumulated_image(accumulator, renderer.width(), renderer.height());
-    const double elapsed = seconds_since(start);
-    const double paths_per_second = elapsed > 0.0 ? spp * pixels / elapsed : 0.0;
-    // The final estimate: the last check's, if it was at this spp (what the
-    // target was judged by), else the merged accumulator's.
-    if (spp >= 2 && estimate_spp != spp) {
-        last_estimate =
-            trac0r::estimate_relative_mse(accumulator, renderer.width(), renderer.height());
+    if (r.reason == trac0r::StopReason::full) {
+        std::fprintf(stderr,
+                     "%s: stopped at %u spp, the most a pixel's sample count "
+                     "(a float) holds exactly\n",
+                     program_name(), trac0r::Renderer::max_frames);
     }
-    progress.finish(spp, elapsed, paths_per_second, last_estimate, signal_number == 0);
+    progress.finish(r, batch.stop);
+    const long ranks = cluster.size();
     if (options.verbose && ranks > 1) {
         std::string frames;
-        for (const RoundReport& r : reports) {
-            frames += " " + std::to_string(r.frames);
+        for (std::int64_t f : r.frames_per_process) {
+            frames += " " + std::to_string(f);
         }
         std::fprintf(stderr, "frames per rank (0 to %ld):%s\n", ranks - 1, frames.c_str());
         std::fprintf(stderr, "merged %ld ranks' accumulators (%.1f MB each) in %.3f s\n", ranks,
-                     1e-6 * static_cast<double>(accumulator.size() * sizeof(accumulator[0])),
-                     merge_seconds);
+                     1e-6 * static_cast<double>(r.accumulator.size() * sizeof(r.accumulator[0])),
+                     r.merge_seconds);
     }
-    if (cannot_reach) {
+    const trac0r::ViewTransform view = renderer.scene().render.view;
+    if (r.cannot_reach) {
         std::fprintf(stderr,
                      "%s: --target-error cannot be reached: the noise "
                      "estimate has overflowed (a pixel's squared deviations exceed "
                      "float's range: radiance samples above about 1e19); give --spp "
                      "or --seconds instead (the image so far is written)\n",
                      program_name());
-        save_outputs(image, options, renderer.scene().render.view, &renderer, &accumulator);
+        save_outputs(r.image, options, view, &r);
         return code;
     }
     if (signal_number != 0) {
         std::fprintf(stderr,
                      "%s: interrupted by %s after %ld spp (%.2f s): writing the "
                      "image so far\n",
-                     program_name(), signal_number == SIGINT ? "SIGINT" : "SIGTERM", spp, elapsed);
-        save_outputs(image, options, renderer.scene().render.view, &renderer, &accumulator);
+                     program_name(), signal_number == SIGINT ? "SIGINT" : "SIGTERM", r.spp,
+                     r.seconds);
+        save_outputs(r.image, options, view, &r);
         return code;
-    }
-    double dropped = 0.0;
-    for (const trac0r::kernel::AccumPixel& p : accumulator) {
-        dropped += p.moments.w;
     }
     std::fprintf(stderr,
                  "rendered %ld spp of %dx%d in %.2f s (%.2f Mpaths/s); %.0f non-finite "
                  "samples dropped\n",
-                 spp, renderer.width(), renderer.height(), elapsed, paths_per_second * 1e-6,
-                 dropped);
-    if (by_error) {
-        if (error_reached) {
+                 r.spp, renderer.width(), renderer.height(), r.seconds, r.paths_per_second * 1e-6,
+                 r.samples_dropped);
+    if (options.target_error > 0.0) {
+        if (r.error_reached) {
             std::fprintf(stderr,
                          "target error reached: estimated relative MSE %.4g <= %.4g "
                          "after %ld spp, %.2f s\n",
-                         last_estimate, options.target_error, spp, elapsed);
+                         r.estimate, options.target_error, r.spp, r.seconds);
         } else {
-            std::fprintf(stderr,
-                         "target error NOT reached: estimated relative MSE %.4g > %.4g "
-                         "when the %s limit stopped the render (%ld spp, %.2f s)%s\n",
-                         last_estimate, options.target_error,
-                         stopped == StopReason::full ? "16777216-spp" : spp_done_reason(options),
-                         spp, elapsed,
-                         trac0r::noise_estimate_overflowed(accumulator)
-                             ? "; the noise estimate has overflowed float (radiance samples "
-                               "above about 1e19) and cannot fall"
-                             : "");
+            std::fprintf(
+                stderr,
+                "target error NOT reached: estimated relative MSE %.4g > %.4g "
+                "when the %s limit stopped the render (%ld spp, %.2f s)%s\n",
+                r.estimate, options.target_error,
+                r.reason == trac0r::StopReason::full ? "16777216-spp" : spp_done_reason(options),
+                r.spp, r.seconds,
+                trac0r::noise_estimate_overflowed(r.accumulator)
+                    ? "; the noise estimate has overflowed float (radiance samples "
+                      "above about 1e19) and cannot fall"
+                    : "");
         }
     }
-    save_outputs(image, options, renderer.scene().render.view, &renderer, &accumulator);
+    save_outputs(r.image, options, view, &r);
     // A signal that came while the outputs were written (they are whole:
     // output_file.h) still says so in the exit status.
-    const int late = interrupt_signal;
+    const int late = interrupt_signal.load();
     if (code == 0 && late != 0) {
         std::fprintf(stderr, "%s: interrupted by %s while the image was written (it is whole)\n",
                      program_name(), late == SIGINT ? "SIGINT" : "SIGTERM");
@@ -475,8 +316,8 @@ int run_benchmark(trac0r::Renderer& renderer, const Options& options,
          << json_escape(renderer.backend().device()) << "\"}";
     std::cout << json.str() << std::endl;
     if (!options.outputs.empty()) {
-        save_outputs(renderer.image(), options, renderer.scene().render.view, &renderer,
-                     &renderer.accumulator());
+        const trac0r::BatchResult images = trac0r::batch_images(renderer, image_options(options));
+        save_outputs(images.image, options, renderer.scene().render.view, &images);
     }
     return 0;
 }

@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
         if (options.benchmark_frames > 0) {
             return trac0r_viewer::run_benchmark(*renderer, options);
         }
-        trac0r_viewer::SingleProcess one;
+        trac0r::SingleProcess one;
         return trac0r_viewer::run_batch(*renderer, options, one);
     } catch (...) {
         const trac0r_viewer::Failure failure = startup.failure(std::current_exception());

@@ -40,7 +40,7 @@ MpiCluster::MpiCluster() {
     }
 }
 
-std::vector<RoundReport> MpiCluster::exchange(const RoundReport& mine) {
+std::vector<trac0r::RoundReport> MpiCluster::exchange(const trac0r::RoundReport& mine) {
     return all_gather(mine, size_);
 }
 

@@ -4,7 +4,7 @@
 #ifndef TRAC0R_VIEWER_MPI_CLUSTER_H
 #define TRAC0R_VIEWER_MPI_CLUSTER_H
 
-#include "cluster.h"
+#include "trac0r/render_cluster.h"
 
 #include <cstdint>
 #include <string>
@@ -20,7 +20,7 @@ struct StartReport {
     char message[2048] = {};   // its failure, cut to fit
 };
 
-class MpiCluster : public Cluster {
+class MpiCluster : public trac0r::Cluster {
   public:
     // Collective: every rank makes one first, before anything can fail.
     MpiCluster();
@@ -28,7 +28,7 @@ class MpiCluster : public Cluster {
     int size() const override { return size_; }
     // The rank among the ranks on this node (MPI_COMM_TYPE_SHARED).
     int local_rank() const { return local_rank_; }
-    std::vector<RoundReport> exchange(const RoundReport& mine) override;
+    std::vector<trac0r::RoundReport> exchange(const trac0r::RoundReport& mine) override;
     // In chunks of 16,384 pixels (768 KiB a rank), so that rank 0 needs
     // memory for its own image and one chunk of each rank's, not N images.
     void merge_to_first(std::vector<trac0r::kernel::AccumPixel>& accumulator) override;

@@ -139,28 +139,28 @@ void RenderWorker::tell(const std::string& message) {
 bool RenderWorker::paused() const { return !full_stale_ && !pause_reason_.empty(); }
 
 std::string RenderWorker::pause_reason_now() const {
-    const StopRule& stop = settings_.stop;
+    const trac0r::StopRule& stop = settings_.stop;
     // The target by the last estimate (refreshed about twice a second, so the
     // window pauses within about half a second of reaching it), from 8 spp
     // on, as a batch render checks it.
     const bool error_reached = last_estimate_spp_ >= 8 && stop.error_reached(last_estimate_);
     switch (
         stop.reason(full_->frames(), seconds_since(full_started_), error_reached, full_->full())) {
-    case StopReason::spp:
+    case trac0r::StopReason::spp:
         return "--spp " + std::to_string(stop.spp);
-    case StopReason::seconds: {
+    case trac0r::StopReason::seconds: {
         char text[64];
         std::snprintf(text, sizeof text, "--seconds %g", stop.seconds);
         return text;
     }
-    case StopReason::full:
+    case trac0r::StopReason::full:
         return "the most a pixel's sample count holds";
-    case StopReason::target_error: {
+    case trac0r::StopReason::target_error: {
         char text[64];
         std::snprintf(text, sizeof text, "--target-error %g", stop.target_error);
         return text;
     }
-    case StopReason::none:
+    case trac0r::StopReason::none:
         break;
     }
     return "";

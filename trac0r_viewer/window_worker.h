@@ -20,13 +20,12 @@
 #ifndef TRAC0R_VIEWER_WINDOW_WORKER_H
 #define TRAC0R_VIEWER_WINDOW_WORKER_H
 
-#include "stop_rule.h"
-
 #include "trac0r/camera.h"
 #include "trac0r/filter.h"
 #include "trac0r/guides.h"
 #include "trac0r/image_io.h"
 #include "trac0r/renderer.h"
+#include "trac0r/stop_rule.h"
 #include "trac0r/temporal.h"
 
 #include <atomic>
@@ -89,7 +88,7 @@ struct WorkerSettings {
     trac0r::PackOptions pack;  // for renderers made on a backend switch
     // When the accumulation pauses (its seconds count from a restart; the
     // target error by the estimate the overlay shows).
-    StopRule stop;
+    trac0r::StopRule stop;
 };
 
 class RenderWorker {

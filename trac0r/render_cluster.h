@@ -1,20 +1,20 @@
-// The processes one batch render is split across: one (trac0r_viewer), or
-// the MPI ranks of trac0r_mpi (mpi_cluster.h). run_batch asks it what the
-// others did after every round of frames, so that every rank decides the
-// same, and merges the accumulators at the end.
-#ifndef TRAC0R_VIEWER_CLUSTER_H
-#define TRAC0R_VIEWER_CLUSTER_H
+// The processes one batch render (batch.h) is split across: one, or the
+// MPI ranks of trac0r_mpi (its mpi_cluster.h). render_batch asks it what
+// the others did after every round of frames, so that every rank decides
+// the same, and merges the accumulators at the end.
+#ifndef TRAC0R_RENDER_CLUSTER_H
+#define TRAC0R_RENDER_CLUSTER_H
 
 #include "trac0r/kernel/types.h"
 
 #include <cstdint>
 #include <vector>
 
-namespace trac0r_viewer {
+namespace trac0r {
 
 // What a rank tells the others after a round of frames.
 struct RoundReport {
-    std::int32_t signal = 0;      // SIGINT or SIGTERM received, else 0
+    std::int32_t cancel = 0;      // non-zero: asked to stop (BatchOptions::cancel's code)
     std::int32_t overflowed = 0;  // its noise estimate has overflowed float
     std::int64_t frames = 0;      // frames it has rendered
     double elapsed = 0.0;         // seconds since its render started
@@ -32,7 +32,7 @@ class Cluster {
     // Rank 0's `accumulator` becomes the merge of every rank's (in rank
     // order, accumulator_merge.h); the other ranks' are sent and left as
     // they were. A collective.
-    virtual void merge_to_first(std::vector<trac0r::kernel::AccumPixel>& accumulator) = 0;
+    virtual void merge_to_first(std::vector<kernel::AccumPixel>& accumulator) = 0;
 };
 
 // One process: the render as it always was.
@@ -41,9 +41,9 @@ class SingleProcess : public Cluster {
     int rank() const override { return 0; }
     int size() const override { return 1; }
     std::vector<RoundReport> exchange(const RoundReport& mine) override { return {mine}; }
-    void merge_to_first(std::vector<trac0r::kernel::AccumPixel>&) override {}
+    void merge_to_first(std::vector<kernel::AccumPixel>&) override {}
 };
 
-}  // namespace trac0r_viewer
+}  // namespace trac0r
 
 #endif
