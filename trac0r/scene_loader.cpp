@@ -416,7 +416,12 @@ Scene read_scene(const json& document, const Location& at, const std::string& ba
         context.material_index[scene.materials[i].name] = static_cast<int>(i);
         context.material_names.push_back(scene.materials[i].name);
     }
-    scene.shapes = read_shapes(o.required("shapes", "an array of shapes"), o.at("shapes"), context);
+    const bool no_shapes = options.shapes_optional &&
+                           (!o.has("shapes") || (o["shapes"].is_array() && o["shapes"].empty()));
+    if (!no_shapes) {
+        scene.shapes =
+            read_shapes(o.required("shapes", "an array of shapes"), o.at("shapes"), context);
+    }
     scene.warnings = defects.lines();
     if (o.has("environment")) {
         scene.environment = read_environment(o["environment"], o.at("environment"), base_dir);

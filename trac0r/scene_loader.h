@@ -21,6 +21,9 @@ class SceneError : public std::runtime_error {
 // warning line a kind in Scene::warnings. Strict: each is an error.
 struct LoadOptions {
     bool strict = false;
+    // A scene whose shapes are added in code (mesh_arrays.h, the Python
+    // module): "shapes" may be absent or empty.
+    bool shapes_optional = false;
 };
 
 // Loads a scene file; relative mesh paths are relative to its directory.

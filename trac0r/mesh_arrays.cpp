@@ -1,0 +1,123 @@
+#include "trac0r/mesh_arrays.h"
+
+#include "trac0r/scene_loader.h"
+#include "trac0r/shape.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace trac0r {
+
+namespace {
+
+void require(bool ok, const std::string& message) {
+    if (!ok) {
+        throw std::invalid_argument("add_mesh: " + message);
+    }
+}
+
+// The vertices' count of an array of `width` numbers a vertex.
+std::size_t vertex_count(const std::vector<float>& values, std::size_t width, const char* name,
+                         const char* what) {
+    require(values.size() % width == 0, std::string(name) + ": expected " + std::to_string(width) +
+                                            " numbers a vertex (" + what + "), got " +
+                                            std::to_string(values.size()) + " numbers");
+    for (std::size_t i = 0; i < values.size(); ++i) {
+        require(std::isfinite(values[i]), std::string(name) + ": vertex " +
+                                              std::to_string(i / width) +
+                                              " has a number that is not finite");
+    }
+    return values.size() / width;
+}
+
+int material_of(Scene& scene, const std::string& name) {
+    const std::string wanted = name.empty() ? "default" : name;
+    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+        if (scene.materials[i].name == wanted) {
+            return static_cast<int>(i);
+        }
+    }
+    if (name.empty()) {
+        scene.materials.push_back(default_mesh_material());
+        return static_cast<int>(scene.materials.size() - 1);
+    }
+    std::string names;
+    for (const Material& m : scene.materials) {
+        names += (names.empty() ? "'" : ", '") + m.name + "'";
+    }
+    throw std::invalid_argument("add_mesh: material: no material named '" + name +
+                                "' (the scene has " + (names.empty() ? "none" : names) + ")");
+}
+
+glm::vec3 vec3_at(const std::vector<float>& v, std::size_t i) {
+    return glm::vec3(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+}
+
+}  // namespace
+
+void add_mesh(Scene& scene, const MeshArrays& mesh, const MeshPlacement& placement) {
+    const std::size_t vertices = vertex_count(mesh.positions, 3, "positions", "x, y, z");
+    require(vertices > 0, "positions: expected at least 3 vertices, got none");
+    if (!mesh.normals.empty()) {
+        require(vertex_count(mesh.normals, 3, "normals", "x, y, z") == vertices,
+                "normals: expected one a vertex (" + std::to_string(vertices) + "), got " +
+                    std::to_string(mesh.normals.size() / 3));
+    }
+    if (!mesh.uvs.empty()) {
+        require(vertex_count(mesh.uvs, 2, "uvs", "u, v") == vertices,
+                "uvs: expected one a vertex (" + std::to_string(vertices) + "), got " +
+                    std::to_string(mesh.uvs.size() / 2));
+    }
+    require(!mesh.indices.empty() && mesh.indices.size() % 3 == 0,
+            "indices: expected 3 a triangle, got " + std::to_string(mesh.indices.size()));
+    for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
+        require(mesh.indices[i] < vertices, "indices: triangle " + std::to_string(i / 3) +
+                                                " has vertex " + std::to_string(mesh.indices[i]) +
+                                                ", past the " + std::to_string(vertices) +
+                                                " vertices");
+    }
+    require(placement.scale.x != 0.0f && placement.scale.y != 0.0f && placement.scale.z != 0.0f &&
+                std::isfinite(placement.scale.x) && std::isfinite(placement.scale.y) &&
+                std::isfinite(placement.scale.z),
+            "scale: expected three finite numbers, none zero");
+    const int material = material_of(scene, placement.material);
+    const std::size_t count = mesh.indices.size() / 3;
+    std::vector<Triangle> triangles;
+    std::vector<VertexNormalTriple> normals;
+    std::vector<TriangleUv> uvs;
+    triangles.reserve(count);
+    for (std::size_t t = 0; t < count; ++t) {
+        const std::uint32_t* v = &mesh.indices[3 * t];
+        triangles.emplace_back(vec3_at(mesh.positions, v[0]), vec3_at(mesh.positions, v[1]),
+                               vec3_at(mesh.positions, v[2]));
+        if (!mesh.normals.empty()) {
+            VertexNormalTriple n;
+            for (int k = 0; k < 3; ++k) {
+                const glm::vec3 given = vec3_at(mesh.normals, v[k]);
+                const float length = glm::length(given);
+                n[static_cast<std::size_t>(k)] = length > 0.0f ? given / length : glm::vec3(0.0f);
+            }
+            normals.push_back(n);
+        }
+        if (!mesh.uvs.empty()) {
+            TriangleUv uv;
+            for (int k = 0; k < 3; ++k) {
+                uv.uv[static_cast<std::size_t>(k)] =
+                    glm::vec2(mesh.uvs[2 * v[k]], mesh.uvs[2 * v[k] + 1]);
+            }
+            uv.present = true;
+            uvs.push_back(uv);
+        }
+    }
+    const glm::vec3 position = glm::vec3(placement.position - scene.origin);
+    Shape shape = make_shape(std::move(triangles),
+                             model_matrix(position, placement.orientation, placement.scale),
+                             material, normals, uvs);
+    require(std::any_of(shape.triangles.begin(), shape.triangles.end(), usable_triangle),
+            "no triangle of the mesh can be rendered (each has in float arithmetic an area of "
+            "zero or below float's smallest normal)");
+    scene.shapes.push_back(std::move(shape));
+}
+
+}  // namespace trac0r
