@@ -1,0 +1,220 @@
+"""The Python module: renders equal to the program's, scenes from NumPy
+arrays equal to scene files, cancelling, progress, Ctrl-C, errors.
+
+Run by ctest (test_python) with PYTHONPATH=build/python and
+TRAC0R_VIEWER=build/trac0r_viewer; run from the source tree's root.
+"""
+
+import os
+import signal
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import trac0r
+
+VIEWER = os.environ.get("TRAC0R_VIEWER", "build/trac0r_viewer")
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+def read_pfm(path):
+    with open(path, "rb") as f:
+        assert f.readline().strip() == b"PF"
+        width, height = map(int, f.readline().split())
+        scale = float(f.readline())
+        data = np.frombuffer(f.read(), dtype="<f4" if scale < 0 else ">f4")
+    # PFM rows run bottom to top.
+    return data.reshape(height, width, 3)[::-1]
+
+
+def viewer_pfm(tmp_path, *args):
+    out = str(tmp_path / "viewer.pfm")
+    subprocess.run([VIEWER, *args, "--headless", "--output", out], check=True,
+                   stderr=subprocess.DEVNULL)
+    return read_pfm(out)
+
+
+def test_render_returns_the_image_as_float32_without_a_copy():
+    img = trac0r.render(trac0r.builtin_scene(), spp=2, width=40, height=30)
+    assert img.shape == (30, 40, 3)
+    assert img.dtype == np.float32
+    assert not img.flags["OWNDATA"]  # a view of the render's own memory
+    assert img.flags["C_CONTIGUOUS"]
+    assert np.isfinite(img).all() and img.max() > 0
+
+
+def test_render_equals_the_program_bit_for_bit(tmp_path):
+    img = trac0r.render(os.path.join(ROOT, "scenes/cornell.json"), spp=8, width=64, height=48)
+    ref = viewer_pfm(tmp_path, os.path.join(ROOT, "scenes/cornell.json"), "--spp", "8",
+                     "--width", "64", "--height", "48")
+    assert np.array_equal(img, ref)
+
+
+def test_seconds_and_target_error_stop_a_render():
+    r = trac0r.render_images(trac0r.builtin_scene(), target_error=0.5, spp=4096, width=32,
+                             height=24)
+    assert r["estimate"] <= 0.5 and r["spp"] < 4096
+    start = time.monotonic()
+    r = trac0r.render_images(trac0r.builtin_scene(), seconds=0.3, width=32, height=24)
+    assert 0.3 <= time.monotonic() - start < 30 and r["spp"] > 0
+
+
+OBJ = """v -0.5 -0.5 -0.5
+v 0.5 -0.5 -0.5
+v 0.5 0.5 -0.5
+v -0.5 0.5 -0.5
+v 0 0 0.5
+f 1 2 5
+f 2 3 5
+f 3 4 5
+f 4 1 5
+f 1 4 3
+f 1 3 2
+"""
+
+ROOM = {
+    "render": {"width": 48, "height": 36, "max_depth": 4},
+    "camera": {"position": [0, 0, -2.5], "direction": [0, 0, 1]},
+    "materials": {
+        "white": {"type": "diffuse", "color": [0.8, 0.8, 0.8]},
+        "red": {"type": "diffuse", "color": [0.8, 0.2, 0.1]},
+    },
+    "environment": {"color": [1.0, 1.0, 1.0]},
+}
+
+
+def test_a_mesh_from_numpy_arrays_renders_as_the_same_mesh_from_a_file(tmp_path):
+    (tmp_path / "pyramid.obj").write_text(OBJ)
+    placement = {"position": [0.25, 0, 0.5], "orientation": [0.3, 0.5, 0], "scale": [1, 1.5, 1]}
+    from_file = dict(ROOM, shapes=[dict(type="mesh", file="pyramid.obj", material="red",
+                                        **placement)])
+    path = tmp_path / "scene.json"
+    import json
+    path.write_text(json.dumps(from_file))
+
+    positions = np.array([[-0.5, -0.5, -0.5], [0.5, -0.5, -0.5], [0.5, 0.5, -0.5],
+                          [-0.5, 0.5, -0.5], [0, 0, 0.5]], dtype=np.float32)
+    indices = np.array([[1, 2, 5], [2, 3, 5], [3, 4, 5], [4, 1, 5], [1, 4, 3], [1, 3, 2]]) - 1
+    built = trac0r.scene_from_dict(ROOM)
+    assert built.shape_count == 0
+    built.add_mesh(positions, indices, material="red", **placement)
+    assert built.triangle_count == 6
+
+    a = trac0r.render(built, spp=4)
+    b = trac0r.render(str(path), spp=4)
+    assert a.shape == (36, 48, 3)
+    assert np.array_equal(a, b)
+    assert a.max() > 0
+
+
+def test_bad_meshes_raise_value_errors_naming_the_argument():
+    scene = trac0r.scene_from_dict(ROOM)
+    with pytest.raises(ValueError, match=r"indices: triangle 0 has vertex 7, past the 3"):
+        scene.add_mesh(np.zeros((3, 3)), [[0, 1, 7]], material="white")
+    with pytest.raises(ValueError, match=r"positions: expected 3 numbers a vertex"):
+        scene.add_mesh(np.zeros(10), [[0, 1, 2]])
+    with pytest.raises(ValueError, match=r"no material named 'blue' \(the scene has 'red', 'white'\)"):
+        scene.add_mesh(np.eye(3), [[0, 1, 2]], material="blue")
+    with pytest.raises(ValueError, match=r"positions: vertex 1 has a number that is not finite"):
+        scene.add_mesh([[0, 0, 0], [np.nan, 0, 0], [0, 1, 0]], [[0, 1, 2]])
+    with pytest.raises(ValueError, match=r"no triangle of the mesh can be rendered"):
+        scene.add_mesh(np.zeros((3, 3)), [[0, 1, 2]])
+    assert scene.shape_count == 0
+
+
+def test_bad_input_raises_with_the_loaders_messages(tmp_path):
+    with pytest.raises(RuntimeError, match=r"no/such\.json"):
+        trac0r.load_scene("no/such.json")
+    with pytest.raises(RuntimeError, match=r"/materials/white/type"):
+        trac0r.scene_from_dict(dict(ROOM, materials={"white": {"type": "paint"}}))
+    with pytest.raises(ValueError, match=r"backend: expected 'cpu' or 'opencl', got 'gpu'"):
+        trac0r.render(trac0r.builtin_scene(), spp=1, backend="gpu")
+    with pytest.raises(ValueError, match=r"naive"):
+        trac0r.render(trac0r.builtin_scene(), spp=1, integrator="bdpt")
+    with pytest.raises(ValueError, match=r"layers"):
+        trac0r.render_images(trac0r.builtin_scene(), spp=1, layers=["colour"])
+
+
+def test_the_progress_callback_reports_and_cancels():
+    seen = []
+
+    def progress(p):
+        seen.append((p.spp, p.fraction))
+        return None if p.spp < 3 else False  # None (or True) goes on
+
+    # Frames of 48 x 36 take well under the 0.1 s between reports: a slow
+    # machine may report at a later spp; the render stops at the first
+    # report from spp 3 on.
+    r = trac0r.render_images(trac0r.builtin_scene(), spp=100000, width=48, height=36,
+                             progress=progress)
+    assert r["cancelled"]
+    assert r["spp"] >= 3 and r["spp"] == seen[-1][0]
+    assert all(0 <= f <= 1 for _, f in seen)
+    again = trac0r.render(trac0r.builtin_scene(), spp=r["spp"], width=48, height=36)
+    assert np.array_equal(r["image"], again)  # the partial image: whole frames
+
+
+def test_an_exception_in_the_progress_callback_stops_the_render_and_is_raised():
+    def progress(p):
+        raise ZeroDivisionError("from the callback")
+
+    with pytest.raises(ZeroDivisionError, match="from the callback"):
+        trac0r.render(trac0r.builtin_scene(), spp=100000, width=32, height=24, progress=progress)
+
+
+def test_a_render_is_cancelled_from_another_thread_and_the_gil_is_free():
+    token = trac0r.CancelToken()
+    ticks = []
+
+    def cancel_later():
+        for _ in range(30):  # runs only while the render has released the GIL
+            ticks.append(time.monotonic())
+            time.sleep(0.01)
+        token.cancel()
+
+    thread = threading.Thread(target=cancel_later)
+    thread.start()
+    r = trac0r.render_images(trac0r.builtin_scene(), seconds=600, width=48, height=36,
+                             cancel=token)
+    thread.join()
+    assert token.cancelled and r["cancelled"]
+    assert len(ticks) == 30 and r["spp"] > 0
+    again = trac0r.render(trac0r.builtin_scene(), spp=r["spp"], width=48, height=36)
+    assert np.array_equal(r["image"], again)
+
+
+def test_ctrl_c_cancels_a_render_and_raises_keyboard_interrupt():
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    start = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        trac0r.render(trac0r.builtin_scene(), seconds=600, width=48, height=36)
+    timer.join()
+    assert time.monotonic() - start < 60
+
+
+def test_layers_and_the_filtered_image_come_as_arrays():
+    r = trac0r.render_images(trac0r.builtin_scene(), spp=4, width=32, height=24, filtered=True,
+                             layers=["albedo", "normal", "depth", "variance"])
+    assert r["filtered"].shape == (24, 32, 3)
+    assert not np.array_equal(r["filtered"], r["image"])
+    assert sorted(r["layers"]) == sorted(["albedo.R", "albedo.G", "albedo.B", "normal.X",
+                                          "normal.Y", "normal.Z", "Z", "variance.Y"])
+    assert all(v.shape == (24, 32) and v.dtype == np.float32 for v in r["layers"].values())
+    assert np.array_equal(r["variance"], r["layers"]["variance.Y"])
+
+
+def test_write_image_writes_what_it_is_given(tmp_path):
+    img = trac0r.render(trac0r.builtin_scene(), spp=2, width=20, height=10)
+    trac0r.write_image(str(tmp_path / "a.pfm"), img)
+    assert np.array_equal(read_pfm(str(tmp_path / "a.pfm")), img)
+    trac0r.write_image(str(tmp_path / "a.png"), img, exposure=2.0, view="filmic")
+    assert (tmp_path / "a.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    with pytest.raises(ValueError, match="height x width x 3"):
+        trac0r.write_image(str(tmp_path / "b.png"), np.zeros((4, 4)))
+    with pytest.raises(ValueError, match="filmic"):
+        trac0r.write_image(str(tmp_path / "b.png"), img, view="log")
+    assert not (tmp_path / "b.png").exists()
