@@ -21,10 +21,10 @@ int main(int argc, char** argv) {
         const trac0r::Scene scene =
             scene_path.empty() ? trac0r::builtin_scene() : trac0r::load_scene_file(scene_path);
         trac0r::Renderer renderer(scene, std::make_unique<trac0r::CpuBackend>());
-        for (int i = 0; i < spp; ++i) {
-            renderer.render_frame();
-        }
-        trac0r::write_image(output, renderer.image());
+        trac0r::BatchOptions options;
+        options.stop.spp = spp;  // also: .seconds, .target_error
+        const trac0r::BatchResult result = trac0r::render_batch(renderer, options);
+        trac0r::write_image(output, result.image);
         std::printf("%s: %d spp of %dx%d written to %s\n", trac0r::version_line().c_str(), spp,
                     renderer.width(), renderer.height(), output.c_str());
         return 0;

@@ -1,13 +1,16 @@
-// trac0r's public API in one include: scenes (load, build), the renderer
-// on the CPU or OpenCL backend, images (write, read, tone map), the noise
-// estimate and the version. examples/minimal.cpp shows them in use.
+// trac0r's public API in one include: scenes (load, build, meshes from
+// arrays), the renderer on the CPU or OpenCL backend, batch renders with
+// stop rules (batch.h), images (write, read, tone map), the noise estimate
+// and the version. examples/minimal.cpp shows them in use; docs/library.md.
 #ifndef TRAC0R_TRAC0R_H
 #define TRAC0R_TRAC0R_H
 
+#include "trac0r/batch.h"
 #include "trac0r/camera.h"
 #include "trac0r/cpu_backend.h"
 #include "trac0r/guides.h"
 #include "trac0r/image_io.h"
+#include "trac0r/mesh_arrays.h"
 #include "trac0r/noise.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene.h"
