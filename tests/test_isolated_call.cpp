@@ -4,11 +4,15 @@
 #include <catch2/catch.hpp>
 
 #include "trac0r/isolated_call.h"
+#include "trac0r/scene.h"
+#include "trac0r/scene_loader.h"
 #include "trac0r/shape.h"
 
 #include <signal.h>
 #include <unistd.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -147,4 +151,65 @@ TEST_CASE("run_isolated bounds the child's memory: past it, out_of_memory", "[is
 #else
     CHECK(over.kind == IsolatedOutcome::Kind::out_of_memory);
 #endif
+}
+
+TEST_CASE("with isolation off the work runs here, its outcome as the child's would be",
+          "[isolated]") {
+    REQUIRE(trac0r::readers_isolated());
+    {
+        const trac0r::ReaderIsolation off(false);
+        CHECK_FALSE(trac0r::readers_isolated());
+        touched_by_the_child = 0;
+        const IsolatedOutcome out = run_isolated(
+            [] {
+                touched_by_the_child = 1;  // this process's own: no child
+                return std::string("done");
+            },
+            60.0);
+        CHECK(out.kind == Kind::result);
+        CHECK(out.payload == "done");
+        CHECK(touched_by_the_child == 1);
+        touched_by_the_child = 0;
+        const IsolatedOutcome error =
+            run_isolated([]() -> std::string { throw std::runtime_error("bad file"); }, 60.0);
+        CHECK(error.kind == Kind::error);
+        CHECK(error.payload == "bad file");
+        const IsolatedOutcome memory =
+            run_isolated([]() -> std::string { throw std::bad_alloc(); }, 60.0);
+        CHECK(memory.kind == Kind::out_of_memory);
+        {
+            const trac0r::ReaderIsolation on(true);
+            CHECK(trac0r::readers_isolated());
+        }
+        CHECK_FALSE(trac0r::readers_isolated());
+    }
+    CHECK(trac0r::readers_isolated());
+}
+
+TEST_CASE("LoadOptions::isolate_readers off loads a PLY in this process, the same scene",
+          "[isolated][mesh]") {
+    char dir_template[] = "/tmp/trac0r_isolation_XXXXXX";
+    REQUIRE(mkdtemp(dir_template) != nullptr);
+    const std::string dir = dir_template;
+    {
+        std::FILE* f = std::fopen((dir + "/tri.ply").c_str(), "w");
+        REQUIRE(f != nullptr);
+        std::fputs("ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                   "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                   "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+                   f);
+        std::fclose(f);
+    }
+    const std::string json =
+        R"({"materials": {"m": {"type": "diffuse", "color": [0.5, 0.5, 0.5]}},
+            "shapes": [{"type": "mesh", "file": "tri.ply", "material": "m"}]})";
+    trac0r::LoadOptions here;
+    here.isolate_readers = false;
+    const trac0r::Scene isolated = trac0r::parse_scene(json, "t.json", dir);
+    const trac0r::Scene in_process = trac0r::parse_scene(json, "t.json", dir, here);
+    CHECK(isolated.triangle_count() == 1);
+    CHECK(trac0r::scene_digest(isolated) == trac0r::scene_digest(in_process));
+    CHECK(trac0r::readers_isolated());  // the load's setting ends with it
+    std::remove((dir + "/tri.ply").c_str());
+    rmdir(dir.c_str());
 }

@@ -200,8 +200,41 @@ std::string signal_name(int signal) {
     }
 }
 
+namespace {
+
+thread_local bool isolation_on = true;
+
+// work() in this process, its outcome as the child's would be (no limits).
+IsolatedOutcome run_here(const std::function<std::string()>& work) {
+    IsolatedOutcome out;
+    try {
+        out.payload = work();
+        out.kind = IsolatedOutcome::Kind::result;
+    } catch (const std::runtime_error& e) {
+        out.kind = IsolatedOutcome::Kind::error;
+        out.payload = e.what();
+    } catch (const std::bad_alloc&) {
+        out.kind = IsolatedOutcome::Kind::out_of_memory;
+    } catch (const std::exception& e) {
+        out.kind = IsolatedOutcome::Kind::exception;
+        out.detail = e.what();
+    }
+    return out;
+}
+
+}  // namespace
+
+bool readers_isolated() { return isolation_on; }
+
+ReaderIsolation::ReaderIsolation(bool on) : saved_(isolation_on) { isolation_on = on; }
+
+ReaderIsolation::~ReaderIsolation() { isolation_on = saved_; }
+
 IsolatedOutcome run_isolated(const std::function<std::string()>& work, double time_limit_seconds,
                              std::uint64_t memory_limit_bytes) {
+    if (!isolation_on) {
+        return run_here(work);
+    }
     IsolatedOutcome out;
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0) {

@@ -43,8 +43,28 @@ struct IsolatedOutcome {
 // Runs work() in a forked child within `time_limit_seconds` (> 0), and
 // with `memory_limit_bytes` more data than it has at the fork (0: no
 // limit; beyond it allocations fail, and the outcome is out_of_memory).
+// Where the calling thread has turned isolation off (ReaderIsolation),
+// work() runs in this process, without the limits, its exceptions as the
+// child's would be reported.
 IsolatedOutcome run_isolated(const std::function<std::string()>& work,
                              double time_limit_seconds, std::uint64_t memory_limit_bytes = 0);
+
+// Whether run_isolated forks on this thread (true unless a ReaderIsolation
+// of false is alive on it).
+bool readers_isolated();
+
+// For its lifetime, run_isolated on this thread forks (on) or not (off):
+// LoadOptions::isolate_readers for one load.
+class ReaderIsolation {
+  public:
+    explicit ReaderIsolation(bool on);
+    ~ReaderIsolation();
+    ReaderIsolation(const ReaderIsolation&) = delete;
+    ReaderIsolation& operator=(const ReaderIsolation&) = delete;
+
+  private:
+    bool saved_;
+};
 
 // Half the machine's physical memory (0 where it cannot be known): what
 // a reader's child may take beyond the program's own (run_isolated's

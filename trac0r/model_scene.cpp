@@ -4,6 +4,7 @@
 #include "trac0r/gltf_view.h"
 #include "trac0r/input_checks.h"
 #include "trac0r/input_file.h"
+#include "trac0r/isolated_call.h"
 
 #include <nlohmann/json.hpp>
 
@@ -80,6 +81,7 @@ bool is_model_path(const std::string& path) {
 }
 
 Scene model_scene(const std::string& model_path, const LoadOptions& options, std::string* json) {
+    const ReaderIsolation isolation(options.isolate_readers);
     const std::string model = absolute_path(model_path);
     // A glTF's own camera and lights.
     GltfView view;

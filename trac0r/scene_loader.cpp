@@ -78,6 +78,7 @@
 #include "trac0r/auto_smooth.h"
 #include "trac0r/input_checks.h"
 #include "trac0r/input_file.h"
+#include "trac0r/isolated_call.h"
 #include "trac0r/json_diagnostics.h"
 #include "trac0r/light_loader.h"
 #include "trac0r/material_loader.h"
@@ -446,6 +447,7 @@ std::string directory_of(const std::string& path) {
 
 Scene parse_scene(const std::string& json_text, const std::string& origin,
                   const std::string& base_dir, const LoadOptions& options) {
+    const ReaderIsolation isolation(options.isolate_readers);
     try {
         return read_scene(parse_json(json_text, origin), Location{origin, ""}, base_dir, options);
     } catch (const JsonError& e) {

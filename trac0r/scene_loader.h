@@ -21,6 +21,12 @@ class SceneError : public std::runtime_error {
 // warning line a kind in Scene::warnings. Strict: each is an error.
 struct LoadOptions {
     bool strict = false;
+    // PLY and glTF files, and every texture image, are read in a forked
+    // child process (isolated_call.h) with a time and memory limit, so that
+    // a hostile file ends only the child and becomes one error line. The
+    // programs and the Python module keep this on. Off, they are read in
+    // the calling process, without limits: for a host that must not fork.
+    bool isolate_readers = true;
     // A scene whose shapes are added in code (mesh_arrays.h, the Python
     // module): "shapes" may be absent or empty.
     bool shapes_optional = false;
