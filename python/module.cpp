@@ -7,6 +7,7 @@
 #include "trac0r/cpu_backend.h"
 #include "trac0r/image_io.h"
 #include "trac0r/mesh_arrays.h"
+#include "trac0r/model_scene.h"
 #include "trac0r/packed_scene.h"
 #include "trac0r/scene_loader.h"
 #include "trac0r/version.h"
@@ -20,6 +21,8 @@
 #include <pybind11/stl.h>
 
 #include <atomic>
+#include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
@@ -29,6 +32,70 @@ namespace py = pybind11;
 using namespace trac0r;
 
 namespace {
+
+// A scene file, or a scene made around a model file, as trac0r_viewer
+// opens either.
+Scene load_any(const std::string& path, const LoadOptions& options) {
+    return is_model_path(path) ? model_scene(path, options) : load_scene_file(path, options);
+}
+
+// A path given as str or path-like (pathlib.Path): os.fspath's str, else
+// false.
+bool as_path(const py::object& value, std::string* path) {
+    if (!py::isinstance<py::str>(value) && !py::hasattr(value, "__fspath__")) {
+        return false;
+    }
+    const py::object text = py::module_::import("os").attr("fspath")(value);
+    if (!py::isinstance<py::str>(text)) {
+        throw py::value_error("scene: expected a Scene or the path of a scene or model file");
+    }
+    *path = text.cast<std::string>();
+    return true;
+}
+
+// A scene or model file, loaded without the GIL.
+Scene load_released(const std::string& path, const LoadOptions& options) {
+    py::gil_scoped_release release;
+    return load_any(path, options);
+}
+
+// The limits of the scene format and the programs' flags.
+void check_size(const char* name, long value, long highest) {
+    if (value < 1 || value > highest) {
+        throw py::value_error(std::string(name) + ": expected an integer in [1, " +
+                              std::to_string(highest) + "], got " + std::to_string(value));
+    }
+}
+
+// A stop-rule argument: 0 (not set) or a finite positive number.
+void check_stop(const char* name, double value) {
+    if (!(value >= 0.0) || !std::isfinite(value)) {
+        throw py::value_error(std::string(name) +
+                              ": expected 0 (not set) or a finite positive number, got " +
+                              py::str(py::float_(value)).cast<std::string>());
+    }
+}
+
+// Triangle indices: an array of integers in [0, 2^32), each checked.
+std::vector<std::uint32_t> index_array(const py::object& value) {
+    const py::array a = py::array::ensure(value);
+    if (!a || (a.dtype().kind() != 'i' && a.dtype().kind() != 'u')) {
+        throw py::value_error("add_mesh: indices: expected an array of integers");
+    }
+    const py::array_t<std::int64_t, py::array::c_style | py::array::forcecast> wide(a);
+    std::vector<std::uint32_t> out;
+    out.reserve(static_cast<std::size_t>(wide.size()));
+    const std::int64_t* data = wide.data();
+    for (py::ssize_t i = 0; i < wide.size(); ++i) {
+        if (data[i] < 0 || data[i] > 0xffffffffLL) {
+            throw py::value_error("add_mesh: indices: triangle " + std::to_string(i / 3) +
+                                  " has vertex " + std::to_string(data[i]) +
+                                  ", expected an index from 0");
+        }
+        out.push_back(static_cast<std::uint32_t>(data[i]));
+    }
+    return out;
+}
 
 // A flag that another Python thread sets while a render runs (the GIL is
 // released then): CancelToken.cancel().
@@ -65,8 +132,8 @@ py::array_t<float> plane_array(std::vector<float> values, int width, int height)
     return owned_array(std::move(owner), data, {height, width});
 }
 
-// An array argument as a flat vector of `T`: C-contiguous, cast from any
-// number type NumPy can cast safely.
+// An array argument of numbers as a flat vector of `T` (C-contiguous; NumPy
+// converts the number type).
 template <typename T>
 std::vector<T> flat(const py::object& value, const char* name) {
     if (value.is_none()) {
@@ -157,14 +224,29 @@ struct RenderArgs {
 // KeyboardInterrupt (Ctrl-C) or an exception in the callback cancels the
 // render and is raised when it has stopped.
 BatchResult run(const RenderArgs& a) {
-    Scene scene = py::isinstance<py::str>(a.scene) ? load_scene_file(a.scene.cast<std::string>())
-                                                   : a.scene.cast<Scene>();
-    if (a.spp < 0 || a.seconds < 0.0 || a.target_error < 0.0) {
-        throw py::value_error("spp, seconds and target_error: expected none or a positive value");
+    if (a.spp < 0 || a.spp > static_cast<long>(Renderer::max_frames)) {
+        throw py::value_error("spp: expected 0 (not set) or an integer in [1, " +
+                              std::to_string(Renderer::max_frames) + "], got " +
+                              std::to_string(a.spp));
     }
-    if (a.width < 0 || a.height < 0 || a.max_depth < 0) {
-        throw py::value_error("width, height and max_depth: expected none or a positive value");
+    check_stop("seconds", a.seconds);
+    check_stop("target_error", a.target_error);
+    if (a.width != 0) {
+        check_size("width", a.width, 16384);
     }
+    if (a.height != 0) {
+        check_size("height", a.height, 16384);
+    }
+    if (a.max_depth != 0) {
+        check_size("max_depth", a.max_depth, 100000);
+    }
+    if (a.device < 0) {
+        throw py::value_error("device: expected an OpenCL device index from 0, got " +
+                              std::to_string(a.device));
+    }
+    std::string path;
+    Scene scene =
+        as_path(a.scene, &path) ? load_released(path, LoadOptions()) : a.scene.cast<Scene>();
     if (a.width > 0) {
         scene.render.width = a.width;
     }
@@ -254,25 +336,19 @@ PYBIND11_MODULE(_trac0r, m) {
         .def_property(
             "width", [](const Scene& s) { return s.render.width; },
             [](Scene& s, int w) {
-                if (w < 1) {
-                    throw py::value_error("width: expected a positive integer");
-                }
+                check_size("width", w, 16384);
                 s.render.width = w;
             })
         .def_property(
             "height", [](const Scene& s) { return s.render.height; },
             [](Scene& s, int h) {
-                if (h < 1) {
-                    throw py::value_error("height: expected a positive integer");
-                }
+                check_size("height", h, 16384);
                 s.render.height = h;
             })
         .def_property(
             "max_depth", [](const Scene& s) { return s.render.max_depth; },
             [](Scene& s, int d) {
-                if (d < 1) {
-                    throw py::value_error("max_depth: expected a positive integer");
-                }
+                check_size("max_depth", d, 100000);
                 s.render.max_depth = d;
             })
         .def_property_readonly("triangle_count", &Scene::triangle_count)
@@ -296,7 +372,7 @@ PYBIND11_MODULE(_trac0r, m) {
                std::array<float, 3> scale) {
                 MeshArrays mesh;
                 mesh.positions = flat<float>(positions, "positions");
-                mesh.indices = flat<std::uint32_t>(indices, "indices");
+                mesh.indices = index_array(indices);
                 mesh.normals = flat<float>(normals, "normals");
                 mesh.uvs = flat<float>(uvs, "uvs");
                 MeshPlacement place;
@@ -343,14 +419,22 @@ with the scene's material of that name (none: its 'default', else grey).)")
         .def(
             "cancel", [](CancelToken& t) { t.code = 1; },
             "the running render stops after its frame in flight")
+        .def(
+            "reset", [](CancelToken& t) { t.code = 0; },
+            "not cancelled again: a cancelled token stops every render it is given until then")
         .def_property_readonly("cancelled", [](const CancelToken& t) { return t.code != 0; });
 
     m.def(
         "load_scene",
-        [](const std::string& path, bool strict) {
+        [](const py::object& path, bool strict) {
+            std::string text;
+            if (!as_path(path, &text)) {
+                throw py::value_error("path: expected a str or path-like, got " +
+                                      py::str(py::type::of(path)).cast<std::string>());
+            }
             LoadOptions o;
             o.strict = strict;
-            return load_scene_file(path, o);
+            return load_released(text, o);
         },
         py::arg("path"), py::arg("strict") = false,
         "Loads a scene file (JSON) or a model file (.obj, .ply, .gltf, .glb). strict: refuse "

@@ -4,6 +4,7 @@
 // rendered one by one through Renderer, bit for bit.
 #include <catch2/catch.hpp>
 
+#include "trac0r/accumulator_merge.h"
 #include "trac0r/batch.h"
 #include "trac0r/cpu_backend.h"
 #include "trac0r/filter.h"
@@ -12,7 +13,10 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <memory>
+#include <mutex>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -191,4 +195,154 @@ TEST_CASE("a batch render makes the filtered image and the EXR layers on request
     CHECK(images.spp == 4);
     CHECK(same_pixels(images.image, result.image));
     CHECK(same_pixels(images.filtered, result.filtered));
+}
+
+TEST_CASE("an exception from the progress callback stops the render and is thrown", "[batch]") {
+    const Scene scene = small_scene(16, 12);
+    std::unique_ptr<Renderer> r = renderer_of(scene);
+    BatchOptions options;
+    options.stop.seconds = 600.0;
+    options.progress_interval = 0.0;
+    options.progress = [](const BatchProgress& p) -> bool {
+        if (p.spp >= 2) {
+            throw std::runtime_error("from the callback");
+        }
+        return true;
+    };
+    CHECK_THROWS_WITH(render_batch(*r, options), "from the callback");
+}
+
+TEST_CASE("a stop rule of NaN or negative parts is not set: the default spp", "[batch]") {
+    StopRule given;
+    given.spp = -3;
+    given.seconds = std::nan("");
+    given.target_error = -1.0;
+    const StopRule rule = batch_stop_rule(given);
+    CHECK(rule.spp == default_batch_spp);
+    CHECK(rule.seconds == 0.0);
+    CHECK(rule.target_error == 0.0);
+}
+
+namespace {
+
+// Two ranks on two threads of this process: what MpiCluster does over MPI.
+class ThreadPair {
+  public:
+    class Rank : public Cluster {
+      public:
+        Rank(ThreadPair& pair, int rank) : pair_(pair), rank_(rank) {}
+        int rank() const override { return rank_; }
+        int size() const override { return 2; }
+        std::vector<RoundReport> exchange(const RoundReport& mine) override {
+            pair_.reports[static_cast<std::size_t>(rank_)] = mine;
+            pair_.wait();
+            std::vector<RoundReport> all = pair_.reports;
+            pair_.wait();  // both have read before the next round writes
+            return all;
+        }
+        void merge_to_first(std::vector<kernel::AccumPixel>& accumulator) override {
+            pair_.parts[static_cast<std::size_t>(rank_)] = &accumulator;
+            pair_.wait();
+            if (rank_ == 0) {
+                std::vector<kernel::AccumPixel> merged(accumulator.size());
+                merge_accumulators({pair_.parts[0]->data(), pair_.parts[1]->data()},
+                                   accumulator.size(), merged.data());
+                pair_.wait();
+                accumulator = merged;
+            } else {
+                pair_.wait();
+            }
+        }
+
+      private:
+        ThreadPair& pair_;
+        int rank_;
+    };
+
+    std::vector<RoundReport> reports = std::vector<RoundReport>(2);
+    std::vector<std::vector<kernel::AccumPixel>*> parts = {nullptr, nullptr};
+
+    void wait() {
+        std::unique_lock<std::mutex> lock(mutex_);
+        const long generation = generation_;
+        if (++arrived_ == 2) {
+            arrived_ = 0;
+            ++generation_;
+            condition_.notify_all();
+        } else {
+            condition_.wait(lock, [&] { return generation_ != generation; });
+        }
+    }
+
+  private:
+    std::mutex mutex_;
+    std::condition_variable condition_;
+    int arrived_ = 0;
+    long generation_ = 0;
+};
+
+}  // namespace
+
+TEST_CASE("a batch render split across two ranks: every frame once, one decision, one cancel",
+          "[batch]") {
+    const Scene scene = small_scene(24, 18);
+    SECTION("an odd spp: rank 0 renders 0, 2, 4, 6, rank 1 renders 1, 3, 5") {
+        ThreadPair pair;
+        ThreadPair::Rank first(pair, 0);
+        ThreadPair::Rank second(pair, 1);
+        BatchResult results[2];
+        std::thread other([&] {
+            std::unique_ptr<Renderer> r = renderer_of(scene);
+            BatchOptions o;
+            o.stop.spp = 7;
+            o.cluster = &second;
+            results[1] = render_batch(*r, o);
+        });
+        std::unique_ptr<Renderer> r = renderer_of(scene);
+        BatchOptions o;
+        o.stop.spp = 7;
+        o.cluster = &first;
+        results[0] = render_batch(*r, o);
+        other.join();
+        CHECK(results[0].first);
+        CHECK_FALSE(results[1].first);
+        CHECK(results[0].spp == 7);
+        CHECK(results[1].spp == 7);
+        CHECK(results[0].frames_per_process == std::vector<std::int64_t>{4, 3});
+        CHECK(results[1].image.pixels.empty());
+        // The merge of the two equals one process's 7 frames to float
+        // rounding (accumulator_merge.h).
+        const Image one = frames_image(scene, 7);
+        for (std::size_t i = 0; i < one.pixels.size(); ++i) {
+            for (int c = 0; c < 3; ++c) {
+                REQUIRE(results[0].image.pixels[i][c] ==
+                        Approx(one.pixels[i][c]).epsilon(1e-5).margin(1e-6));
+            }
+        }
+    }
+    SECTION("rank 1 cancelled: both stop after the same round") {
+        ThreadPair pair;
+        ThreadPair::Rank first(pair, 0);
+        ThreadPair::Rank second(pair, 1);
+        BatchResult results[2];
+        std::atomic<int> cancel(4);
+        std::thread other([&] {
+            std::unique_ptr<Renderer> r = renderer_of(scene);
+            BatchOptions o;
+            o.stop.spp = 1000;
+            o.cluster = &second;
+            o.cancel = &cancel;
+            results[1] = render_batch(*r, o);
+        });
+        std::unique_ptr<Renderer> r = renderer_of(scene);
+        BatchOptions o;
+        o.stop.spp = 1000;
+        o.cluster = &first;
+        results[0] = render_batch(*r, o);
+        other.join();
+        CHECK(results[0].cancelled == 4);
+        CHECK(results[1].cancelled == 4);
+        CHECK(results[0].spp == 2);  // one round of two frames
+        CHECK(results[0].frames_per_process == std::vector<std::int64_t>{1, 1});
+    }
 }

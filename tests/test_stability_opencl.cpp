@@ -75,7 +75,8 @@ TEST_CASE(
     // the hit point's pull into its triangle are bit tricks and float steps
     // that OpenCL C compiles on its own: the scene at 1e5 checks them there.
     auto opencl = [](const Scene& scene, std::uint64_t seed, int frames) {
-        std::unique_ptr<Renderer> r(new Renderer(scene, std::make_unique<OpenClBackend>(0), seed));
+        std::unique_ptr<Renderer> r(
+            new Renderer(scene, std::make_unique<OpenClBackend>(0), seed, with(Accel::automatic)));
         for (int i = 0; i < frames; ++i) {
             r->render_frame();
         }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 
 namespace trac0r {
@@ -26,14 +27,6 @@ double seconds_since(Clock::time_point start) {
 // own frames.
 long next_error_check(long spp, long ranks) {
     return std::max(8L * ranks, spp + std::max(1L, spp / 10));
-}
-
-StopRule effective_rule(const StopRule& given) {
-    StopRule rule = given;
-    if (rule.spp <= 0 && rule.seconds <= 0.0 && rule.target_error <= 0.0) {
-        rule.spp = default_batch_spp;
-    }
-    return rule;
 }
 
 // result.accumulator's image, variance, dropped samples, and what
@@ -68,10 +61,22 @@ void make_images(Renderer& renderer, const BatchOptions& options, BatchResult& r
 
 }  // namespace
 
+StopRule batch_stop_rule(const StopRule& given) {
+    StopRule rule;
+    rule.spp = given.spp > 0 ? given.spp : 0;
+    // Not above zero (NaN included): not set.
+    rule.seconds = given.seconds > 0.0 ? given.seconds : 0.0;
+    rule.target_error = given.target_error > 0.0 ? given.target_error : 0.0;
+    if (rule.spp == 0 && rule.seconds == 0.0 && rule.target_error == 0.0) {
+        rule.spp = default_batch_spp;
+    }
+    return rule;
+}
+
 BatchResult render_batch(Renderer& renderer, const BatchOptions& options) {
     SingleProcess one;
     Cluster& cluster = options.cluster != nullptr ? *options.cluster : one;
-    const StopRule rule = effective_rule(options.stop);
+    const StopRule rule = batch_stop_rule(options.stop);
     const bool by_error = rule.target_error > 0.0;
     const int rank = cluster.rank();
     const long ranks = cluster.size();
@@ -108,6 +113,7 @@ BatchResult render_batch(Renderer& renderer, const BatchOptions& options) {
     double display_estimate_at = 0.0;
     double display_estimate_cost = -1.0;  // none made yet
     std::vector<RoundReport> reports;
+    std::exception_ptr progress_error;
     for (;;) {
         if (cancelled != 0 && spp > 0) {
             break;
@@ -181,7 +187,17 @@ BatchResult render_batch(Renderer& renderer, const BatchOptions& options) {
             p.paths_per_second = now > 0.0 ? static_cast<double>(spp) * pixels / now : 0.0;
             p.estimate = last_estimate;
             p.fraction = rule.fraction(spp, now, last_estimate);
-            if (!options.progress(p) && own_cancel == 0) {
+            bool go_on = false;
+            try {
+                go_on = options.progress(p);
+            } catch (...) {
+                // Raised once every rank has stopped (they wait for this
+                // one's next report).
+                if (!progress_error) {
+                    progress_error = std::current_exception();
+                }
+            }
+            if (!go_on && own_cancel == 0) {
                 // Told to the other ranks with the next round's reports.
                 own_cancel = -1;
                 if (ranks == 1) {
@@ -205,6 +221,9 @@ BatchResult render_batch(Renderer& renderer, const BatchOptions& options) {
         cluster.merge_to_first(result.accumulator);
     }
     result.merge_seconds = seconds_since(merge_start);
+    if (progress_error) {
+        std::rethrow_exception(progress_error);
+    }
     if (!first) {
         result.accumulator.clear();
         return result;

@@ -41,7 +41,9 @@ struct BatchOptions {
     StopRule stop;
     // Called after a frame at most every progress_interval seconds, on the
     // first process only (the result has the final figures). Returning
-    // false cancels, as `cancel` does, with the code -1.
+    // false cancels, as `cancel` does, with the code -1; an exception it
+    // throws cancels too, and render_batch throws it once every process
+    // has stopped.
     std::function<bool(const BatchProgress&)> progress;
     double progress_interval = 0.1;
     // Read after every frame; non-zero cancels: the frame in flight is
@@ -87,8 +89,13 @@ struct BatchResult {
 // Renders with `renderer` until `options.stop`. Split across a cluster's
 // processes, rank r of N renders the frames r, r + N, ...; all stop after
 // the same round and the first merges the accumulators. The image is a
-// pure function of the scene, settings, seed and the frames rendered.
+// pure function of the scene, settings, seed and the frames rendered (in
+// one process; split across processes, to float rounding: docs/mpi.md).
 BatchResult render_batch(Renderer& renderer, const BatchOptions& options = BatchOptions());
+
+// The rule render_batch follows for `given`: a part not above zero (NaN
+// too) is not set; with none set, default_batch_spp.
+StopRule batch_stop_rule(const StopRule& given);
 
 // What render_batch returns, of the frames `renderer` holds now (spp: its
 // frames; no timings): for a render driven frame by frame. `options`

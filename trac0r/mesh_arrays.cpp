@@ -31,7 +31,9 @@ std::size_t vertex_count(const std::vector<float>& values, std::size_t width, co
     return values.size() / width;
 }
 
-int material_of(Scene& scene, const std::string& name) {
+// The scene's material of that name; -1 for "" where the scene has no
+// "default" (the caller adds default_mesh_material once the mesh is good).
+int material_of(const Scene& scene, const std::string& name) {
     const std::string wanted = name.empty() ? "default" : name;
     for (std::size_t i = 0; i < scene.materials.size(); ++i) {
         if (scene.materials[i].name == wanted) {
@@ -39,8 +41,7 @@ int material_of(Scene& scene, const std::string& name) {
         }
     }
     if (name.empty()) {
-        scene.materials.push_back(default_mesh_material());
-        return static_cast<int>(scene.materials.size() - 1);
+        return -1;
     }
     std::string names;
     for (const Material& m : scene.materials) {
@@ -48,6 +49,10 @@ int material_of(Scene& scene, const std::string& name) {
     }
     throw std::invalid_argument("add_mesh: material: no material named '" + name +
                                 "' (the scene has " + (names.empty() ? "none" : names) + ")");
+}
+
+bool finite(const glm::dvec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
 glm::vec3 vec3_at(const std::vector<float>& v, std::size_t i) {
@@ -81,7 +86,10 @@ void add_mesh(Scene& scene, const MeshArrays& mesh, const MeshPlacement& placeme
                 std::isfinite(placement.scale.x) && std::isfinite(placement.scale.y) &&
                 std::isfinite(placement.scale.z),
             "scale: expected three finite numbers, none zero");
+    require(finite(placement.position), "position: expected three finite numbers");
+    require(finite(glm::dvec3(placement.orientation)), "orientation: expected three finite numbers");
     const int material = material_of(scene, placement.material);
+    const int added_material = static_cast<int>(scene.materials.size());
     const std::size_t count = mesh.indices.size() / 3;
     std::vector<Triangle> triangles;
     std::vector<VertexNormalTriple> normals;
@@ -113,10 +121,13 @@ void add_mesh(Scene& scene, const MeshArrays& mesh, const MeshPlacement& placeme
     const glm::vec3 position = glm::vec3(placement.position - scene.origin);
     Shape shape = make_shape(std::move(triangles),
                              model_matrix(position, placement.orientation, placement.scale),
-                             material, normals, uvs);
+                             material < 0 ? added_material : material, normals, uvs);
     require(std::any_of(shape.triangles.begin(), shape.triangles.end(), usable_triangle),
             "no triangle of the mesh can be rendered (each has in float arithmetic an area of "
             "zero or below float's smallest normal)");
+    if (material < 0) {
+        scene.materials.push_back(default_mesh_material());
+    }
     scene.shapes.push_back(std::move(shape));
 }
 

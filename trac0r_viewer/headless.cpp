@@ -212,7 +212,7 @@ int run_batch(trac0r::Renderer& renderer, const Options& options, trac0r::Cluste
                      "(a float) holds exactly\n",
                      program_name(), trac0r::Renderer::max_frames);
     }
-    progress.finish(r, batch.stop);
+    progress.finish(r, trac0r::batch_stop_rule(batch.stop));
     const long ranks = cluster.size();
     if (options.verbose && ranks > 1) {
         std::string frames;

@@ -122,7 +122,16 @@ def test_bad_meshes_raise_value_errors_naming_the_argument():
         scene.add_mesh([[0, 0, 0], [np.nan, 0, 0], [0, 1, 0]], [[0, 1, 2]])
     with pytest.raises(ValueError, match=r"no triangle of the mesh can be rendered"):
         scene.add_mesh(np.zeros((3, 3)), [[0, 1, 2]])
-    assert scene.shape_count == 0
+    with pytest.raises(ValueError, match=r"indices: expected an array of integers"):
+        scene.add_mesh(np.eye(3), np.array([[0.0, 1.0, 2.0]]))
+    with pytest.raises(ValueError, match=r"indices: triangle 0 has vertex -1"):
+        scene.add_mesh(np.eye(3), [[0, 1, -1]])
+    with pytest.raises(ValueError, match=r"position: expected three finite numbers"):
+        scene.add_mesh(np.eye(3), [[0, 1, 2]], position=(0, float("inf"), 0))
+    # None of the refused meshes changed the scene (not even its materials).
+    assert scene.shape_count == 0 and scene.materials == ["red", "white"]
+    scene.add_mesh(np.eye(3), [[0, 1, 2]])  # no material: the default grey, added now
+    assert scene.shape_count == 1 and scene.materials == ["red", "white", "default"]
 
 
 def test_bad_input_raises_with_the_loaders_messages(tmp_path):
@@ -136,6 +145,19 @@ def test_bad_input_raises_with_the_loaders_messages(tmp_path):
         trac0r.render(trac0r.builtin_scene(), spp=1, integrator="bdpt")
     with pytest.raises(ValueError, match=r"layers"):
         trac0r.render_images(trac0r.builtin_scene(), spp=1, layers=["colour"])
+    scene = trac0r.builtin_scene()
+    with pytest.raises(ValueError, match=r"seconds: expected 0 \(not set\) or a finite positive"):
+        trac0r.render(scene, seconds=float("nan"))
+    with pytest.raises(ValueError, match=r"target_error"):
+        trac0r.render(scene, target_error=float("inf"))
+    with pytest.raises(ValueError, match=r"width: expected an integer in \[1, 16384\], got 100000"):
+        trac0r.render(scene, spp=1, width=100000)
+    with pytest.raises(ValueError, match=r"max_depth"):
+        scene.max_depth = 0
+    with pytest.raises(ValueError, match=r"device: expected an OpenCL device index from 0"):
+        trac0r.render(scene, spp=1, device=-1)
+    with pytest.raises(ValueError, match=r"path: expected a str or path-like"):
+        trac0r.load_scene(42)
 
 
 def test_the_progress_callback_reports_and_cancels():
@@ -176,14 +198,23 @@ def test_a_render_is_cancelled_from_another_thread_and_the_gil_is_free():
         token.cancel()
 
     thread = threading.Thread(target=cancel_later)
+    start = time.monotonic()
     thread.start()
-    r = trac0r.render_images(trac0r.builtin_scene(), seconds=600, width=48, height=36,
+    # Held, the GIL would keep the thread from cancelling before the 20 s.
+    r = trac0r.render_images(trac0r.builtin_scene(), seconds=20, width=48, height=36,
                              cancel=token)
+    elapsed = time.monotonic() - start
     thread.join()
     assert token.cancelled and r["cancelled"]
-    assert len(ticks) == 30 and r["spp"] > 0
+    assert elapsed < 15 and r["spp"] > 0
     again = trac0r.render(trac0r.builtin_scene(), spp=r["spp"], width=48, height=36)
     assert np.array_equal(r["image"], again)
+    # Cancelled, the token stops the next render after one frame, until reset.
+    assert trac0r.render_images(trac0r.builtin_scene(), spp=50, width=8, height=6,
+                                cancel=token)["spp"] == 1
+    token.reset()
+    assert trac0r.render_images(trac0r.builtin_scene(), spp=50, width=8, height=6,
+                                cancel=token)["spp"] == 50
 
 
 def test_ctrl_c_cancels_a_render_and_raises_keyboard_interrupt():
@@ -218,3 +249,13 @@ def test_write_image_writes_what_it_is_given(tmp_path):
     with pytest.raises(ValueError, match="filmic"):
         trac0r.write_image(str(tmp_path / "b.png"), img, view="log")
     assert not (tmp_path / "b.png").exists()
+
+
+def test_a_model_file_opens_on_its_own_as_in_the_program(tmp_path):
+    import pathlib
+    model = os.path.join(ROOT, "scenes/meshes/tetrahedron.obj")
+    scene = trac0r.load_scene(pathlib.Path(model))
+    assert scene.triangle_count == 4
+    img = trac0r.render(model, spp=2, width=32, height=24)
+    ref = viewer_pfm(tmp_path, model, "--spp", "2", "--width", "32", "--height", "24")
+    assert np.array_equal(img, ref)
