@@ -9,7 +9,7 @@ cd "$(dirname "$0")/../.."
 seconds=${1:-60}
 build=build-fuzz
 cmake -S . -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DTRAC0R_FUZZ=ON -DTRAC0R_BUILD_TESTS=OFF \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
+    -DTRAC0R_PYTHON=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build "$build" -j2 --target fuzz_scene fuzz_obj fuzz_mesh fuzz_replay
 mkdir -p "$build/artifacts"
 # Leaks inside the libraries we call, not ours (tests/lsan.supp says which).
