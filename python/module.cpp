@@ -33,12 +33,6 @@ using namespace trac0r;
 
 namespace {
 
-// A scene file, or a scene made around a model file, as trac0r_viewer
-// opens either.
-Scene load_any(const std::string& path, const LoadOptions& options) {
-    return is_model_path(path) ? model_scene(path, options) : load_scene_file(path, options);
-}
-
 // A path given as str or path-like (pathlib.Path): os.fspath's str, else
 // false.
 bool as_path(const py::object& value, std::string* path) {
@@ -56,7 +50,7 @@ bool as_path(const py::object& value, std::string* path) {
 // A scene or model file, loaded without the GIL.
 Scene load_released(const std::string& path, const LoadOptions& options) {
     py::gil_scoped_release release;
-    return load_any(path, options);
+    return open_scene(path, options);
 }
 
 // The limits of the scene format and the programs' flags.

@@ -165,4 +165,8 @@ Scene model_scene(const std::string& model_path, const LoadOptions& options, std
     return parse_scene(full.dump(), model_path, "", options);
 }
 
+Scene open_scene(const std::string& path, const LoadOptions& options) {
+    return is_model_path(path) ? model_scene(path, options) : load_scene_file(path, options);
+}
+
 }  // namespace trac0r

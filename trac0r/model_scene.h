@@ -25,6 +25,10 @@ bool is_model_path(const std::string& path);
 Scene model_scene(const std::string& model_path, const LoadOptions& options,
                   std::string* json = nullptr);
 
+// A scene file, or the scene made around a model file (is_model_path), as
+// trac0r_viewer and the Python module open either.
+Scene open_scene(const std::string& path, const LoadOptions& options = LoadOptions());
+
 }  // namespace trac0r
 
 #endif

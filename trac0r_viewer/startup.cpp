@@ -112,10 +112,8 @@ void check_options(const Options& o, bool writes_outputs) {
 trac0r::Scene load_scene(const Options& o) {
     trac0r::LoadOptions load;
     load.strict = o.strict;
-    trac0r::Scene scene = o.scene_path.empty() ? trac0r::builtin_scene()
-                          : trac0r::is_model_path(o.scene_path)
-                              ? trac0r::model_scene(o.scene_path, load)
-                              : trac0r::load_scene_file(o.scene_path, load);
+    trac0r::Scene scene =
+        o.scene_path.empty() ? trac0r::builtin_scene() : trac0r::open_scene(o.scene_path, load);
     if (o.width > 0) {
         scene.render.width = o.width;
     }
