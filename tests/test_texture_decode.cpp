@@ -4,8 +4,12 @@
 // would fill the rest with zeros). The inputs are shared/repro's.
 #include "test_support.h"
 
+#include "trac0r/isolated_call.h"
 #include "trac0r/isolated_texture.h"
 #include "trac0r/texture.h"
+
+#include <algorithm>
+#include <cstdint>
 
 using namespace trac0r;
 using Catch::Matchers::Contains;
@@ -137,4 +141,14 @@ TEST_CASE("an image decoded in a child process: the same texture, the same refus
                       Contains("more than the scene has room"));
     CHECK_THROWS_AS(load_texture_file_isolated("w", dir.path() + "/none.png", max_scene_texels),
                     TextureUnreadable);
+}
+
+TEST_CASE("a scene's texel budget is sized to the machine's memory", "[texture]") {
+    // Half the memory at 16 bytes a texel, never past what the kernel
+    // indexes (2^31).
+    const std::uint64_t memory = half_machine_memory();
+    REQUIRE(memory > 0);  // Linux: sysconf(_SC_PHYS_PAGES)
+    CHECK(scene_texel_budget() == std::min(max_scene_texels, memory / scene_texel_peak_bytes));
+    CHECK(scene_texel_budget() > 0);
+    CHECK(scene_texel_budget() <= max_scene_texels);
 }

@@ -181,14 +181,15 @@ struct ShapeContext {
     int* default_material = nullptr;
 };
 
-// The scene's textures within max_scene_texels in all, or an error naming
-// the mesh file whose texture went over.
+// The scene's textures within scene_texel_budget in all, or an error
+// naming the mesh file whose texture went over.
 void check_scene_texels(const std::vector<Texture>& textures, const std::string& path) {
     const std::uint64_t texels = texel_count(textures);
-    if (texels > max_scene_texels) {
+    if (texels > scene_texel_budget()) {
         throw std::runtime_error(path + ": its textures bring the scene's to " +
                                  std::to_string(texels) + " texels, over the " +
-                                 std::to_string(max_scene_texels) + " a scene may have");
+                                 std::to_string(scene_texel_budget()) +
+                                 " a scene may have on this machine");
     }
 }
 
@@ -250,7 +251,7 @@ std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
         // they are decoded (a small file may name many huge images).
         MeshParts mesh =
             load_mesh_parts(path, position, orientation, scale, material, smooth, file_materials,
-                            max_scene_texels - texel_count(*context.textures), context.defects);
+                            scene_texel_budget() - texel_count(*context.textures), context.defects);
         std::vector<Material>& materials = *context.materials;
         std::vector<Texture>& textures = *context.textures;
         // The file's textures that its materials use, moved into the

@@ -2,9 +2,11 @@
 
 #include "trac0r/input_checks.h"
 #include "trac0r/input_file.h"
+#include "trac0r/isolated_call.h"
 
 #include <stb_image.h>
 
+#include <algorithm>
 #include <climits>
 #include <cstring>
 #include <stdexcept>
@@ -19,6 +21,14 @@ std::uint64_t texel_count(const std::vector<Texture>& textures) {
     return texels;
 }
 
+std::uint64_t scene_texel_budget() {
+    const std::uint64_t memory = half_machine_memory();
+    if (memory == 0) {
+        return max_scene_texels;
+    }
+    return std::min(max_scene_texels, memory / scene_texel_peak_bytes);
+}
+
 void check_texture_room(const std::string& where, int width, int height,
                         std::uint64_t max_texels) {
     const std::uint64_t texels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
@@ -26,7 +36,8 @@ void check_texture_room(const std::string& where, int width, int height,
         throw std::runtime_error(where + ": texture is " + std::to_string(width) + " x " +
                                  std::to_string(height) + " texels, more than the scene has " +
                                  "room for (" + std::to_string(max_texels) + " more of the " +
-                                 std::to_string(max_scene_texels) + " a scene may have)");
+                                 std::to_string(scene_texel_budget()) +
+                                 " a scene may have on this machine)");
     }
 }
 

@@ -21,9 +21,21 @@ struct Texture {
 };
 
 // The largest texture side, and the most texels a scene's textures may
-// have in all (the kernel indexes them with 32 bits).
+// have in all on any machine (the kernel indexes them with 32 bits).
 const int max_texture_side = 16384;
 const std::uint64_t max_scene_texels = std::uint64_t(1) << 31;
+
+// The bytes a texel takes at the peak of loading and packing a scene: 4
+// (RGBA8) in up to four places at once (the decoder's image, its copy
+// through the reader's pipe, the scene's texture, the packed scene's
+// texels).
+const std::uint64_t scene_texel_peak_bytes = 16;
+
+// The most texels a scene's textures may have on this machine: those
+// whose peak fits half its memory (half_machine_memory), at most
+// max_scene_texels (all of them where the memory cannot be known). The
+// scene loader counts each image against it from its header.
+std::uint64_t scene_texel_budget();
 
 // A texture that is not there, or whose bytes do not decode as an image:
 // a defect lenient loading passes over (model_defects.h), where a texture
