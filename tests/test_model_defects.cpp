@@ -1,20 +1,16 @@
 // Lenient loading (trac0r/model_defects.h): a model with a defect that
 // other importers pass over loads with one warning line a kind and
 // renders; strict loading (--strict) refuses each as it always did.
+#include "scene_test_support.h"
 #include "test_support.h"
 #include "viewer_process.h"
 
 using namespace trac0r;
+using trac0r_scene_test::strict;
 using Catch::Matchers::Contains;
 using Catch::Matchers::EndsWith;
 
 namespace {
-
-LoadOptions strict() {
-    LoadOptions options;
-    options.strict = true;
-    return options;
-}
 
 // The warning lines of `scene` that contain `text`.
 std::size_t warnings_with(const Scene& scene, const std::string& text) {
