@@ -380,3 +380,44 @@ TEST_CASE("OBJ meshes: materials from the MTL files, split by usemtl", "[scene_l
                    EndsWith(obj + ":6: expected 'usemtl NAME', got no name"));
     }
 }
+
+TEST_CASE("OBJ meshes: UTF-16 text with a byte-order mark reads as its UTF-8",
+          "[scene_loader]") {
+    TempDir dir;
+    const std::string text = "# a t\xC3\xA9trahedron\nv 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\n"
+                             "f 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n";
+    // UTF-16 of `text` (all of it below U+0800), with the mark.
+    const auto utf16 = [&](bool big) {
+        std::string out = big ? std::string("\xFE\xFF", 2) : std::string("\xFF\xFE", 2);
+        for (std::size_t i = 0; i < text.size(); ++i) {
+            unsigned code = static_cast<unsigned char>(text[i]);
+            if (code >= 0xC0) {  // a two-byte UTF-8 sequence
+                code = (code & 0x1F) << 6 | (static_cast<unsigned char>(text[++i]) & 0x3F);
+            }
+            const char hi = static_cast<char>(code >> 8);
+            const char lo = static_cast<char>(code & 0xFF);
+            out += big ? std::string{hi, lo} : std::string{lo, hi};
+        }
+        return out;
+    };
+    dir.write("utf8.obj", text);
+    dir.write("be.obj", utf16(true));
+    dir.write("le.obj", utf16(false));
+    const auto shape_of = [&](const std::string& file) {
+        const std::string scene = dir.write(
+            file + ".json",
+            with_shape(R"({"type": "mesh", "file": ")" + file + R"(", "material": "white"})"));
+        return load_scene_file(scene, strict()).shapes.at(0);
+    };
+    const Shape utf8 = shape_of("utf8.obj");
+    REQUIRE(utf8.triangles.size() == 4);
+    for (const char* file : {"be.obj", "le.obj"}) {
+        const Shape s = shape_of(file);
+        REQUIRE(s.triangles.size() == 4);
+        for (std::size_t t = 0; t < 4; ++t) {
+            CHECK(same_vec3(s.triangles[t].v0, utf8.triangles[t].v0));
+            CHECK(same_vec3(s.triangles[t].v1, utf8.triangles[t].v1));
+            CHECK(same_vec3(s.triangles[t].v2, utf8.triangles[t].v2));
+        }
+    }
+}
