@@ -1,5 +1,5 @@
 // Material names and values in OBJ and MTL files as Blender and assimp
-// read them (trac0r/obj_checker.h): a name is the rest of its usemtl or
+// read them (trac0r/obj_checker.h, mtl_checker.h): a name is the rest of its usemtl or
 // newmtl line, blanks and all; a colour of one number is grey; a value out
 // of the MTL format's range is taken as the nearest within, with a
 // warning (an error when strict).

@@ -4,6 +4,7 @@
 #include "trac0r/input_checks.h"
 #include "trac0r/isolated_texture.h"
 #include "trac0r/mesh_parts.h"
+#include "trac0r/mtl_checker.h"
 #include "trac0r/obj_checker.h"
 #include "trac0r/smoothing_groups.h"
 
