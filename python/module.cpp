@@ -389,6 +389,19 @@ PYBIND11_MODULE(_trac0r, m) {
 clockwise, into the positions), normals (n x 3, smooth shading) and uvs (n x 2),
 placed as a scene file's mesh shape (position, orientation in radians, scale),
 with the scene's material of that name (none: its 'default', else grey).)")
+        .def(
+            "set_camera",
+            [](Scene& s, const py::object& camera) {
+                const std::string text =
+                    py::isinstance<py::str>(camera)
+                        ? camera.cast<std::string>()
+                        : py::module_::import("json").attr("dumps")(camera).cast<std::string>();
+                s.camera = parse_camera_block(text, "<camera>", s.origin);
+            },
+            py::arg("camera"),
+            R"(Replaces the scene's camera by a camera block of the scene format (a dict, or
+its JSON text): position, direction, world_up, vertical_fov, aperture_radius,
+focus_distance; what the viewer's C key prints, as trac0r_viewer --camera reads it.)")
         .def("__repr__", [](const Scene& s) {
             return "<trac0r.Scene " + std::to_string(s.render.width) + "x" +
                    std::to_string(s.render.height) + ", " + std::to_string(s.shapes.size()) +

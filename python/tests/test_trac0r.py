@@ -259,3 +259,19 @@ def test_a_model_file_opens_on_its_own_as_in_the_program(tmp_path):
     img = trac0r.render(model, spp=2, width=32, height=24)
     ref = viewer_pfm(tmp_path, model, "--spp", "2", "--width", "32", "--height", "24")
     assert np.array_equal(img, ref)
+
+
+def test_a_camera_block_moves_the_camera_as_the_programs_camera_flag(tmp_path):
+    import json
+    camera = {"position": [0.2, 0.1, -0.3], "direction": [-0.3, -0.1, 1], "vertical_fov": 50}
+    (tmp_path / "camera.json").write_text(json.dumps({"camera": camera}))
+    scene = trac0r.builtin_scene()
+    scene.set_camera(camera)
+    img = trac0r.render(scene, spp=2, width=32, height=24)
+    ref = viewer_pfm(tmp_path, "--camera", str(tmp_path / "camera.json"), "--spp", "2",
+                     "--width", "32", "--height", "24")
+    assert np.array_equal(img, ref)
+    assert not np.array_equal(img, trac0r.render(trac0r.builtin_scene(), spp=2, width=32,
+                                                 height=24))
+    with pytest.raises(RuntimeError, match=r"<camera>: /vertical_fov"):
+        scene.set_camera({"vertical_fov": 500})
