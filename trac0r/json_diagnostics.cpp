@@ -64,21 +64,6 @@ void append_description(const json& value, std::size_t limit, std::string& out) 
     }
 }
 
-bool satisfies(NumberRule rule, float x) {
-    switch (rule) {
-    case NumberRule::finite:
-        return true;
-    case NumberRule::positive:
-        return x > 0.0f;
-    case NumberRule::non_negative:
-        return x >= 0.0f;
-    case NumberRule::unit_interval:
-        return x >= 0.0f && x <= 1.0f;
-    case NumberRule::non_zero:
-        return x != 0.0f;
-    }
-    return false;
-}
 
 const char* const not_finite_note = " (not finite as a 32-bit float)";
 
@@ -182,6 +167,22 @@ std::string expectation(NumberRule rule, int count) {
         return "a " + lead + "number" + suffix;
     }
     return "an array of " + std::to_string(count) + " " + lead + "numbers" + suffix;
+}
+
+bool satisfies(NumberRule rule, float x) {
+    switch (rule) {
+    case NumberRule::finite:
+        return true;
+    case NumberRule::positive:
+        return x > 0.0f;
+    case NumberRule::non_negative:
+        return x >= 0.0f;
+    case NumberRule::unit_interval:
+        return x >= 0.0f && x <= 1.0f;
+    case NumberRule::non_zero:
+        return x != 0.0f;
+    }
+    return false;
 }
 
 // Whether a JSON number fits a float; the double-to-float conversion of a

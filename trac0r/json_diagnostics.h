@@ -66,6 +66,9 @@ enum class NumberRule { finite, positive, non_negative, unit_interval, non_zero 
 // positive numbers".
 std::string expectation(NumberRule rule, int count = 0);
 
+// Whether x satisfies `rule` (finite: always; the caller checks finiteness).
+bool satisfies(NumberRule rule, float x);
+
 // Whether a JSON number fits a float (finite, at most FLT_MAX).
 bool fits_float(const json& value);
 

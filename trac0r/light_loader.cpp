@@ -2,6 +2,7 @@
 
 #include "trac0r/input_file.h"
 #include "trac0r/material.h"
+#include "trac0r/refused_value.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -32,20 +33,9 @@ float read_degrees(const ObjectReader& o, const std::string& key, float lowest, 
     return degrees;
 }
 
-// colour x the amount within what a pixel's float sum can hold.
-void check_radiance(const Location& at, const glm::vec3& color, float amount, const char* what) {
-    const double peak = static_cast<double>(amount) * std::max({color.x, color.y, color.z});
-    if (peak > static_cast<double>(max_emitted_radiance)) {
-        char text[32];
-        std::snprintf(text, sizeof text, "%.3g", peak);
-        fail(at, std::string("the colour times the ") + what + " is " + text +
-                     " in a channel, above 1e30, the most the renderer can sum over a pixel's "
-                     "samples in float");
-    }
-}
-
-glm::vec3 read_unit_direction(const ObjectReader& o, const std::string& key,
-                              const std::string& meaning) {
+// A direction as the file gives it (SceneBuilder::add_lamp makes it unit).
+glm::vec3 read_direction(const ObjectReader& o, const std::string& key,
+                         const std::string& meaning) {
     const glm::vec3 d =
         read_vec3(o.required(key, "an array of 3 finite numbers, not all zero: " + meaning),
                   o.at(key), NumberRule::finite);
@@ -54,12 +44,13 @@ glm::vec3 read_unit_direction(const ObjectReader& o, const std::string& key,
         fail_expected(o.at(key), "a direction (3 finite numbers, not all zero): " + meaning,
                       o[key]);
     }
-    return d / length;
+    return d;
 }
 
 }  // namespace
 
-Environment read_environment(const json& value, const Location& at, const std::string& base_dir) {
+void read_environment(const json& value, const Location& at, const std::string& base_dir,
+                      SceneBuilder& builder) {
     const ObjectReader o(value, at,
                          "an environment object: {\"color\": [r, g, b]} or "
                          "{\"map\": \"sky.exr\"}, with an optional \"strength\"");
@@ -91,13 +82,11 @@ Environment read_environment(const json& value, const Location& at, const std::s
         e.color = o.required_vec3("color", NumberRule::non_negative);
     }
     e.strength = o.optional_float("strength", NumberRule::non_negative, 1.0f);
-    glm::vec3 peak = e.color;
-    for (const glm::vec3& t : e.texels) {
-        peak = glm::max(peak, t);
+    try {
+        builder.set_environment(std::move(e));
+    } catch (const SceneValueError& error) {
+        fail_refused(value, at, error);
     }
-    check_radiance(o.has("strength") ? o.at("strength") : at, e.map.empty() ? e.color : peak,
-                   e.strength, "strength");
-    return e;
 }
 
 namespace {
@@ -111,15 +100,9 @@ Lamp read_lamp(const json& value, const Location& at, const glm::dvec3& origin) 
     lamp.color = o.optional_vec3("color", NumberRule::non_negative, glm::vec3(1.0f));
     if (lamp.type == LampType::sun) {
         o.allow_only({"type", "direction", "color", "irradiance", "angle"}, "a sun light");
-        lamp.direction = read_unit_direction(o, "direction", "towards the sun");
+        lamp.direction = read_direction(o, "direction", "towards the sun");
         lamp.power = o.required_float("irradiance", NumberRule::non_negative);
         lamp.angle = read_degrees(o, "angle", 0.0f, true, 90.0f, default_sun_angle);
-        // The sun's radiance is its irradiance over its disc's pi sin^2.
-        const float radius = glm::radians(0.5f * lamp.angle);
-        const float radiance_factor =
-            lamp.angle > 0.0f ? 1.0f / (3.14159265f * std::sin(radius) * std::sin(radius)) : 1.0f;
-        check_radiance(o.at("irradiance"), lamp.color, lamp.power * radiance_factor,
-                       "irradiance over the sun's disc");
         return lamp;
     }
     if (lamp.type == LampType::point) {
@@ -127,7 +110,7 @@ Lamp read_lamp(const json& value, const Location& at, const glm::dvec3& origin) 
     } else {
         o.allow_only({"type", "position", "direction", "color", "intensity", "angle", "blend"},
                      "a spot light");
-        lamp.direction = read_unit_direction(o, "direction", "where the spot points");
+        lamp.direction = read_direction(o, "direction", "where the spot points");
         lamp.angle = read_degrees(o, "angle", 0.0f, false, 180.0f, 45.0f);
         lamp.blend = o.optional_float("blend", NumberRule::unit_interval, 0.15f);
     }
@@ -136,21 +119,27 @@ Lamp read_lamp(const json& value, const Location& at, const glm::dvec3& origin) 
                    NumberRule::finite);
     lamp.position = glm::vec3(position - origin);
     lamp.power = o.required_float("intensity", NumberRule::non_negative);
-    check_radiance(o.at("intensity"), lamp.color, lamp.power, "intensity");
     return lamp;
 }
 
 }  // namespace
 
-std::vector<Lamp> read_lamps(const json& value, const Location& at, const glm::dvec3& origin) {
+void read_light(const json& value, const Location& at, SceneBuilder& builder) {
+    const Lamp lamp = read_lamp(value, at, builder.scene().origin);
+    try {
+        builder.add_lamp(lamp);
+    } catch (const SceneValueError& e) {
+        fail_refused(value, at, e);
+    }
+}
+
+void read_lamps(const json& value, const Location& at, SceneBuilder& builder) {
     if (!value.is_array()) {
         fail_expected(at, "an array of lights ({\"type\": \"point\", ...})", value);
     }
-    std::vector<Lamp> lamps;
     for (std::size_t i = 0; i < value.size(); ++i) {
-        lamps.push_back(read_lamp(value[i], at.index(i), origin));
+        read_light(value[i], at.index(i), builder);
     }
-    return lamps;
 }
 
 }  // namespace trac0r

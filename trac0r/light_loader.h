@@ -6,19 +6,25 @@
 
 #include "trac0r/json_diagnostics.h"
 #include "trac0r/lights.h"
+#include "trac0r/scene_builder.h"
 
 #include <string>
 #include <vector>
 
 namespace trac0r {
 
-// The "environment" object; a map's path is relative to base_dir.
-Environment read_environment(const json_diagnostics::json& value,
-                             const json_diagnostics::Location& at, const std::string& base_dir);
+// The "environment" object, set on the builder's scene; a map's path is
+// relative to base_dir.
+void read_environment(const json_diagnostics::json& value, const json_diagnostics::Location& at,
+                      const std::string& base_dir, SceneBuilder& builder);
 
-// The "lights" array; positions are made relative to the scene's origin.
-std::vector<Lamp> read_lamps(const json_diagnostics::json& value,
-                             const json_diagnostics::Location& at, const glm::dvec3& origin);
+// The "lights" array, added to the builder's scene; positions are made
+// relative to the scene's origin.
+void read_lamps(const json_diagnostics::json& value, const json_diagnostics::Location& at,
+                SceneBuilder& builder);
+// One light object of that array.
+void read_light(const json_diagnostics::json& value, const json_diagnostics::Location& at,
+                SceneBuilder& builder);
 
 }  // namespace trac0r
 

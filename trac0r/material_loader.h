@@ -5,15 +5,16 @@
 
 #include "trac0r/json_diagnostics.h"
 #include "trac0r/material.h"
+#include "trac0r/scene_builder.h"
 
 #include <vector>
 
 namespace trac0r {
 
-// The "materials" object: a non-empty object of named materials, in the
-// order nlohmann iterates it (by name).
-std::vector<Material> read_materials(const json_diagnostics::json& value,
-                                     const json_diagnostics::Location& at);
+// The "materials" object: a non-empty object of named materials, added
+// to the builder in the order nlohmann iterates it (by name).
+void read_materials(const json_diagnostics::json& value, const json_diagnostics::Location& at,
+                    SceneBuilder& builder);
 
 }  // namespace trac0r
 

@@ -1,6 +1,6 @@
 #include "trac0r/mesh_arrays.h"
 
-#include "trac0r/scene_loader.h"
+#include "trac0r/scene_builder.h"
 #include "trac0r/shape.h"
 
 #include <algorithm>
@@ -11,44 +11,24 @@ namespace trac0r {
 
 namespace {
 
-void require(bool ok, const std::string& message) {
+// An array's or argument's problem: "FIELD: PROBLEM".
+void require(bool ok, const std::string& field, const std::string& problem) {
     if (!ok) {
-        throw std::invalid_argument("add_mesh: " + message);
+        throw SceneValueError("mesh", field, "", problem);
     }
 }
 
 // The vertices' count of an array of `width` numbers a vertex.
 std::size_t vertex_count(const std::vector<float>& values, std::size_t width, const char* name,
                          const char* what) {
-    require(values.size() % width == 0, std::string(name) + ": expected " + std::to_string(width) +
-                                            " numbers a vertex (" + what + "), got " +
-                                            std::to_string(values.size()) + " numbers");
+    require(values.size() % width == 0, name,
+            "expected " + std::to_string(width) + " numbers a vertex (" + what + "), got " +
+                std::to_string(values.size()) + " numbers");
     for (std::size_t i = 0; i < values.size(); ++i) {
-        require(std::isfinite(values[i]), std::string(name) + ": vertex " +
-                                              std::to_string(i / width) +
-                                              " has a number that is not finite");
+        require(std::isfinite(values[i]), name,
+                "vertex " + std::to_string(i / width) + " has a number that is not finite");
     }
     return values.size() / width;
-}
-
-// The scene's material of that name; -1 for "" where the scene has no
-// "default" (the caller adds default_mesh_material once the mesh is good).
-int material_of(const Scene& scene, const std::string& name) {
-    const std::string wanted = name.empty() ? "default" : name;
-    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-        if (scene.materials[i].name == wanted) {
-            return static_cast<int>(i);
-        }
-    }
-    if (name.empty()) {
-        return -1;
-    }
-    std::string names;
-    for (const Material& m : scene.materials) {
-        names += (names.empty() ? "'" : ", '") + m.name + "'";
-    }
-    throw std::invalid_argument("add_mesh: material: no material named '" + name +
-                                "' (the scene has " + (names.empty() ? "none" : names) + ")");
 }
 
 bool finite(const glm::dvec3& v) {
@@ -61,35 +41,33 @@ glm::vec3 vec3_at(const std::vector<float>& v, std::size_t i) {
 
 }  // namespace
 
-void add_mesh(Scene& scene, const MeshArrays& mesh, const MeshPlacement& placement) {
+void SceneBuilder::add_mesh(const MeshArrays& mesh, const MeshPlacement& placement) {
     const std::size_t vertices = vertex_count(mesh.positions, 3, "positions", "x, y, z");
-    require(vertices > 0, "positions: expected at least 3 vertices, got none");
+    require(vertices > 0, "positions", "expected at least 3 vertices, got none");
     if (!mesh.normals.empty()) {
-        require(vertex_count(mesh.normals, 3, "normals", "x, y, z") == vertices,
-                "normals: expected one a vertex (" + std::to_string(vertices) + "), got " +
+        require(vertex_count(mesh.normals, 3, "normals", "x, y, z") == vertices, "normals",
+                "expected one a vertex (" + std::to_string(vertices) + "), got " +
                     std::to_string(mesh.normals.size() / 3));
     }
     if (!mesh.uvs.empty()) {
-        require(vertex_count(mesh.uvs, 2, "uvs", "u, v") == vertices,
-                "uvs: expected one a vertex (" + std::to_string(vertices) + "), got " +
+        require(vertex_count(mesh.uvs, 2, "uvs", "u, v") == vertices, "uvs",
+                "expected one a vertex (" + std::to_string(vertices) + "), got " +
                     std::to_string(mesh.uvs.size() / 2));
     }
-    require(!mesh.indices.empty() && mesh.indices.size() % 3 == 0,
-            "indices: expected 3 a triangle, got " + std::to_string(mesh.indices.size()));
+    require(!mesh.indices.empty() && mesh.indices.size() % 3 == 0, "indices",
+            "expected 3 a triangle, got " + std::to_string(mesh.indices.size()));
     for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
-        require(mesh.indices[i] < vertices, "indices: triangle " + std::to_string(i / 3) +
-                                                " has vertex " + std::to_string(mesh.indices[i]) +
-                                                ", past the " + std::to_string(vertices) +
-                                                " vertices");
+        require(mesh.indices[i] < vertices, "indices",
+                "triangle " + std::to_string(i / 3) + " has vertex " +
+                    std::to_string(mesh.indices[i]) + ", past the " + std::to_string(vertices) +
+                    " vertices");
     }
     require(placement.scale.x != 0.0f && placement.scale.y != 0.0f && placement.scale.z != 0.0f &&
-                std::isfinite(placement.scale.x) && std::isfinite(placement.scale.y) &&
-                std::isfinite(placement.scale.z),
-            "scale: expected three finite numbers, none zero");
-    require(finite(placement.position), "position: expected three finite numbers");
-    require(finite(glm::dvec3(placement.orientation)), "orientation: expected three finite numbers");
-    const int material = material_of(scene, placement.material);
-    const int added_material = static_cast<int>(scene.materials.size());
+                finite(glm::dvec3(placement.scale)),
+            "scale", "expected three finite numbers, none zero");
+    require(finite(placement.position), "position", "expected three finite numbers");
+    require(finite(glm::dvec3(placement.orientation)), "orientation",
+            "expected three finite numbers");
     const std::size_t count = mesh.indices.size() / 3;
     std::vector<Triangle> triangles;
     std::vector<VertexNormalTriple> normals;
@@ -118,17 +96,17 @@ void add_mesh(Scene& scene, const MeshArrays& mesh, const MeshPlacement& placeme
             uvs.push_back(uv);
         }
     }
-    const glm::vec3 position = glm::vec3(placement.position - scene.origin);
-    Shape shape = make_shape(std::move(triangles),
-                             model_matrix(position, placement.orientation, placement.scale),
-                             material < 0 ? added_material : material, normals, uvs);
-    require(std::any_of(shape.triangles.begin(), shape.triangles.end(), usable_triangle),
-            "no triangle of the mesh can be rendered (each has in float arithmetic an area of "
-            "zero or below float's smallest normal)");
-    if (material < 0) {
-        scene.materials.push_back(default_mesh_material());
-    }
-    scene.shapes.push_back(std::move(shape));
+    const glm::vec3 position = glm::vec3(placement.position - scene_.origin);
+    const glm::mat4 model = model_matrix(position, placement.orientation, placement.scale);
+    Shape shape = make_shape(std::move(triangles), model, 0, normals, uvs);
+    // The material last, so that a refused mesh adds no default material.
+    check_usable({shape}, "mesh");
+    shape.material = material_index(placement.material, "mesh");
+    scene_.shapes.push_back(std::move(shape));
+}
+
+void add_mesh(Scene& scene, const MeshArrays& mesh, const MeshPlacement& placement) {
+    SceneBuilder(scene).add_mesh(mesh, placement);
 }
 
 }  // namespace trac0r

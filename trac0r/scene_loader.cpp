@@ -75,14 +75,14 @@
 // order nlohmann iterates the materials object (by name).
 #include "trac0r/scene_loader.h"
 
-#include "trac0r/auto_smooth.h"
 #include "trac0r/input_checks.h"
 #include "trac0r/input_file.h"
 #include "trac0r/isolated_call.h"
 #include "trac0r/json_diagnostics.h"
 #include "trac0r/light_loader.h"
 #include "trac0r/material_loader.h"
-#include "trac0r/model_defects.h"
+#include "trac0r/refused_value.h"
+#include "trac0r/scene_builder.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -161,149 +161,40 @@ RenderSettings read_render(const json& value, const Location& at) {
 
 // ---- Shapes -----------------------------------------------------------------
 
-// What a shape needs besides its geometry, to build it.
+// What a shape needs besides its keys, to build it.
 struct ShapeContext {
-    glm::dvec3 origin{0.0};  // Scene::origin: positions are made relative to it
-    std::map<std::string, int> material_index;
-    std::vector<std::string> material_names;
+    SceneBuilder* builder = nullptr;
     std::string base_dir;
-    // The scene's materials, and after them those that meshes' files add
-    // (a scene material of the same name takes their place).
-    std::vector<Material>* materials = nullptr;
-    // A file's material (its path and name) -> its index in materials.
-    std::map<std::string, int>* file_material_index = nullptr;
-    // The scene's textures, which meshes' materials add.
-    std::vector<Texture>* textures = nullptr;
-    // Where the model files' defects go (LoadOptions::strict).
-    ModelDefects* defects = nullptr;
-    // The index of default_mesh_material in materials once a mesh without
-    // a material has added it (or the scene's own "default"); -1 before.
-    int* default_material = nullptr;
 };
 
-// The scene's textures within scene_texel_budget in all, or an error
-// naming the mesh file whose texture went over.
-void check_scene_texels(const std::vector<Texture>& textures, const std::string& path) {
-    const std::uint64_t texels = texel_count(textures);
-    if (texels > scene_texel_budget()) {
-        throw std::runtime_error(path + ": its textures bring the scene's to " +
-                                 std::to_string(texels) + " texels, over the " +
-                                 std::to_string(scene_texel_budget()) +
-                                 " a scene may have on this machine");
-    }
-}
-
-int read_material_reference(const ObjectReader& o, const ShapeContext& context, bool optional) {
+// The shape's "material": "" where a mesh has none (SceneBuilder's
+// default), else a string (the builder looks it up).
+std::string read_material_name(const ObjectReader& o, bool optional) {
     if (optional && !o.has("material")) {
-        int& index = *context.default_material;
-        if (index < 0) {
-            const auto own = context.material_index.find("default");
-            if (own != context.material_index.end()) {
-                index = own->second;
-            } else {
-                index = static_cast<int>(context.materials->size());
-                context.materials->push_back(default_mesh_material());
-            }
-        }
-        return index;
+        return "";
     }
     const json& value = o.required("material", "the name of a material");
-    const Location at = o.at("material");
-    if (!value.is_string()) {
-        fail_expected(at, "the name of a material", value);
+    if (!value.is_string() || value.get<std::string>().empty()) {
+        fail_expected(o.at("material"), "the name of a material", value);
     }
-    const auto found = context.material_index.find(value.get<std::string>());
-    if (found == context.material_index.end()) {
-        // The first names only: a scene may have thousands.
-        const std::size_t shown = 20;
-        const std::vector<std::string>& names = context.material_names;
-        const std::vector<std::string> first(names.begin(),
-                                             names.begin() + std::min(shown, names.size()));
-        const std::string more =
-            names.size() > shown ? " and " + std::to_string(names.size() - shown) + " more" : "";
-        fail(at, "unknown material " + describe(value) + " (known materials: " + join(first, "\"") +
-                     more + ")");
-    }
-    return found->second;
+    return value.get<std::string>();
 }
 
-
-std::vector<Shape> read_mesh(const ObjectReader& o, const ShapeContext& context,
-                             const glm::vec3& position, const glm::vec3& orientation,
-                             int material) {
+void read_mesh(const ObjectReader& o, const ShapeContext& context, MeshFilePlacement placement) {
     const std::string expected = "the path of a mesh file (.obj, .ply, .gltf or .glb)";
     const json& file = o.required("file", expected);
     if (!file.is_string() || file.get<std::string>().empty()) {
         fail_expected(o.at("file"), expected, file);
     }
-    const glm::vec3 scale = o.optional_vec3("scale", NumberRule::non_zero, glm::vec3(1.0f));
-    const bool smooth = o.optional_bool("smooth", true);
-    const bool file_materials = o.optional_bool("file_materials", true);
-    // Blender's auto smooth, for files with neither normals nor groups.
-    const bool auto_smoothed = o.has("smooth_angle");
-    const float smooth_angle = auto_smoothed ? o.required_float("smooth_angle", NumberRule::non_negative) : 0.0f;
-    if (smooth_angle > 180.0f) {
-        fail(o.at("smooth_angle"), "expected degrees in [0, 180], got " + describe(o["smooth_angle"]));
+    placement.scale = o.optional_vec3("scale", NumberRule::non_zero, glm::vec3(1.0f));
+    placement.smooth = o.optional_bool("smooth", true);
+    placement.file_materials = o.optional_bool("file_materials", true);
+    if (o.has("smooth_angle")) {
+        placement.smooth_angle = o.required_float("smooth_angle", NumberRule::non_negative);
     }
+    const std::string path = resolve_path(context.base_dir, file.get<std::string>());
     try {
-        const std::string path = resolve_path(context.base_dir, file.get<std::string>());
-        // The file's textures are counted against the scene's room before
-        // they are decoded (a small file may name many huge images).
-        MeshParts mesh =
-            load_mesh_parts(path, position, orientation, scale, material, smooth, file_materials,
-                            scene_texel_budget() - texel_count(*context.textures), context.defects);
-        std::vector<Material>& materials = *context.materials;
-        std::vector<Texture>& textures = *context.textures;
-        // The file's textures that its materials use, moved into the
-        // scene's on first use: by index in mesh.textures.
-        std::vector<int> texture_in_scene(mesh.textures.size(), -1);
-        std::vector<Shape> shapes;
-        for (MeshPart& part : mesh.parts) {
-            if (part.material >= 0) {
-                // The scene file's material of the same name, else the
-                // mesh file's, added once for each file and name (so files
-                // whose materials share a name, or have none, stay apart).
-                Material m = mesh.materials[static_cast<std::size_t>(part.material)];
-                const auto own = context.material_index.find(m.name);
-                if (!m.name.empty() && own != context.material_index.end()) {
-                    part.shape.material = own->second;
-                } else {
-                    if (m.name.empty()) {
-                        m.name = path + " #" + std::to_string(part.material);
-                    }
-                    const std::string key = path + "\n" + m.name;
-                    const auto found = context.file_material_index->find(key);
-                    if (found != context.file_material_index->end()) {
-                        part.shape.material = found->second;
-                    } else {
-                        part.shape.material = static_cast<int>(materials.size());
-                        (*context.file_material_index)[key] = part.shape.material;
-                        // The mesh's textures this material uses, moved
-                        // into the scene's once each.
-                        for (int* texture : texture_fields(m)) {
-                            if (*texture < 0) {
-                                continue;
-                            }
-                            int& index = texture_in_scene[static_cast<std::size_t>(*texture)];
-                            if (index < 0) {
-                                index = static_cast<int>(textures.size());
-                                textures.push_back(
-                                    std::move(mesh.textures[static_cast<std::size_t>(*texture)]));
-                                check_scene_texels(textures, path);
-                            }
-                            *texture = index;
-                        }
-                        materials.push_back(m);
-                    }
-                }
-            }
-            part.shape.source = path;
-            shapes.push_back(std::move(part.shape));
-        }
-        if (auto_smoothed && smooth) {
-            auto_smooth(shapes, smooth_angle);
-        }
-        return shapes;
+        context.builder->add_mesh_file(path, placement);
     } catch (const std::runtime_error& e) {
         // tinyobjloader's messages end in a newline; ours are one line.
         std::string message = e.what();
@@ -322,8 +213,9 @@ const std::map<std::string, std::vector<std::string>>& shape_type_keys() {
     return keys;
 }
 
-// A shape of the file: one Shape, or a mesh's parts by material.
-std::vector<Shape> read_shape(const json& value, const Location& at, const ShapeContext& context) {
+// A shape of the file, added to the builder's scene (a mesh: its parts by
+// material).
+void read_shape(const json& value, const Location& at, const ShapeContext& context) {
     const ObjectReader o(value, at, "a shape object");
     const std::vector<std::string> types = {"plane", "box", "icosphere", "mesh"};
     const std::string type =
@@ -335,56 +227,42 @@ std::vector<Shape> read_shape(const json& value, const Location& at, const Shape
 
     // A mesh's faces may all have their file's materials: its own is
     // optional (default_mesh_material).
-    const int material = read_material_reference(o, context, type == "mesh");
-    // Relative to the local origin in double, then rounded to float once.
-    const glm::vec3 position = glm::vec3(
-        o.optional_dvec3("position", NumberRule::finite, glm::dvec3(0.0)) - context.origin);
-    const glm::vec3 orientation =
-        o.optional_vec3("orientation", NumberRule::finite, glm::vec3(0.0f));
-    if (type == "plane") {
-        const glm::vec2 size = read_vec2(o.required("size", expectation(NumberRule::positive, 2)),
-                                         o.at("size"), NumberRule::positive);
-        return {make_plane(position, orientation, size, material)};
+    ShapePlacement placement;
+    placement.material = read_material_name(o, type == "mesh");
+    // In the file's coordinates, in double: the builder makes them relative
+    // to the local origin, then rounds them to float once.
+    placement.position = o.optional_dvec3("position", NumberRule::finite, glm::dvec3(0.0));
+    placement.orientation = o.optional_vec3("orientation", NumberRule::finite, glm::vec3(0.0f));
+    SceneBuilder& builder = *context.builder;
+    try {
+        if (type == "plane") {
+            builder.add_plane(placement,
+                              read_vec2(o.required("size", expectation(NumberRule::positive, 2)),
+                                        o.at("size"), NumberRule::positive));
+        } else if (type == "box") {
+            builder.add_box(placement, o.required_vec3("size", NumberRule::positive));
+        } else if (type == "icosphere") {
+            const float radius = o.required_float("radius", NumberRule::positive);
+            builder.add_icosphere(placement, radius, o.optional_int("subdivisions", 0, 7, 2));
+        } else {
+            MeshFilePlacement mesh;
+            mesh.material = placement.material;
+            mesh.position = placement.position;
+            mesh.orientation = placement.orientation;
+            read_mesh(o, context, mesh);
+        }
+    } catch (const SceneValueError& e) {
+        fail_refused(value, at, e);
     }
-    if (type == "box") {
-        return {make_box(position, orientation, o.required_vec3("size", NumberRule::positive),
-                         material)};
-    }
-    if (type == "icosphere") {
-        const float radius = o.required_float("radius", NumberRule::positive);
-        const int subdivisions = o.optional_int("subdivisions", 0, 7, 2);
-        return {make_icosphere(position, orientation, radius, subdivisions, material)};
-    }
-    return read_mesh(o, context, position, orientation, material);
 }
 
-std::vector<Shape> read_shapes(const json& value, const Location& at, const ShapeContext& context) {
+void read_shapes(const json& value, const Location& at, const ShapeContext& context) {
     if (!value.is_array() || value.empty()) {
         fail_expected(at, "a non-empty array of shapes", value);
     }
-    std::vector<Shape> shapes;
     for (std::size_t i = 0; i < value.size(); ++i) {
-        std::vector<Shape> parts = read_shape(value[i], at.index(i), context);
-        // Each number was in range, but the triangles are made in float: a
-        // shape of size 1e-20, or at 3e38, would silently vanish.
-        std::size_t count = 0;
-        bool any_usable = false;
-        for (Shape& part : parts) {
-            count += part.triangles.size();
-            any_usable = any_usable ||
-                         std::any_of(part.triangles.begin(), part.triangles.end(), usable_triangle);
-            shapes.push_back(std::move(part));
-        }
-        if (!any_usable) {
-            fail(at.index(i), "no triangle of the shape can be rendered (of " +
-                                  std::to_string(count) +
-                                  ", each has in float arithmetic an area of zero or below "
-                                  "float's smallest normal, or a vertex that is not finite: "
-                                  "degenerate faces, or a size, scale or position too small or "
-                                  "too large)");
-        }
+        read_shape(value[i], at.index(i), context);
     }
-    return shapes;
 }
 
 // ---- The document -----------------------------------------------------------
@@ -395,41 +273,35 @@ Scene read_scene(const json& document, const Location& at, const std::string& ba
     o.allow_only({"camera", "render", "materials", "shapes", "environment", "lights"},
                  "the top level");
     Scene scene;
+    SceneBuilder builder(scene, options);
     if (o.has("camera")) {
-        scene.camera = read_camera(o["camera"], o.at("camera"), &scene.origin);
+        glm::dvec3 origin(0.0);
+        const Camera camera = read_camera(o["camera"], o.at("camera"), &origin);
+        scene.origin = origin;
+        try {
+            builder.set_camera(camera);
+        } catch (const SceneValueError& e) {
+            fail_refused(o["camera"], o.at("camera"), e);
+        }
     }
     if (o.has("render")) {
         scene.render = read_render(o["render"], o.at("render"));
     }
-    scene.materials =
-        read_materials(o.required("materials", "an object of named materials"), o.at("materials"));
+    read_materials(o.required("materials", "an object of named materials"), o.at("materials"),
+                   builder);
     ShapeContext context;
-    context.origin = scene.origin;
+    context.builder = &builder;
     context.base_dir = base_dir;
-    context.materials = &scene.materials;
-    std::map<std::string, int> file_material_index;
-    context.file_material_index = &file_material_index;
-    context.textures = &scene.textures;
-    ModelDefects defects(options.strict);
-    context.defects = &defects;
-    int default_material = -1;
-    context.default_material = &default_material;
-    for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-        context.material_index[scene.materials[i].name] = static_cast<int>(i);
-        context.material_names.push_back(scene.materials[i].name);
-    }
     const bool no_shapes = options.shapes_optional &&
                            (!o.has("shapes") || (o["shapes"].is_array() && o["shapes"].empty()));
     if (!no_shapes) {
-        scene.shapes =
-            read_shapes(o.required("shapes", "an array of shapes"), o.at("shapes"), context);
+        read_shapes(o.required("shapes", "an array of shapes"), o.at("shapes"), context);
     }
-    scene.warnings = defects.lines();
     if (o.has("environment")) {
-        scene.environment = read_environment(o["environment"], o.at("environment"), base_dir);
+        read_environment(o["environment"], o.at("environment"), base_dir, builder);
     }
     if (o.has("lights")) {
-        scene.lamps = read_lamps(o["lights"], o.at("lights"), scene.origin);
+        read_lamps(o["lights"], o.at("lights"), builder);
     }
     return scene;
 }
