@@ -145,6 +145,32 @@ std::vector<T> flat(const py::object& value, const char* name) {
     return std::vector<T>(a.data(), a.data() + a.size());
 }
 
+// A dict of the scene format as JSON text (NumPy arrays and numbers as
+// lists and numbers), for the loader to read.
+std::string json_text(const py::object& value) {
+    const py::module_ json = py::module_::import("json");
+    const py::object to_list = py::cpp_function([](const py::object& o) -> py::object {
+        if (py::hasattr(o, "tolist")) {
+            return o.attr("tolist")();
+        }
+        throw py::type_error("expected numbers, lists, strings and booleans, got " +
+                             py::str(py::type::of(o)).cast<std::string>());
+    });
+    return json.attr("dumps")(value, py::arg("default") = to_list).cast<std::string>();
+}
+
+// Adds one object of the scene format to the scene (add_scene_object); its
+// mistakes are ValueErrors.
+void add_object(Scene& scene, const char* kind, const py::object& description,
+                const std::string& call, const std::string& base_dir) {
+    const std::string text = json_text(description);
+    try {
+        add_scene_object(scene, kind, text, call, base_dir);
+    } catch (const SceneError& e) {
+        throw py::value_error(e.what());
+    }
+}
+
 Image image_from_array(const py::array_t<float, py::array::c_style | py::array::forcecast>& a) {
     if (a.ndim() != 3 || a.shape(2) != 3 || a.shape(0) < 1 || a.shape(1) < 1) {
         throw py::value_error("write_image: image: expected an array of height x width x 3");
@@ -389,6 +415,52 @@ PYBIND11_MODULE(_trac0r, m) {
 clockwise, into the positions), normals (n x 3, smooth shading) and uvs (n x 2),
 placed as a scene file's mesh shape (position, orientation in radians, scale),
 with the scene's material of that name (none: its 'default', else grey).)")
+        .def(
+            "add_material",
+            [](Scene& s, const std::string& name, const std::string& type, const py::kwargs& params) {
+                py::dict material(params);
+                material["type"] = type;
+                py::dict named;
+                named[py::str(name)] = material;
+                add_object(s, "material", named, "Scene.add_material", ".");
+            },
+            py::arg("name"), py::arg("type"),
+            R"(Adds a material as the scene format's "materials" has it: a name, a type
+(diffuse, glossy, glass, conductor, plastic, principled, emissive) and that
+type's keys, e.g. add_material("red", "diffuse", color=(0.6, 0.05, 0.05)).
+A mistake raises ValueError naming the key.)")
+        .def(
+            "add_shape",
+            [](Scene& s, const std::string& type, const std::string& base_dir,
+               const py::kwargs& params) {
+                py::dict shape(params);
+                shape["type"] = type;
+                add_object(s, "shape", shape, "Scene.add_shape", base_dir);
+            },
+            py::arg("type"), py::arg("base_dir") = ".",
+            R"(Adds a shape as the scene format's "shapes" has it: plane, box, icosphere or
+mesh (a file, found from base_dir) with its keys, e.g.
+add_shape("icosphere", material="red", position=(0, 0.3, 0), radius=0.2).
+A mistake raises ValueError naming the key.)")
+        .def(
+            "add_light",
+            [](Scene& s, const std::string& type, const py::kwargs& params) {
+                py::dict light(params);
+                light["type"] = type;
+                add_object(s, "light", light, "Scene.add_light", ".");
+            },
+            py::arg("type"),
+            R"(Adds a point, spot or sun light as the scene format's "lights" has it, e.g.
+add_light("point", position=(0, 2, 0), intensity=5). A mistake raises ValueError.)")
+        .def(
+            "set_environment",
+            [](Scene& s, const std::string& base_dir, const py::kwargs& params) {
+                add_object(s, "environment", py::dict(params), "Scene.set_environment", base_dir);
+            },
+            py::arg("base_dir") = ".",
+            R"(Sets the environment as the scene format's "environment" has it: color=(r, g, b),
+or map="sky.hdr" (found from base_dir) with rotation; strength. A mistake raises
+ValueError.)")
         .def(
             "set_camera",
             [](Scene& s, const py::object& camera) {

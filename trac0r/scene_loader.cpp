@@ -338,6 +338,60 @@ Scene load_scene_file(const std::string& path, const LoadOptions& options) {
     return parse_scene(text, path, directory_of(path), options);
 }
 
+void add_scene_object(Scene& scene, const std::string& kind, const std::string& json_text,
+                      const std::string& origin, const std::string& base_dir,
+                      const LoadOptions& options) {
+    const std::vector<std::string> kinds = {"material", "shape", "light", "environment"};
+    if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end()) {
+        throw std::invalid_argument("add_scene_object: kind: expected one of " +
+                                    join(kinds, "\"") + ", got \"" + kind + "\"");
+    }
+    const ReaderIsolation isolation(options.isolate_readers);
+    // What a mistake takes back: the builder only appends, or sets the
+    // environment (and the warnings).
+    const std::size_t materials = scene.materials.size();
+    const std::size_t shapes = scene.shapes.size();
+    const std::size_t textures = scene.textures.size();
+    const std::size_t lamps = scene.lamps.size();
+    const std::vector<std::string> warnings = scene.warnings;
+    const Environment environment = kind == "environment" ? scene.environment : Environment();
+    try {
+        const json value = parse_json(json_text, origin);
+        const Location at{origin, ""};
+        SceneBuilder builder(scene, options);
+        if (kind == "material") {
+            read_materials(value, at, builder);
+        } else if (kind == "shape") {
+            ShapeContext context;
+            context.builder = &builder;
+            context.base_dir = base_dir;
+            read_shape(value, at, context);
+        } else if (kind == "light") {
+            read_light(value, at, builder);
+        } else {
+            read_environment(value, at, base_dir, builder);
+        }
+    } catch (...) {
+        scene.materials.erase(scene.materials.begin() + static_cast<std::ptrdiff_t>(materials),
+                              scene.materials.end());
+        scene.shapes.erase(scene.shapes.begin() + static_cast<std::ptrdiff_t>(shapes),
+                           scene.shapes.end());
+        scene.textures.erase(scene.textures.begin() + static_cast<std::ptrdiff_t>(textures),
+                             scene.textures.end());
+        scene.lamps.erase(scene.lamps.begin() + static_cast<std::ptrdiff_t>(lamps),
+                          scene.lamps.end());
+        scene.warnings = warnings;
+        if (kind == "environment") {
+            scene.environment = environment;
+        }
+        try {
+            throw;
+        } catch (const JsonError& e) {
+            throw SceneError(e.what());
+        }
+    }
+}
+
 Material default_mesh_material() {
     Material m;
     m.name = "default";

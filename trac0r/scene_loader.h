@@ -58,6 +58,18 @@ Camera parse_camera_block(const std::string& json_text, const std::string& origi
                           const glm::dvec3& scene_origin);
 Camera load_camera_file(const std::string& path, const glm::dvec3& scene_origin);
 
+// One object of the scene format, as JSON text, added to `scene` through
+// a SceneBuilder (scene_builder.h) with the loader's keys, defaults and
+// messages: `kind` "material" ({"NAME": {...}}, as in "materials"),
+// "shape" (one of "shapes"; a mesh's file is found from base_dir),
+// "light" (one of "lights") or "environment". A mistake is a SceneError
+// "ORIGIN: /json/pointer: ...", and the scene is left as it was; an
+// unknown kind is std::invalid_argument. The Python module's
+// Scene.add_material and its like.
+void add_scene_object(Scene& scene, const std::string& kind, const std::string& json_text,
+                      const std::string& origin, const std::string& base_dir,
+                      const LoadOptions& options = LoadOptions());
+
 }  // namespace trac0r
 
 #endif

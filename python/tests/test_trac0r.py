@@ -110,6 +110,74 @@ def test_a_mesh_from_numpy_arrays_renders_as_the_same_mesh_from_a_file(tmp_path)
     assert a.max() > 0
 
 
+def test_a_scene_built_with_add_methods_renders_as_its_scene_file(tmp_path):
+    (tmp_path / "pyramid.obj").write_text(OBJ)
+    shapes = [
+        {"type": "plane", "material": "floor", "position": [0, -0.6, 0], "size": [3, 3]},
+        {"type": "box", "material": "coat", "position": [0.5, -0.3, 0.3], "size": [0.4, 0.6, 0.4],
+         "orientation": [0, 0.4, 0]},
+        {"type": "icosphere", "material": "gold", "position": [-0.5, -0.3, 0.2], "radius": 0.3},
+        {"type": "mesh", "file": "pyramid.obj", "scale": [0.3, 0.3, 0.3],
+         "position": [0, 0.2, 0.6], "smooth_angle": 40},
+    ]
+    materials = {
+        "floor": {"type": "diffuse", "color": [0.7, 0.7, 0.6]},
+        "coat": {"type": "plastic", "color": [0.1, 0.2, 0.7], "roughness": 0.3},
+        "gold": {"type": "conductor", "metal": "gold", "roughness": 0.2},
+    }
+    lights = [{"type": "spot", "position": [0, 2, -1], "direction": [0, -1, 0.5], "intensity": 8,
+               "angle": 50},
+              {"type": "sun", "direction": [0.4, 1, -0.3], "irradiance": 1.5}]
+    environment = {"color": [0.2, 0.3, 0.5], "strength": 0.5}
+    described = {"render": ROOM["render"], "camera": ROOM["camera"], "materials": materials,
+                 "shapes": shapes, "lights": lights, "environment": environment}
+    path = tmp_path / "scene.json"
+    import json
+    path.write_text(json.dumps(described))
+
+    built = trac0r.scene_from_dict({"render": ROOM["render"], "camera": ROOM["camera"],
+                                    "materials": {"floor": materials["floor"]}})
+    built.add_material("coat", **materials["coat"])
+    built.add_material("gold", "conductor", metal="gold", roughness=np.float32(0.2))
+    for shape in shapes:
+        built.add_shape(base_dir=str(tmp_path), **shape)
+    built.add_light("spot", position=np.array([0, 2, -1]), direction=(0, -1, 0.5), intensity=8,
+                    angle=50)
+    built.add_light(**lights[1])
+    built.set_environment(**environment)
+    assert built.materials == ["floor", "coat", "gold", "default"]
+    a = trac0r.render(built, spp=4)
+    b = trac0r.render(str(path), spp=4)
+    assert a.max() > 0
+    assert np.array_equal(a, b)
+
+
+def test_bad_scene_objects_raise_value_errors_and_leave_the_scene_as_it_was():
+    scene = trac0r.scene_from_dict(ROOM)
+    before = (scene.materials, scene.shape_count, repr(scene))
+    with pytest.raises(ValueError, match=r"^Scene.add_material: /red2/roughness: expected a number "
+                                         r"in \[0, 1\], got 1.5$"):
+        scene.add_material("red2", "glossy", color=(1, 0, 0), roughness=1.5)
+    with pytest.raises(ValueError, match=r"/emittance: the colour times the emittance is 1e\+31"):
+        scene.add_material("sun", "emissive", color=(1, 1, 1), emittance=1e31)
+    with pytest.raises(ValueError, match=r'/material: unknown material "blue" \(known materials: '
+                                         r'"red", "white"\)'):
+        scene.add_shape("box", material="blue", size=(1, 1, 1))
+    with pytest.raises(ValueError, match=r"/size: expected an array of 3 finite positive numbers"):
+        scene.add_shape("box", material="red", size=(1, -1, 1))
+    with pytest.raises(ValueError, match=r"Scene.add_shape: /file: .*no_such.obj"):
+        scene.add_shape("mesh", file="no_such.obj")
+    with pytest.raises(ValueError, match=r"/intensity: the colour times the intensity is 1e\+31"):
+        scene.add_light("point", position=(0, 1, 0), intensity=1e31)
+    with pytest.raises(ValueError, match=r"unknown key in a point light"):
+        scene.add_light("point", position=(0, 1, 0), intensity=1, radius=2)
+    with pytest.raises(ValueError, match=r"Scene.set_environment: /strength: expected a finite number >= 0, got -1"):
+        scene.set_environment(color=(1, 1, 1), strength=-1)
+    with pytest.raises(TypeError, match=r"expected numbers, lists, strings and booleans"):
+        scene.add_light("point", position=object(), intensity=1)
+    assert (scene.materials, scene.shape_count, repr(scene)) == before
+
+
 def test_bad_meshes_raise_value_errors_naming_the_argument():
     scene = trac0r.scene_from_dict(ROOM)
     with pytest.raises(ValueError, match=r"indices: triangle 0 has vertex 7, past the 3"):
