@@ -184,6 +184,43 @@ TEST_CASE("textures are bilinear between texel centres and repeat", "[texture]")
     CHECK(std::isfinite(nan_lookup.x));
 }
 
+TEST_CASE("textures clamp to the edge or mirror as their wrap modes say", "[texture]") {
+    // 2 x 2 as above: red, green on the top row; blue, white below.
+    const std::uint32_t texels[4] = {rgba(255, 0, 0), rgba(0, 255, 0), rgba(0, 0, 255),
+                                     rgba(255, 255, 255)};
+    const auto sampler = [&](TextureWrap u, TextureWrap v) {
+        kernel::TextureRecord t;
+        t.info = glm::uvec4(0u, 2u, 2u, static_cast<unsigned>(u) | static_cast<unsigned>(v) << 2);
+        return [=, &texels](float x, float y) { return kernel::texture_bilinear(texels, t, x, y); };
+    };
+    const auto clamp = sampler(TextureWrap::clamp, TextureWrap::clamp);
+    // Past an edge, and between the edge and the last centre: the edge texel
+    // alone (repeat would blend in the other side's).
+    CHECK(near(clamp(1.25f, 0.75f), linear(texels[1])));
+    CHECK(near(clamp(0.9f, 0.75f), linear(texels[1])));
+    CHECK(near(clamp(-3.0f, 0.75f), linear(texels[0])));
+    CHECK(near(clamp(0.0f, 0.75f), linear(texels[0])));
+    CHECK(near(clamp(0.25f, 7.0f), linear(texels[0])));  // v above 1: the top row
+    CHECK(near(clamp(0.25f, -7.0f), linear(texels[2])));
+    // Inside, as repeat.
+    CHECK(near(clamp(0.375f, 0.75f), 0.75f * linear(texels[0]) + 0.25f * linear(texels[1])));
+
+    const auto mirror = sampler(TextureWrap::mirror, TextureWrap::mirror);
+    CHECK(near(mirror(1.25f, 0.75f), mirror(0.75f, 0.75f)));
+    CHECK(near(mirror(1.25f, 0.75f), linear(texels[1])));
+    CHECK(near(mirror(-0.25f, 0.75f), linear(texels[0])));
+    CHECK(near(mirror(2.25f, 0.75f), linear(texels[0])));
+    CHECK(near(mirror(0.25f, 1.25f), linear(texels[0])));  // v mirrored at the top
+    CHECK(near(mirror(1.0f, 0.75f), linear(texels[1])));   // the edge: no blend with red
+
+    // u and v each their own: u clamps, v repeats.
+    const auto mixed = sampler(TextureWrap::clamp, TextureWrap::repeat);
+    CHECK(near(mixed(1.25f, 1.75f), linear(texels[1])));
+    CHECK(near(mixed(1.25f, 0.0f), 0.5f * (linear(texels[1]) + linear(texels[3]))));
+    const glm::vec3 nan_lookup = mirror(NAN, -INFINITY);
+    CHECK(std::isfinite(nan_lookup.x));
+}
+
 TEST_CASE("a hit's texture coordinates come from its barycentrics", "[texture]") {
     Texture checker;
     checker.width = 2;

@@ -41,17 +41,21 @@ void write_test_png(const std::string& path) {
 
 // One triangle in the xy plane with texture coordinates (x, y) at its
 // vertices and a material with a base-colour texture whose image's URI is
-// image_uri; its buffer embedded.
-std::string textured_triangle_gltf(const std::string& image_uri) {
+// image_uri, sampled by `sampler` (a glTF sampler object; "": none); its
+// buffer embedded.
+std::string textured_triangle_gltf(const std::string& image_uri,
+                                   const std::string& sampler = "") {
     const float values[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1};
     const std::string buffer(reinterpret_cast<const char*>(values), sizeof values);
-    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    return std::string(R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
   "nodes": [{"mesh": 0}],
   "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0}]}],
   "materials": [{"name": "logo", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1],
                  "baseColorTexture": {"index": 0}, "metallicFactor": 0}}],
-  "textures": [{"source": 0}], "images": [{"uri": ")" +
-           image_uri + R"("}],
+  "textures": [{"source": 0)") +
+           (sampler.empty() ? "" : ", \"sampler\": 0") + "}]" +
+           (sampler.empty() ? "" : ", \"samplers\": [" + sampler + "]") +
+           R"(, "images": [{"uri": ")" + image_uri + R"("}],
   "buffers": [{"byteLength": 60, "uri": "data:application/octet-stream;base64,)" +
            base64(buffer) + R"("}],
   "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
@@ -164,7 +168,22 @@ TEST_CASE("base-colour textures from MTL and glTF, with the file's coordinates",
             // glTF's v runs down from the image's top; assimp gives OBJ's
             // (up from the bottom).
             check_coordinates_follow_vertices(scene.shapes[0], 1.0f, true);
+            CHECK(scene.textures[0].wrap_u == TextureWrap::repeat);
+            CHECK(scene.textures[0].wrap_v == TextureWrap::repeat);
         }
+    }
+    SECTION("a glTF sampler's wrap modes, through the reader's child process") {
+        dir.write("t.gltf",
+                  textured_triangle_gltf("t.png", R"({"wrapS": 33071, "wrapT": 33648})"));
+        const Scene scene = load_scene_file(mesh_scene("t.gltf"));
+        REQUIRE(scene.textures.size() == 1);
+        CHECK(scene.textures[0].wrap_u == TextureWrap::clamp);
+        CHECK(scene.textures[0].wrap_v == TextureWrap::mirror);
+        const PackedScene packed = pack_scene(scene);
+        REQUIRE(packed.textures.size() == 1);
+        CHECK(packed.textures[0].info.w == (1u | 2u << 2));
+        dir.write("t.gltf", textured_triangle_gltf("t.png", R"({"wrapS": 10497})"));
+        CHECK(load_scene_file(mesh_scene("t.gltf")).textures[0].wrap_u == TextureWrap::repeat);
     }
     SECTION("a texture that cannot be read or decoded is named with its material") {
         dir.write("m.obj", quad_obj);

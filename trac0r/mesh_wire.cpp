@@ -160,6 +160,8 @@ std::string mesh_to_wire(const PartBuilder& parts, const std::vector<int>& part_
         w.text(t.source);
         w.i32(t.width);
         w.i32(t.height);
+        w.u32(static_cast<std::uint32_t>(t.wrap_u));
+        w.u32(static_cast<std::uint32_t>(t.wrap_v));
         w.u64(t.texels.size());
         w.raw(t.texels.data(), t.texels.size() * sizeof(std::uint32_t));
     }
@@ -323,7 +325,7 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
                             std::to_string(mesh.materials.size()));
         }
     }
-    const std::size_t texture_count = r.count(8 + 4 + 4 + 8, "textures");
+    const std::size_t texture_count = r.count(8 + 4 + 4 + 4 + 4 + 8, "textures");
     for (std::size_t i = 0; i < texture_count; ++i) {
         Texture t;
         t.source = r.text("bytes of a texture's name");
@@ -334,6 +336,13 @@ MeshParts mesh_from_wire(const std::string& bytes, const glm::mat4& model, int m
             throw WireError("a texture of " + std::to_string(t.width) + " x " +
                             std::to_string(t.height) + " texels");
         }
+        const std::uint32_t wrap_u = r.get<std::uint32_t>();
+        const std::uint32_t wrap_v = r.get<std::uint32_t>();
+        if (wrap_u > 2u || wrap_v > 2u) {
+            throw WireError("a texture wrap mode of " + std::to_string(std::max(wrap_u, wrap_v)));
+        }
+        t.wrap_u = static_cast<TextureWrap>(wrap_u);
+        t.wrap_v = static_cast<TextureWrap>(wrap_v);
         t.texels.resize(r.count(sizeof(std::uint32_t), "texels"));
         if (t.texels.size() != static_cast<std::size_t>(t.width) * t.height) {
             throw WireError("a texture of " + std::to_string(t.width) + " x " +

@@ -232,7 +232,9 @@ void pack_textures(const Scene& scene, const std::vector<UsableTriangle>& usable
         kernel::TextureRecord record;
         record.info = glm::uvec4(static_cast<std::uint32_t>(packed.texels.size()),
                                  static_cast<std::uint32_t>(t.width),
-                                 static_cast<std::uint32_t>(t.height), 0u);
+                                 static_cast<std::uint32_t>(t.height),
+                                 static_cast<std::uint32_t>(t.wrap_u) |
+                                     static_cast<std::uint32_t>(t.wrap_v) << 2);
         packed.textures.push_back(record);
         packed.texels.insert(packed.texels.end(), t.texels.begin(), t.texels.end());
     }

@@ -119,6 +119,8 @@ std::uint64_t scene_digest(const Scene& scene) {
     for (const Texture& t : scene.textures) {
         h.value(t.width);
         h.value(t.height);
+        h.value(static_cast<unsigned>(t.wrap_u));
+        h.value(static_cast<unsigned>(t.wrap_v));
         h.bytes(t.texels.data(), t.texels.size() * sizeof(std::uint32_t));
     }
     const Environment& e = scene.environment;

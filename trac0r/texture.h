@@ -11,10 +11,17 @@
 
 namespace trac0r {
 
+// How a texture continues outside [0, 1) in u or v (glTF's sampler wrap
+// modes: REPEAT, CLAMP_TO_EDGE, MIRRORED_REPEAT). The kernel reads them
+// from TextureRecord::info.w (kernel/texture.h).
+enum class TextureWrap : unsigned { repeat = 0, clamp = 1, mirror = 2 };
+
 struct Texture {
     std::string source;  // the file, or the mesh file and its embedded image
     int width = 0;
     int height = 0;
+    TextureWrap wrap_u = TextureWrap::repeat;
+    TextureWrap wrap_v = TextureWrap::repeat;
     // Row by row from the image's top row, RGBA8 in sRGB, red in the low
     // byte (alpha is kept but not used).
     std::vector<std::uint32_t> texels;

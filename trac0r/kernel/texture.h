@@ -93,8 +93,36 @@ T0_INLINE float3 texel_value(T0_GLOBAL const t0_u32* texels, t0_u32 index, int s
            (1.0f / 255.0f);
 }
 
+// A coordinate mirrored at every integer (glTF's MIRRORED_REPEAT): 1.25
+// reads as 0.75, 2.25 as 0.25, -0.25 as 0.25.
+T0_INLINE float mirror_coordinate(float t) {
+    const float f = t - 2.0f * floor(0.5f * t);  // in [0, 2)
+    const float m = f < 1.0f ? f : 2.0f - f;
+    return m >= 0.0f && m <= 1.0f ? m : 0.0f;
+}
+
+// A coordinate in [0, 1] as the wrap mode says (TextureWrap: 0 repeat,
+// 1 clamp to the edge, 2 mirrored repeat); NaN reads as 0.
+T0_INLINE float wrap_coordinate(float t, t0_u32 mode) {
+    if (mode == 1u) {
+        return t > 0.0f ? (t < 1.0f ? t : 1.0f) : 0.0f;
+    }
+    return mode == 2u ? mirror_coordinate(t) : repeat_coordinate(t);
+}
+
+// The texel column (row) of index i in [-1, n] (n texels): repeat wraps
+// -1 and n round; clamp and mirror keep the edge texel.
+T0_INLINE t0_u32 wrap_index(float i, t0_u32 n, t0_u32 mode) {
+    if (i < 0.0f) {
+        return mode == 0u ? n - 1u : 0u;
+    }
+    const t0_u32 k = (t0_u32)i;
+    return k < n ? k : (mode == 0u ? 0u : n - 1u);
+}
+
 // The four texels around (u, v) and the weights between them: bilinear
-// between the nearest texel centres, repeating at the edges.
+// between the nearest texel centres, beyond the edges as the texture's
+// wrap modes say (info.w: u's in bits 0-1, v's in bits 2-3).
 typedef struct BilinearTaps {
     t0_u32 i00, i01, i10, i11;  // top-left, top-right, bottom-left, bottom-right
     float fx, fy;
@@ -104,16 +132,18 @@ T0_INLINE BilinearTaps bilinear_taps(TextureRecord texture, float u, float v) {
     const t0_u32 first = texture.info.x;
     const t0_u32 w = texture.info.y;
     const t0_u32 h = texture.info.z;
+    const t0_u32 wrap_u = texture.info.w & 3u;
+    const t0_u32 wrap_v = (texture.info.w >> 2) & 3u;
     // Row 0 is the image's top; v = 0 its bottom.
-    const float x = repeat_coordinate(u) * (float)w - 0.5f;
-    const float y = (1.0f - repeat_coordinate(v)) * (float)h - 0.5f;
+    const float x = wrap_coordinate(u, wrap_u) * (float)w - 0.5f;
+    const float y = (1.0f - wrap_coordinate(v, wrap_v)) * (float)h - 0.5f;
     const float x0 = floor(x);
     const float y0 = floor(y);
-    // x0 in [-1, w - 1] (y0 alike): -1 wraps to the last column.
-    const t0_u32 ix0 = x0 < 0.0f ? w - 1u : (t0_u32)x0;
-    const t0_u32 iy0 = y0 < 0.0f ? h - 1u : (t0_u32)y0;
-    const t0_u32 ix1 = ix0 + 1u >= w ? 0u : ix0 + 1u;
-    const t0_u32 iy1 = iy0 + 1u >= h ? 0u : iy0 + 1u;
+    // x0 in [-1, w] (y0 alike).
+    const t0_u32 ix0 = wrap_index(x0, w, wrap_u);
+    const t0_u32 iy0 = wrap_index(y0, h, wrap_v);
+    const t0_u32 ix1 = wrap_index(x0 + 1.0f, w, wrap_u);
+    const t0_u32 iy1 = wrap_index(y0 + 1.0f, h, wrap_v);
     BilinearTaps t;
     t.i00 = first + iy0 * w + ix0;
     t.i01 = first + iy0 * w + ix1;

@@ -185,7 +185,7 @@ typedef struct T0_ALIGN16 TriangleUVs {
 // scene's texel buffer, row by row from the image's top row, each RGBA8 in
 // sRGB (red in the low byte; alpha unused).
 typedef struct T0_ALIGN16 TextureRecord {
-    uint4 info;  // x: first texel, y: width, z: height, w: unused
+    uint4 info;  // x: first texel, y: width, z: height, w: wrap modes (texture.h)
 } TextureRecord;
 
 typedef struct T0_ALIGN16 MaterialRecord {
