@@ -156,7 +156,9 @@ std::string json_text(const py::object& value) {
         throw py::type_error("expected numbers, lists, strings and booleans, got " +
                              py::str(py::type::of(o)).cast<std::string>());
     });
-    return json.attr("dumps")(value, py::arg("default") = to_list).cast<std::string>();
+    // NaN and infinity are no JSON: a ValueError before the loader.
+    return json.attr("dumps")(value, py::arg("default") = to_list, py::arg("allow_nan") = false)
+        .cast<std::string>();
 }
 
 // Adds one object of the scene format to the scene (add_scene_object); its

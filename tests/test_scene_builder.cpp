@@ -341,3 +341,49 @@ TEST_CASE("the builder refuses what only code can get wrong, leaving the scene a
     CHECK(scene.shapes[0].material == static_cast<int>(materials));
     CHECK(scene.shapes[1].material == static_cast<int>(materials));
 }
+
+TEST_CASE("a mesh file's materials stay its own, and a refused file adds nothing",
+          "[scene_builder]") {
+    Scene scene = white_scene();
+    // A scene material named as the file's ("gold") does not take the
+    // place of a later file's in another builder (Python's add_shape).
+    Material gold = material("gold", MaterialType::conductor, glm::vec3(1.0f));
+    SceneBuilder(scene).add_material(gold);
+    SceneBuilder(scene).add_mesh_file(scenes_dir + "/meshes/cube_mtl.obj", MeshFilePlacement());
+    const std::size_t after_first = scene.materials.size();
+    const std::size_t parts = scene.shapes.size();
+    // The same file again, from a new builder: its materials are found,
+    // not added twice.
+    SceneBuilder(scene).add_mesh_file(scenes_dir + "/meshes/cube_mtl.obj", MeshFilePlacement());
+    CHECK(scene.materials.size() == after_first);
+    CHECK(scene.shapes.size() == 2 * parts);
+    CHECK(scene.shapes[parts].material == scene.shapes[0].material);
+    for (const Material& m : scene.materials) {
+        CHECK((m.file.empty() ? m.name != "brick"
+                              : m.file.find("cube_mtl.obj") != std::string::npos));
+    }
+
+    // A file that cannot be read, in a scene without a default yet: the
+    // default it would have taken is taken back, and added again on use.
+    Scene fresh = white_scene();
+    SceneBuilder b(fresh);
+    CHECK_THROWS_AS(b.add_mesh_file(scenes_dir + "/meshes/no_such.obj", MeshFilePlacement()),
+                    std::runtime_error);
+    CHECK(fresh.materials.size() == 1);
+    CHECK(fresh.shapes.empty());
+    b.add_icosphere(at("", glm::dvec3(0.0)), 1.0f);
+    REQUIRE(fresh.materials.size() == 2);
+    CHECK(fresh.shapes[0].material == 1);
+    CHECK(fresh.materials[1].name == "default");
+}
+
+TEST_CASE("an unknown material's name is shown as JSON, cut short", "[scene_builder]") {
+    Scene scene = white_scene();
+    const std::string name = "bad\n" + std::string(200, 'x');
+    const std::string message =
+        code_error([&] {
+            SceneBuilder(scene).add_box(at(name, glm::dvec3(0.0)), glm::vec3(1.0f));
+        }).what();
+    CHECK(message.find('\n') == std::string::npos);
+    CHECK(message.size() < 200);
+}

@@ -32,6 +32,10 @@ enum class AlphaMode : unsigned { opaque = 0, mask = 1, blend = 2 };
 
 struct Material {
     std::string name;
+    // The model file whose material this is ("" for the scene's own): a
+    // file's names are its own, apart from the scene's and other files'
+    // (SceneBuilder). Not part of the image (scene_digest leaves it out).
+    std::string file;
     MaterialType type = MaterialType::diffuse;
     glm::vec3 color{0.8f};
     float emittance = 0.0f;

@@ -118,7 +118,12 @@ const char* const texture_field_names[] = {"texture",          "roughness_textur
 SceneBuilder::SceneBuilder(Scene& scene, const LoadOptions& options)
     : scene_(scene), options_(options), warnings_before_(scene.warnings), defects_(options.strict) {
     for (std::size_t i = 0; i < scene_.materials.size(); ++i) {
-        material_index_.emplace(scene_.materials[i].name, static_cast<int>(i));
+        const Material& m = scene_.materials[i];
+        if (m.file.empty()) {
+            material_index_.emplace(m.name, static_cast<int>(i));
+        } else {
+            file_material_index_.emplace(m.file + "\n" + m.name, static_cast<int>(i));
+        }
     }
 }
 
@@ -182,6 +187,7 @@ int SceneBuilder::material_index(const std::string& name, const std::string& obj
             } else {
                 default_material_ = static_cast<int>(scene_.materials.size());
                 scene_.materials.push_back(default_mesh_material());
+                material_index_.emplace(scene_.materials.back().name, default_material_);
             }
         }
         return default_material_;
@@ -204,7 +210,8 @@ int SceneBuilder::material_index(const std::string& name, const std::string& obj
             ? " and " + std::to_string(material_index_.size() - shown) + " more"
             : "";
     throw SceneValueError(object, "material", "",
-                          "unknown material \"" + name + "\" (known materials: " +
+                          "unknown material " + json_diagnostics::describe(name) +
+                              " (known materials: " +
                               json_diagnostics::join(names, "\"") + more + ")");
 }
 
@@ -279,6 +286,36 @@ void SceneBuilder::add_mesh_file(const std::string& path, const MeshFilePlacemen
     if (auto_smoothed && !(p.smooth_angle <= 180.0f)) {
         refuse(object, "smooth_angle", "degrees in [0, 180]", number_text(p.smooth_angle));
     }
+    // What a refusal takes back: the builder appends materials and
+    // textures, and notes the default and the file's materials.
+    const std::size_t materials_before = scene_.materials.size();
+    const std::size_t textures_before = scene_.textures.size();
+    const int default_before = default_material_;
+    const std::map<std::string, int> index_before = material_index_;
+    const std::map<std::string, int> file_index_before = file_material_index_;
+    const ModelDefects defects_before = defects_;
+    try {
+        read_mesh_file(path, p, object);
+    } catch (...) {
+        scene_.materials.erase(
+            scene_.materials.begin() + static_cast<std::ptrdiff_t>(materials_before),
+            scene_.materials.end());
+        scene_.textures.erase(
+            scene_.textures.begin() + static_cast<std::ptrdiff_t>(textures_before),
+            scene_.textures.end());
+        default_material_ = default_before;
+        material_index_ = index_before;
+        file_material_index_ = file_index_before;
+        defects_ = defects_before;
+        throw;
+    }
+    scene_.warnings = warnings_before_;
+    const std::vector<std::string> lines = defects_.lines();
+    scene_.warnings.insert(scene_.warnings.end(), lines.begin(), lines.end());
+}
+
+void SceneBuilder::read_mesh_file(const std::string& path, const MeshFilePlacement& p,
+                                  const std::string& object) {
     const int material = material_index(p.material, object);
     const ReaderIsolation isolation(options_.isolate_readers);
     // The file's textures are counted against the scene's room before they
@@ -334,6 +371,7 @@ void SceneBuilder::add_mesh_file(const std::string& path, const MeshFilePlacemen
                         }
                         *texture = index;
                     }
+                    m.file = path;
                     materials.push_back(m);
                 }
             }
@@ -341,16 +379,13 @@ void SceneBuilder::add_mesh_file(const std::string& path, const MeshFilePlacemen
         part.shape.source = path;
         shapes.push_back(std::move(part.shape));
     }
-    if (auto_smoothed && p.smooth) {
+    if (!(p.smooth_angle < 0.0f) && p.smooth) {
         auto_smooth(shapes, p.smooth_angle);
     }
     check_usable(shapes, object);
     for (Shape& shape : shapes) {
         scene_.shapes.push_back(std::move(shape));
     }
-    scene_.warnings = warnings_before_;
-    const std::vector<std::string> lines = defects_.lines();
-    scene_.warnings.insert(scene_.warnings.end(), lines.begin(), lines.end());
 }
 
 // ---- Camera and light --------------------------------------------------------

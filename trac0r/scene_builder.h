@@ -108,6 +108,8 @@ class SceneBuilder {
 
   private:
     int material_index(const std::string& name, const std::string& object);
+    void read_mesh_file(const std::string& path, const MeshFilePlacement& placement,
+                        const std::string& object);
     static void check_usable(const std::vector<Shape>& shapes, const std::string& object);
     void add_primitive(Shape shape, const ShapePlacement& placement, const std::string& object);
 
