@@ -11,6 +11,7 @@
 
 #include "trac0r/cpu_backend.h"
 #include "trac0r/kernel/trace.h"
+#include "trac0r/packed_scene.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
 

@@ -5,6 +5,7 @@
 
 #include "trac0r/cpu_backend.h"
 #include "trac0r/kernel/accumulate.h"
+#include "trac0r/packed_scene.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
 #ifdef TRAC0R_HAVE_OPENCL

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "trac0r/cpu_backend.h"
+#include "trac0r/packed_scene.h"
 #include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
 

@@ -3,9 +3,8 @@
 #define TRAC0R_BACKEND_H
 
 #include "trac0r/image_io.h"
-#include "trac0r/kernel/filter.h"
-#include "trac0r/kernel/types.h"
-#include "trac0r/packed_scene.h"
+#include "trac0r/kernel_fwd.h"
+#include "trac0r/render_options.h"
 
 #include <cstddef>
 #include <cstdint>

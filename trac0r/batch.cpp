@@ -1,7 +1,9 @@
 #include "trac0r/batch.h"
 
 #include "trac0r/filter.h"
+#include "trac0r/kernel/types.h"
 #include "trac0r/noise.h"
+#include "trac0r/packed_scene.h"
 
 #include <algorithm>
 #include <chrono>
@@ -10,6 +12,13 @@
 #include <limits>
 
 namespace trac0r {
+
+BatchResult::BatchResult() = default;
+BatchResult::~BatchResult() = default;
+BatchResult::BatchResult(const BatchResult&) = default;
+BatchResult::BatchResult(BatchResult&&) noexcept = default;
+BatchResult& BatchResult::operator=(const BatchResult&) = default;
+BatchResult& BatchResult::operator=(BatchResult&&) noexcept = default;
 
 namespace {
 

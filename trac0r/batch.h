@@ -60,6 +60,14 @@ struct BatchOptions {
 };
 
 struct BatchResult {
+    // Out of line: the accumulator's type is the kernel's (kernel_fwd.h).
+    BatchResult();
+    ~BatchResult();
+    BatchResult(const BatchResult&);
+    BatchResult(BatchResult&&) noexcept;
+    BatchResult& operator=(const BatchResult&);
+    BatchResult& operator=(BatchResult&&) noexcept;
+
     // The first process holds the result; the other ranks of a cluster
     // hold only the counts.
     bool first = true;

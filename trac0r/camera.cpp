@@ -1,5 +1,7 @@
 #include "trac0r/camera.h"
 
+#include "trac0r/kernel/types.h"
+
 #include "trac0r/geometry.h"
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 #ifndef TRAC0R_CAMERA_H
 #define TRAC0R_CAMERA_H
 
-#include "trac0r/kernel/types.h"
+#include "trac0r/kernel_fwd.h"
 
 #include <glm/glm.hpp>
 

@@ -1,6 +1,7 @@
 #include "trac0r/cpu_backend.h"
 
 #include "trac0r/kernel/tile.h"
+#include "trac0r/packed_scene.h"
 
 #include <omp.h>
 
@@ -32,13 +33,22 @@ std::string openmp_device(int threads) {
 
 }  // namespace
 
-CpuBackend::CpuBackend(int threads)
-    : Backend("cpu", openmp_device(thread_count(threads))), threads_(thread_count(threads)) {}
+struct CpuBackend::State {
+    PackedScene scene;
+    std::vector<kernel::AccumPixel> accum;
+};
 
-void CpuBackend::set_scene(const PackedScene& scene) { scene_ = scene; }
+CpuBackend::CpuBackend(int threads)
+    : Backend("cpu", openmp_device(thread_count(threads))),
+      threads_(thread_count(threads)),
+      state_(new State) {}
+
+CpuBackend::~CpuBackend() = default;
+
+void CpuBackend::set_scene(const PackedScene& scene) { state_->scene = scene; }
 
 void CpuBackend::reset(int width, int height) {
-    accum_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
+    state_->accum.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
                   kernel::AccumPixel{});
 }
 
@@ -50,10 +60,10 @@ void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t 
 bool CpuBackend::render_frame_cancellable(const kernel::CameraRecord& camera, std::uint64_t seed,
                                           std::uint32_t frame, int max_depth,
                                           const CancelCheck& cancel) {
-    const kernel::SceneView view = scene_.view();
-    const kernel::CameraRecord scaled = scaled_camera(camera, scene_.scale);
-    const long pixel_count = static_cast<long>(accum_.size());
-    kernel::AccumPixel* accum = accum_.data();
+    const kernel::SceneView view = state_->scene.view();
+    const kernel::CameraRecord scaled = scaled_camera(camera, state_->scene.scale);
+    const long pixel_count = static_cast<long>(state_->accum.size());
+    kernel::AccumPixel* accum = state_->accum.data();
     // Tiles of 8 x 8 pixels (T0_TILE), handed out dynamically: neighbouring
     // rays visit the same nodes and triangles (cache), and with the BVH share
     // the leaves their camera rays may enter (render_tile); and the image's
@@ -82,6 +92,6 @@ bool CpuBackend::render_frame_cancellable(const kernel::CameraRecord& camera, st
     return !cancelled.load();
 }
 
-void CpuBackend::read_accumulator(std::vector<kernel::AccumPixel>& out) { out = accum_; }
+void CpuBackend::read_accumulator(std::vector<kernel::AccumPixel>& out) { out = state_->accum; }
 
 }  // namespace trac0r

@@ -4,6 +4,8 @@
 
 #include "trac0r/backend.h"
 
+#include <memory>
+
 namespace trac0r {
 
 // While in scope, the calling thread's floating point treats denormal
@@ -32,6 +34,7 @@ class CpuBackend : public Backend {
   public:
     // threads <= 0: OpenMP's default.
     explicit CpuBackend(int threads = 0);
+    ~CpuBackend() override;
     void set_scene(const PackedScene& scene) override;
     void reset(int width, int height) override;
     void render_frame(const kernel::CameraRecord& camera, std::uint64_t seed, std::uint32_t frame,
@@ -42,9 +45,12 @@ class CpuBackend : public Backend {
     void read_accumulator(std::vector<kernel::AccumPixel>& out) override;
 
   private:
+    // The packed scene and the accumulator (the kernel's types, kept out of
+    // this header: kernel_fwd.h).
+    struct State;
+
     int threads_;
-    PackedScene scene_;
-    std::vector<kernel::AccumPixel> accum_;
+    std::unique_ptr<State> state_;
 };
 
 }  // namespace trac0r

@@ -1,6 +1,7 @@
 #include "trac0r/guides.h"
 
 #include "trac0r/kernel/guides.h"
+#include "trac0r/packed_scene.h"
 
 #include <algorithm>
 #include <limits>

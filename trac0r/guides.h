@@ -6,8 +6,7 @@
 #define TRAC0R_GUIDES_H
 
 #include "trac0r/image_io.h"
-#include "trac0r/kernel/types.h"
-#include "trac0r/packed_scene.h"
+#include "trac0r/kernel_fwd.h"
 
 #include <glm/glm.hpp>
 

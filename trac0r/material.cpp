@@ -2,10 +2,20 @@
 
 #include "trac0r/enum_names.h"
 #include "trac0r/kernel/scatter.h"
+#include "trac0r/kernel/types.h"
 
 #include <cmath>
 
 namespace trac0r {
+
+static_assert(static_cast<unsigned>(MaterialType::emissive) == T0_MATERIAL_EMISSIVE &&
+                  static_cast<unsigned>(MaterialType::diffuse) == T0_MATERIAL_DIFFUSE &&
+                  static_cast<unsigned>(MaterialType::glass) == T0_MATERIAL_GLASS &&
+                  static_cast<unsigned>(MaterialType::glossy) == T0_MATERIAL_GLOSSY &&
+                  static_cast<unsigned>(MaterialType::conductor) == T0_MATERIAL_CONDUCTOR &&
+                  static_cast<unsigned>(MaterialType::plastic) == T0_MATERIAL_PLASTIC &&
+                  static_cast<unsigned>(MaterialType::principled) == T0_MATERIAL_PRINCIPLED,
+              "MaterialType's values are the kernel's T0_MATERIAL_*");
 
 namespace {
 

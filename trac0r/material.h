@@ -2,8 +2,6 @@
 #ifndef TRAC0R_MATERIAL_H
 #define TRAC0R_MATERIAL_H
 
-#include "trac0r/kernel/types.h"
-
 #include <glm/glm.hpp>
 
 #include <array>
@@ -12,14 +10,15 @@
 
 namespace trac0r {
 
+// The values are the kernel's T0_MATERIAL_* (material.cpp checks them).
 enum class MaterialType : unsigned {
-    emissive = T0_MATERIAL_EMISSIVE,      // a pure emitter: radiance color x emittance
-    diffuse = T0_MATERIAL_DIFFUSE,        // Lambertian, BRDF color/pi; may also emit
-    glass = T0_MATERIAL_GLASS,            // smooth dielectric with Fresnel, tinted by color
-    glossy = T0_MATERIAL_GLOSSY,          // the thesis' roughness cone around the mirror direction
-    conductor = T0_MATERIAL_CONDUCTOR,    // GGX metal: colour as F0, or a named metal
-    plastic = T0_MATERIAL_PLASTIC,        // a Lambertian base under a GGX dielectric coat
-    principled = T0_MATERIAL_PRINCIPLED,  // glTF 2.0's metallic-roughness BRDF
+    emissive = 1,    // a pure emitter: radiance color x emittance
+    diffuse = 2,     // Lambertian, BRDF color/pi; may also emit
+    glass = 3,       // smooth dielectric with Fresnel, tinted by color
+    glossy = 4,      // the thesis' roughness cone around the mirror direction
+    conductor = 5,   // GGX metal: colour as F0, or a named metal
+    plastic = 6,     // a Lambertian base under a GGX dielectric coat
+    principled = 7,  // glTF 2.0's metallic-roughness BRDF
 };
 
 // The most a material may emit in a channel (colour times emittance): a

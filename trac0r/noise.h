@@ -8,7 +8,7 @@
 #define TRAC0R_NOISE_H
 
 #include "trac0r/image_io.h"
-#include "trac0r/kernel/types.h"
+#include "trac0r/kernel_fwd.h"
 
 #include <vector>
 

@@ -4,6 +4,7 @@
 #include "trac0r/kernel/tile_grid.h"
 #include "trac0r/opencl_owner.h"
 #include "trac0r/opencl_program.h"
+#include "trac0r/packed_scene.h"
 
 #include <algorithm>
 #include <chrono>

@@ -5,7 +5,7 @@
 #ifndef TRAC0R_RENDER_CLUSTER_H
 #define TRAC0R_RENDER_CLUSTER_H
 
-#include "trac0r/kernel/types.h"
+#include "trac0r/kernel_fwd.h"
 
 #include <cstdint>
 #include <vector>

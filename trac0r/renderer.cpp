@@ -1,8 +1,16 @@
 #include "trac0r/renderer.h"
 
 #include "trac0r/kernel/accumulate.h"
+#include "trac0r/kernel/types.h"
+#include "trac0r/packed_scene.h"
 
 namespace trac0r {
+
+struct Renderer::KernelState {
+    PackedScene packed;
+    kernel::CameraRecord camera{};
+    std::vector<kernel::AccumPixel> readback;
+};
 
 namespace {
 
@@ -19,17 +27,22 @@ PackOptions for_backend(PackOptions options, const Backend& backend) {
 
 Renderer::Renderer(const Scene& scene, std::unique_ptr<Backend> backend, std::uint64_t seed,
                    const PackOptions& pack_options)
-    : scene_(scene),
-      packed_(pack_scene(scene, for_backend(pack_options, *backend))),
-      backend_(std::move(backend)),
-      seed_(seed),
-      camera_record_(make_camera_record(scene.camera, scene.render.width, scene.render.height)) {
-    backend_->set_scene(packed_);
+    : scene_(scene), kernel_(new KernelState), backend_(std::move(backend)), seed_(seed) {
+    kernel_->packed = pack_scene(scene, for_backend(pack_options, *backend_));
+    kernel_->camera = make_camera_record(scene.camera, scene.render.width, scene.render.height);
+    backend_->set_scene(kernel_->packed);
     restart();
 }
 
+Renderer::~Renderer() = default;
+Renderer::Renderer(Renderer&&) noexcept = default;
+Renderer& Renderer::operator=(Renderer&&) noexcept = default;
+
+const kernel::CameraRecord& Renderer::camera_record() const { return kernel_->camera; }
+const PackedScene& Renderer::packed() const { return kernel_->packed; }
+
 void Renderer::set_camera(const Camera& camera) {
-    camera_record_ = make_camera_record(camera, width(), height());
+    kernel_->camera = make_camera_record(camera, width(), height());
     scene_.camera = camera;
     restart();
 }
@@ -37,7 +50,7 @@ void Renderer::set_camera(const Camera& camera) {
 void Renderer::set_size(int width, int height) {
     scene_.render.width = width;
     scene_.render.height = height;
-    camera_record_ = make_camera_record(scene_.camera, width, height);
+    kernel_->camera = make_camera_record(scene_.camera, width, height);
     restart();
 }
 
@@ -54,14 +67,14 @@ void Renderer::restart() {
 }
 
 void Renderer::render_frame() {
-    backend_->render_frame(camera_record_, seed_, first_frame_ + frame_stride_ * frame_,
+    backend_->render_frame(kernel_->camera, seed_, first_frame_ + frame_stride_ * frame_,
                            scene_.render.max_depth);
     ++frame_;
     readback_valid_ = false;
 }
 
 bool Renderer::render_frame(const Backend::CancelCheck& cancel) {
-    if (!backend_->render_frame_cancellable(camera_record_, seed_,
+    if (!backend_->render_frame_cancellable(kernel_->camera, seed_,
                                             first_frame_ + frame_stride_ * frame_,
                                             scene_.render.max_depth, cancel)) {
         restart();  // part of a frame must not stay in the mean
@@ -74,10 +87,10 @@ bool Renderer::render_frame(const Backend::CancelCheck& cancel) {
 
 const std::vector<kernel::AccumPixel>& Renderer::accumulator() {
     if (!readback_valid_) {
-        backend_->read_accumulator(readback_);
+        backend_->read_accumulator(kernel_->readback);
         readback_valid_ = true;
     }
-    return readback_;
+    return kernel_->readback;
 }
 
 Image accumulated_image(const std::vector<kernel::AccumPixel>& accum, int width, int height) {

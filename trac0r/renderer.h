@@ -5,11 +5,13 @@
 
 #include "trac0r/backend.h"
 #include "trac0r/image_io.h"
-#include "trac0r/packed_scene.h"
+#include "trac0r/kernel_fwd.h"
+#include "trac0r/render_options.h"
 #include "trac0r/scene.h"
 
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 namespace trac0r {
 
@@ -29,12 +31,16 @@ class Renderer {
   public:
     Renderer(const Scene& scene, std::unique_ptr<Backend> backend,
              std::uint64_t seed = default_seed, const PackOptions& pack_options = PackOptions());
+    ~Renderer();
+    Renderer(Renderer&&) noexcept;
+    Renderer& operator=(Renderer&&) noexcept;
 
     const Scene& scene() const { return scene_; }
     // The kernel's camera of the current view (in the scene's coordinates:
     // the backends scale it by packed().scale).
-    const kernel::CameraRecord& camera_record() const { return camera_record_; }
-    const PackedScene& packed() const { return packed_; }
+    // (Inside trac0r: packed_scene.h and kernel/types.h define them.)
+    const kernel::CameraRecord& camera_record() const;
+    const PackedScene& packed() const;
     Backend& backend() { return *backend_; }
     const Backend& backend() const { return *backend_; }
     int width() const { return scene_.render.width; }
@@ -76,15 +82,17 @@ class Renderer {
     const std::vector<kernel::AccumPixel>& accumulator();
 
   private:
+    // The packed scene, the kernel's camera and the read-back accumulator:
+    // the kernel's types, kept out of this header (kernel_fwd.h).
+    struct KernelState;
+
     Scene scene_;
-    PackedScene packed_;
+    std::unique_ptr<KernelState> kernel_;
     std::unique_ptr<Backend> backend_;
     std::uint64_t seed_;
     std::uint32_t frame_ = 0;  // frames rendered since the restart
     std::uint32_t first_frame_ = 0;
     std::uint32_t frame_stride_ = 1;
-    kernel::CameraRecord camera_record_;
-    std::vector<kernel::AccumPixel> readback_;
     bool readback_valid_ = false;
 };
 

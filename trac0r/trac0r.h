@@ -17,7 +17,6 @@
 #include "trac0r/scene.h"
 #include "trac0r/scene_builder.h"
 #include "trac0r/scene_loader.h"
-#include "trac0r/temporal.h"
 #include "trac0r/version.h"
 #ifdef TRAC0R_HAVE_OPENCL
 #include "trac0r/opencl_backend.h"

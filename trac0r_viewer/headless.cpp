@@ -4,7 +4,9 @@
 
 #include "trac0r/batch.h"
 #include "trac0r/image_io.h"
+#include "trac0r/kernel/filter.h"
 #include "trac0r/noise.h"
+#include "trac0r/packed_scene.h"
 
 #include <signal.h>
 #include <unistd.h>

@@ -2,6 +2,7 @@
 
 #include "trac0r/kernel/guides.h"
 #include "trac0r/noise.h"
+#include "trac0r/packed_scene.h"
 
 #include <algorithm>
 #include <cmath>
