@@ -249,6 +249,11 @@ TEST_CASE("what the builder refuses, a scene file is refused for in the same wor
          "plane: no triangle of the shape can be rendered (of 2, each has in float arithmetic an "
          "area of zero or below float's smallest normal, or a vertex that is not finite: "
          "degenerate faces, or a size, scale or position too small or too large)"},
+        {"an empty material name", scene_with(R"("": {"type": "diffuse", "color": [1, 1, 1]})"),
+         [](SceneBuilder& b) {
+             b.add_material(material("", MaterialType::diffuse, glm::vec3(1.0f)));
+         },
+         "material \"\": a material needs a name"},
         {"a lamp past float's sum",
          scene_with("",
                     R"(, "lights": [{"type": "point", "position": [0, 1, 0], "intensity": 1e31}])"),
