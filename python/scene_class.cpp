@@ -215,8 +215,9 @@ ValueError.)")
             },
             py::arg("camera"),
             R"(Replaces the scene's camera by a camera block of the scene format (a dict, or
-its JSON text): position, direction, world_up, vertical_fov, aperture_radius,
-focus_distance; what the viewer's C key prints, as trac0r_viewer --camera reads it.)")
+its JSON text): position, direction, world_up, projection ("perspective" or
+"orthographic"), vertical_fov or view_height, aperture_radius, focus_distance;
+what the viewer's C key prints, as trac0r_viewer --camera reads it.)")
         .def("__repr__", [](const Scene& s) {
             return "<trac0r.Scene " + std::to_string(s.render.width) + "x" +
                    std::to_string(s.render.height) + ", " + std::to_string(s.shapes.size()) +

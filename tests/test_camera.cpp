@@ -1,5 +1,6 @@
-// The pinhole camera: make_camera_record's frame and extents, and the
-// kernel's camera_ray (true vertical field of view, orientation, aspect).
+// The cameras: make_camera_record's frame and extents, and the kernel's
+// camera_ray (true vertical field of view, orientation, aspect; an
+// orthographic camera's parallel rays).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
@@ -237,4 +238,77 @@ TEST_CASE("huge camera vectors are directions like any other", "[kernel][camera]
     Camera huge_parallel = huge;
     huge_parallel.direction = glm::vec3(0.0f, -3e38f, 0.0f);
     CHECK(std::string(camera_problem(huge_parallel)).find("parallel") != std::string::npos);
+}
+
+TEST_CASE("an orthographic camera's rays are parallel, from a view_height-high rectangle",
+          "[kernel][camera]") {
+    Camera c = tilted_camera();
+    c.projection = Projection::orthographic;
+    c.view_height = 3.0f;
+    const int w = 640;
+    const int h = 480;
+    const CameraRecord cam = make_camera_record(c, w, h);
+    const glm::vec3 forward = glm::normalize(c.direction);
+    // Where a ray starts, in the camera's frame: right, up, forward.
+    auto start = [&](const Ray& r) {
+        const glm::vec3 o = r.origin - c.position;
+        return glm::vec3(dot_d(o, v3(cam.right)), dot_d(o, v3(cam.up)), dot_d(o, v3(cam.forward)));
+    };
+    // Float positions of a few metres: 1e-5 m is ~100 ulps, far below a
+    // pixel (3 / 480 m).
+    const float length_tolerance = 1e-5f;
+    const float xs[] = {0.0f, 17.25f, 320.0f, 639.5f, 640.0f};
+    const float ys[] = {0.0f, 123.75f, 240.0f, 479.5f, 480.0f};
+    for (float x : xs) {
+        for (float y : ys) {
+            CAPTURE(x, y);
+            const Ray r = camera_ray(cam, x, y, 0.0f, 0.0f);
+            CHECK(glm::length(r.direction - forward) < 1e-6f);
+            // Square pixels 3 / 480 m on a side, (0, 0) the top-left
+            // corner, the view centred on the camera's position.
+            const glm::vec3 s = start(r);
+            CHECK(s.x == Approx((x - w / 2.0f) * 3.0f / h).margin(length_tolerance));
+            CHECK(s.y == Approx((h / 2.0f - y) * 3.0f / h).margin(length_tolerance));
+            CHECK(s.z == Approx(0.0f).margin(length_tolerance));
+        }
+    }
+    // A thin lens focuses each parallel ray: the lens ray from any point of
+    // the aperture meets the pinhole ray at the focus distance.
+    c.aperture_radius = 0.1f;
+    c.focus_distance = 2.5f;
+    const CameraRecord lens = make_camera_record(c, w, h);
+    const Ray axis = camera_ray(lens, 100.0f, 50.0f, 0.5f, 0.5f);
+    for (float u : {0.0f, 0.3f, 0.9f}) {
+        const Ray r = kernel::camera_lens_ray(lens, 100.0f, 50.0f, 0.5f, 0.5f, glm::vec2(u, 0.7f));
+        const glm::vec3 focus = axis.origin + 2.5f * axis.direction;
+        const float t = dot_d(focus - r.origin, r.direction);
+        CHECK(glm::length(r.origin + t * r.direction - focus) < length_tolerance);
+        CHECK(glm::length(r.origin - axis.origin) <= 0.1f + length_tolerance);
+    }
+}
+
+TEST_CASE("camera_problem refuses an orthographic view_height that is not a length",
+          "[kernel][camera]") {
+    const float bad[] = {0.0f, -1.0f, std::numeric_limits<float>::quiet_NaN(),
+                         std::numeric_limits<float>::infinity()};
+    for (float height : bad) {
+        INFO("view_height " << height);
+        Camera c;
+        c.projection = Projection::orthographic;
+        c.view_height = height;
+        CHECK(std::string(camera_problem(c) ? camera_problem(c) : "").find("view_height") !=
+              std::string::npos);
+        CHECK_THROWS_AS(make_camera_record(c, 80, 60), std::invalid_argument);
+    }
+    Camera ortho;
+    ortho.projection = Projection::orthographic;
+    ortho.view_height = 1e-4f;
+    CHECK(camera_problem(ortho) == nullptr);
+    // camera_block_json writes the projection's own keys.
+    ortho.view_height = 0.75f;
+    const std::string block = camera_block_json(ortho, glm::dvec3(0.0));
+    CHECK(block.find("\"projection\": \"orthographic\", \"view_height\": 0.75") !=
+          std::string::npos);
+    CHECK(block.find("vertical_fov") == std::string::npos);
+    CHECK(camera_block_json(Camera(), glm::dvec3(0.0)).find("projection") == std::string::npos);
 }

@@ -183,3 +183,45 @@ TEST_CASE("a glTF's own camera and KHR_lights_punctual lights make its scene", "
     const std::string printed = dir.write("printed.json", json);
     CHECK(scene_digest(load_scene_file(printed)) == scene_digest(scene));
 }
+
+TEST_CASE("a glTF's orthographic camera makes an orthographic scene camera", "[model_scene]") {
+    // One triangle seen by an orthographic camera at (0, 0, 4) looking
+    // along -z: xmag 3 and ymag 1.5 (half the view's width and height).
+    const float values[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const std::string buffer(reinterpret_cast<const char*>(values), sizeof values);
+    const auto gltf = [&](const std::string& magnification) {
+        return R"({"asset": {"version": "2.0"}, "scene": 0,
+  "scenes": [{"nodes": [0, 1]}],
+  "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 4]}],
+  "cameras": [{"type": "orthographic", "orthographic": {)" +
+               magnification + R"(, "znear": 0.1, "zfar": 100}}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" +
+               base64(buffer) + R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 0]}]})";
+    };
+    TempDir dir;
+    const std::string path = dir.write("ortho.gltf", gltf(R"("xmag": 3, "ymag": 1.5)"));
+    std::string json;
+    const Scene scene = model_scene(path, LoadOptions(), &json);
+    CAPTURE(json);
+    CHECK(scene.camera.projection == Projection::orthographic);
+    CHECK(scene.camera.view_height == 3.0f);
+    CHECK(scene.camera.direction.z == Approx(-1.0f));
+    CHECK(scene.render.width == 1200);  // the view's aspect, 600 rows
+    CHECK(scene.render.height == 600);
+    const std::string printed = dir.write("printed.json", json);
+    CHECK(scene_digest(load_scene_file(printed)) == scene_digest(scene));
+    // A magnification that is not a positive number is named.
+    const std::string bad = dir.write("bad.gltf", gltf(R"("xmag": 3, "ymag": 0)"));
+    try {
+        model_scene(bad, LoadOptions(), nullptr);
+        FAIL("no error");
+    } catch (const std::exception& e) {
+        CHECK_THAT(std::string(e.what()),
+                   Contains("node 1: camera: xmag, ymag: expected numbers > 0 (half the view's "
+                            "width and height), got 3.0, 0.0"));
+    }
+}

@@ -132,7 +132,8 @@ TEST_CASE("a kept device shares its programs with backends made one after anothe
 // Both backends on the same structure (--accel auto may choose by backend).
 static void compare_backends(const std::string& name, Accel accel,
                              SamplerKind sampler = SamplerKind::random,
-                             float aperture_radius = 0.0f) {
+                             float aperture_radius = 0.0f,
+                             Projection projection = Projection::perspective) {
     // An odd size: the last column and row of tiles (work-groups, with the
     // BVH) cut off.
     Scene scene = load_test_scene(name, 61, 45);
@@ -140,6 +141,8 @@ static void compare_backends(const std::string& name, Accel accel,
         scene.camera.aperture_radius = aperture_radius;
         scene.camera.focus_distance = 1.5f;  // the back wall's depth (1.7) blurs a little
     }
+    scene.camera.projection = projection;
+    scene.camera.view_height = 0.9f;  // orthographic: most of the box's 1 m
     const int frames = 16;
     PackOptions options;
     options.accel = accel;
@@ -206,6 +209,15 @@ TEST_CASE("OpenCL and CPU images through a thin lens agree", "[opencl][camera]")
     // the flat list's pixel a work-item.
     compare_backends("cornell.json", Accel::bvh, SamplerKind::sobol, 0.03f);
     compare_backends("cornell.json", Accel::flat, SamplerKind::random, 0.03f);
+}
+
+TEST_CASE("OpenCL and CPU images from an orthographic camera agree", "[opencl][camera]") {
+    // Its rays from all over the view: the tile path's bypass of the
+    // bundle (BVH), the flat list's pixel a work-item, and through a lens.
+    compare_backends("cornell.json", Accel::bvh, SamplerKind::sobol, 0.0f,
+                     Projection::orthographic);
+    compare_backends("cornell.json", Accel::flat, SamplerKind::random, 0.03f,
+                     Projection::orthographic);
 }
 
 TEST_CASE("OpenCL and CPU images of a smooth-shaded mesh agree", "[opencl][smooth]") {

@@ -60,6 +60,30 @@ TEST_CASE("project_point inverts camera_ray", "[projection]") {
     }
 }
 
+TEST_CASE("project_point inverts an orthographic camera_ray", "[projection]") {
+    Camera c;
+    c.position = glm::vec3(0.3f, 0.2f, -1.0f);
+    c.direction = glm::vec3(0.2f, -0.1f, 1.0f);
+    c.projection = Projection::orthographic;
+    c.view_height = 1.5f;
+    const kernel::CameraRecord cam = make_camera_record(c, 800, 600);
+    const float xs[] = {0.0f, 17.25f, 400.0f, 799.5f};
+    const float ys[] = {0.0f, 123.75f, 300.0f, 599.5f};
+    for (float x : xs) {
+        for (float y : ys) {
+            const kernel::Ray ray = kernel::camera_ray(cam, x, y, 0.25f, 0.5f);
+            // Near and far along the ray: the same place in the image.
+            for (float t : {0.5f, 4.0f}) {
+                const glm::vec3 point = glm::vec3(ray.origin) + t * glm::vec3(ray.direction);
+                glm::vec2 image;
+                REQUIRE(project_point(cam, point, 1e-3f, &image));
+                CHECK(image.x == Approx(x + 0.25f).margin(pixel_tolerance));
+                CHECK(image.y == Approx(y + 0.5f).margin(pixel_tolerance));
+            }
+        }
+    }
+}
+
 TEST_CASE("project_point refuses points behind or too near the camera", "[projection]") {
     // Looking along -z with y up: +x is right (right-handed).
     const kernel::CameraRecord cam = record_at(glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -1.0f));

@@ -87,6 +87,17 @@ std::vector<std::string> scene_files() {
 const char* const tetrahedron_obj =
     "v 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n";
 
+
+// The error of a camera block read as cam.json, or "(no error)".
+std::string camera_block_error(const std::string& text) {
+    try {
+        parse_camera_block(text, "cam.json", glm::dvec3(0.0));
+    } catch (const SceneError& e) {
+        return std::string(e.what());
+    }
+    return std::string("(no error)");
+}
+
 }  // namespace
 
 TEST_CASE("every scene in scenes/ loads", "[scene_loader]") {
@@ -556,14 +567,7 @@ TEST_CASE("a camera block loads over a scene's; bad ones are one message", "[sce
     CHECK(read.aperture_radius == odd.aperture_radius);
     CHECK(read.focus_distance == odd.focus_distance);
 
-    const auto message = [&](const std::string& text) {
-        try {
-            parse_camera_block(text, "cam.json", origin);
-        } catch (const SceneError& e) {
-            return std::string(e.what());
-        }
-        return std::string("(no error)");
-    };
+    const auto message = camera_block_error;
     CHECK(message(R"({"camera": {"aperture_radius": -0.1}})") ==
           "cam.json: /camera/aperture_radius: expected a finite number >= 0, got -0.1");
     CHECK(message(R"({"camera": {"focus_distance": 0}})") ==
@@ -571,6 +575,39 @@ TEST_CASE("a camera block loads over a scene's; bad ones are one message", "[sce
     CHECK(message(R"({"camera": {"positon": [0, 0, 0]}})").find("positon") != std::string::npos);
     CHECK(message(R"({"render": {"width": 8}})").find("render") != std::string::npos);
     CHECK(message("[1, 2]").find("cam.json") == 0);
+}
+
+TEST_CASE("an orthographic camera block: its keys, printed and read back, and its mistakes",
+          "[scene_loader][camera]") {
+    const glm::dvec3 origin(0.0);
+    const Camera c = parse_camera_block(
+        R"({"camera": {"projection": "orthographic", "view_height": 3.5}})", "cam.json", origin);
+    CHECK(c.projection == Projection::orthographic);
+    CHECK(c.view_height == 3.5f);
+    CHECK(parse_camera_block(R"({"projection": "perspective", "vertical_fov": 40})", "cam.json",
+                             origin)
+              .projection == Projection::perspective);
+    Camera odd;
+    odd.projection = Projection::orthographic;
+    odd.view_height = 0.123457f;
+    odd.aperture_radius = 0.01f;
+    const Camera read = parse_camera_block(camera_block_json(odd, origin), "printed", origin);
+    CHECK(read.projection == Projection::orthographic);
+    CHECK(read.view_height == odd.view_height);
+    CHECK(read.aperture_radius == odd.aperture_radius);
+
+    const auto message = camera_block_error;
+    CHECK(message(R"({"camera": {"projection": "fisheye"}})") ==
+          "cam.json: /camera/projection: expected one of \"perspective\", \"orthographic\", "
+          "got \"fisheye\"");
+    CHECK(message(R"({"camera": {"projection": "orthographic", "view_height": 0}})") ==
+          "cam.json: /camera/view_height: expected a finite positive number, got 0");
+    CHECK(message(R"({"camera": {"projection": "orthographic", "vertical_fov": 40}})") ==
+          "cam.json: /camera/vertical_fov: an orthographic camera has no field of view: give "
+          "its view_height (metres)");
+    CHECK(message(R"({"camera": {"view_height": 2}})") ==
+          "cam.json: /camera/view_height: view_height is an orthographic camera's: give "
+          "\"projection\": \"orthographic\", or a vertical_fov");
 }
 
 TEST_CASE("scene errors: the microfacet materials' keys", "[scene_loader][microfacet]") {

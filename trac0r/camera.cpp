@@ -47,6 +47,13 @@ const char* camera_problem(const Camera& camera) {
     if (!(camera.vertical_fov > 0.0f && camera.vertical_fov < 180.0f)) {
         return "camera.vertical_fov must be in (0, 180) degrees";
     }
+    if (camera.projection != Projection::perspective &&
+        camera.projection != Projection::orthographic) {
+        return "camera.projection must be perspective or orthographic";
+    }
+    if (!(camera.view_height > 0.0f && camera.view_height <= 1e30f)) {
+        return "camera.view_height must be a finite number > 0 (metres)";
+    }
     if (!(camera.aperture_radius >= 0.0f && std::isfinite(camera.aperture_radius))) {
         return "camera.aperture_radius must be a finite number >= 0 (metres; 0 is a pinhole)";
     }
@@ -88,7 +95,10 @@ std::string camera_block_json(const Camera& camera, const glm::dvec3& origin) {
     return "{\"camera\": {\"position\": " + json_vec3(camera.position, origin) +
            ", \"direction\": " + json_vec3(camera.direction, none) +
            ", \"world_up\": " + json_vec3(camera.world_up, none) +
-           ", \"vertical_fov\": " + json_number(camera.vertical_fov) +
+           (camera.projection == Projection::orthographic
+                ? ", \"projection\": \"orthographic\", \"view_height\": " +
+                      json_number(camera.view_height)
+                : ", \"vertical_fov\": " + json_number(camera.vertical_fov)) +
            ", \"aperture_radius\": " + json_number(camera.aperture_radius) +
            ", \"focus_distance\": " + json_number(camera.focus_distance) + "}}";
 }
@@ -106,11 +116,15 @@ kernel::CameraRecord make_camera_record(const Camera& camera, int width, int hei
     // +x is on the image's right.
     const glm::vec3 right = glm::normalize(glm::cross(forward, direction_of(camera.world_up)));
     const glm::vec3 up = glm::cross(right, forward);
-    const float half_height = std::tan(0.5f * glm::radians(camera.vertical_fov));
+    const bool orthographic = camera.projection == Projection::orthographic;
+    // The image plane's half height: at distance one from a pinhole, or in
+    // metres for an orthographic camera.
+    const float half_height = orthographic ? 0.5f * camera.view_height
+                                           : std::tan(0.5f * glm::radians(camera.vertical_fov));
     const float aspect = static_cast<float>(width) / static_cast<float>(height);
     kernel::CameraRecord r;
     r.position = glm::vec4(camera.position, 1.0f);
-    r.forward = glm::vec4(forward, 0.0f);
+    r.forward = glm::vec4(forward, orthographic ? 1.0f : 0.0f);
     r.right = glm::vec4(right, 0.0f);
     r.up = glm::vec4(up, 0.0f);
     r.extent = glm::vec4(half_height * aspect, half_height, camera.aperture_radius,

@@ -49,6 +49,13 @@ Camera turn_camera(const Camera& camera, float yaw_radians, float pitch_radians)
 
 Camera zoom_camera(const Camera& camera, float factor) {
     Camera result = camera;
+    if (camera.projection == Projection::orthographic) {
+        const float height = camera.view_height * factor;
+        if (height > 0.0f && height <= 1e30f) {
+            result.view_height = height;
+        }
+        return result;
+    }
     result.vertical_fov =
         std::max(fly_camera_min_fov, std::min(fly_camera_max_fov, camera.vertical_fov * factor));
     return result;

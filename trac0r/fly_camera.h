@@ -30,7 +30,8 @@ Camera move_camera(const Camera& camera, const glm::vec3& local);
 Camera turn_camera(const Camera& camera, float yaw_radians, float pitch_radians);
 
 // Multiplies the vertical field of view by `factor`, clamped to
-// [fly_camera_min_fov, fly_camera_max_fov].
+// [fly_camera_min_fov, fly_camera_max_fov]; an orthographic camera's
+// view_height instead, where the product stays finite and positive.
 Camera zoom_camera(const Camera& camera, float factor);
 
 }  // namespace trac0r

@@ -57,19 +57,34 @@ GltfView gltf_view(const std::string& json_text, const std::string& path) {
             doc.contains("cameras") && doc["cameras"].is_array() &&
             node["camera"].get<std::size_t>() < doc["cameras"].size()) {
             const json& camera = doc["cameras"][node["camera"].get<std::size_t>()];
-            if (camera.is_object() && camera.value("type", "") == "perspective" &&
-                camera.contains("perspective")) {
-                const std::string at = what + ": camera";
+            const std::string type = camera.is_object() ? camera.value("type", "") : "";
+            const std::string at = what + ": camera";
+            if (type == "perspective" && camera.contains("perspective")) {
                 const double yfov = number(camera["perspective"], "yfov", -1.0, at);
                 if (!(yfov > 0.0 && yfov < pi)) {
                     throw std::runtime_error(at + ": yfov: expected radians in (0, pi)");
                 }
                 view.has_camera = true;
+                view.vertical_fov = yfov * 180.0 / pi;
+                view.aspect = number(camera["perspective"], "aspectRatio", 0.0, at);
+            } else if (type == "orthographic" && camera.contains("orthographic")) {
+                // xmag and ymag: half the view's width and height.
+                const double xmag = number(camera["orthographic"], "xmag", -1.0, at);
+                const double ymag = number(camera["orthographic"], "ymag", -1.0, at);
+                if (!(xmag > 0.0 && ymag > 0.0 && ymag <= 1e30)) {
+                    throw std::runtime_error(at + ": xmag, ymag: expected numbers > 0 (half the " +
+                                             "view's width and height), got " + json(xmag).dump() +
+                                             ", " + json(ymag).dump());
+                }
+                view.has_camera = true;
+                view.orthographic = true;
+                view.view_height = 2.0 * ymag;
+                view.aspect = xmag / ymag;
+            }
+            if (view.has_camera) {
                 view.position = origin;
                 view.direction = forward;
                 view.up = unit_or(glm::dvec3(world * glm::dvec4(0, 1, 0, 0)), glm::dvec3(0, 1, 0));
-                view.vertical_fov = yfov * 180.0 / pi;
-                view.aspect = number(camera["perspective"], "aspectRatio", 0.0, at);
             }
         }
         if (node.contains("extensions") && node["extensions"].is_object() &&

@@ -14,15 +14,18 @@
 namespace trac0r {
 
 struct GltfView {
-    // The first perspective camera of the default scene's nodes (depth
-    // first): where its node puts it, looking along the node's -z with
-    // its +y up, as glTF defines a camera.
+    // The first camera of the default scene's nodes (depth first): where
+    // its node puts it, looking along the node's -z with its +y up, as
+    // glTF defines a camera.
     bool has_camera = false;
+    bool orthographic = false;
     glm::dvec3 position{0.0};
     glm::dvec3 direction{0.0, 0.0, -1.0};
     glm::dvec3 up{0.0, 1.0, 0.0};
-    double vertical_fov = 45.0;  // degrees (glTF's yfov)
-    double aspect = 0.0;         // its aspectRatio; 0: not given
+    double vertical_fov = 45.0;  // degrees (glTF's yfov), perspective
+    double view_height = 2.0;    // metres (2 * glTF's ymag), orthographic
+    // Its aspectRatio, or xmag / ymag; 0: not given.
+    double aspect = 0.0;
     // The nodes' KHR_lights_punctual lights as lamps: point and spot
     // (their intensity in candela as W/sr, over 683 lm/W, as Blender's
     // importer converts), directional as a sun (lux as W/m^2, the same

@@ -133,8 +133,13 @@ Scene model_scene(const std::string& model_path, const LoadOptions& options, std
     if (view.has_camera) {
         camera = {{"position", vec3_json(view.position)},
                   {"direction", vec3_json(view.direction)},
-                  {"world_up", vec3_json(view.up)},
-                  {"vertical_fov", view.vertical_fov}};
+                  {"world_up", vec3_json(view.up)}};
+        if (view.orthographic) {
+            camera["projection"] = "orthographic";
+            camera["view_height"] = view.view_height;
+        } else {
+            camera["vertical_fov"] = view.vertical_fov;
+        }
         if (view.aspect > 0.0) {
             // 600 rows, as the default's, and the camera's aspect.
             const double width = std::round(600.0 * view.aspect);

@@ -36,10 +36,13 @@ glm::vec3 to_camera_space(const kernel::CameraRecord& camera, const glm::vec3& w
 
 // camera_ray shoots forward + right * sx + up * sy with
 // sx = (2 x / width - 1) * extent.x and sy = (1 - 2 y / height) * extent.y;
-// a point on that ray has sx = x_cam / z_cam and sy = y_cam / z_cam.
+// a point on that ray has sx = x_cam / z_cam and sy = y_cam / z_cam. An
+// orthographic camera's ray starts at right * sx + up * sy: a point on it
+// has sx = x_cam and sy = y_cam.
 glm::vec2 camera_space_to_image(const kernel::CameraRecord& camera, const glm::vec3& point) {
-    const float sx = point.x / point.z;
-    const float sy = point.y / point.z;
+    const bool orthographic = camera.forward.w != 0.0f;
+    const float sx = orthographic ? point.x : point.x / point.z;
+    const float sy = orthographic ? point.y : point.y / point.z;
     const float width = static_cast<float>(camera.size.x);
     const float height = static_cast<float>(camera.size.y);
     return glm::vec2(0.5f * width * (sx / camera.extent.x + 1.0f),

@@ -21,7 +21,8 @@ namespace trac0r {
 // forward (the depth).
 glm::vec3 to_camera_space(const kernel::CameraRecord& camera, const glm::vec3& world);
 
-// The image position of a camera-space point; its depth z must be > 0.
+// The image position of a camera-space point; its depth z must be > 0
+// (for a perspective camera).
 glm::vec2 camera_space_to_image(const kernel::CameraRecord& camera, const glm::vec3& point);
 
 // The image position of a world point, or false when the point lies closer

@@ -54,6 +54,9 @@ std::uint64_t scene_digest(const Scene& scene) {
     h.vec3(scene.camera.direction);
     h.vec3(scene.camera.world_up);
     h.value(scene.camera.vertical_fov);
+    if (scene.camera.projection == Projection::orthographic) {
+        h.value(scene.camera.view_height);
+    }
     h.value(scene.render.width);
     h.value(scene.render.height);
     h.value(scene.render.max_depth);

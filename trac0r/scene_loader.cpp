@@ -14,7 +14,9 @@
 // | camera.position        | [3]     | finite                                  | [0, 0.31, 1.2]  |
 // | camera.direction       | [3]     | finite, non-zero                        | [0, 0, -1]      |
 // | camera.world_up        | [3]     | finite, non-zero, not along direction   | [0, 1, 0]       |
-// | camera.vertical_fov    | number  | degrees, in (0, 180)                    | 53.13           |
+// | camera.projection      | string  | perspective/orthographic                | perspective     |
+// | camera.vertical_fov    | number  | perspective: degrees, in (0, 180)       | 53.13           |
+// | camera.view_height     | number  | orthographic: > 0, metres               | 2               |
 // | camera.aperture_radius | number  | >= 0, metres (0: a pinhole)             | 0               |
 // | camera.focus_distance  | number  | > 0, metres along direction             | 1               |
 // | render                 | object  | optional                                | (below)         |
@@ -119,8 +121,8 @@ float read_fov(const json& value, const Location& at) {
 // (local_origin of the position as the file writes it, in double).
 Camera read_camera(const json& value, const Location& at, glm::dvec3* origin) {
     const ObjectReader o(value, at, "a camera object");
-    o.allow_only({"position", "direction", "world_up", "vertical_fov", "aperture_radius",
-                  "focus_distance"},
+    o.allow_only({"position", "direction", "world_up", "projection", "vertical_fov", "view_height",
+                  "aperture_radius", "focus_distance"},
                  "the camera");
     Camera camera;
     const glm::dvec3 position =
@@ -129,8 +131,27 @@ Camera read_camera(const json& value, const Location& at, glm::dvec3* origin) {
     camera.position = glm::vec3(position - *origin);
     camera.direction = o.optional_vec3("direction", NumberRule::finite, camera.direction);
     camera.world_up = o.optional_vec3("world_up", NumberRule::finite, camera.world_up);
+    if (o.has("projection") && read_choice(o["projection"], o.at("projection"),
+                                           {"perspective", "orthographic"}) == "orthographic") {
+        camera.projection = Projection::orthographic;
+    }
+    // Each projection's size key, and not the other's: a field of view
+    // given to an orthographic camera would be ignored without a word.
+    const bool orthographic = camera.projection == Projection::orthographic;
     if (o.has("vertical_fov")) {
+        if (orthographic) {
+            fail(o.at("vertical_fov"),
+                 "an orthographic camera has no field of view: give its view_height (metres)");
+        }
         camera.vertical_fov = read_fov(o["vertical_fov"], o.at("vertical_fov"));
+    }
+    if (o.has("view_height")) {
+        if (!orthographic) {
+            fail(o.at("view_height"),
+                 "view_height is an orthographic camera's: give "
+                 "\"projection\": \"orthographic\", or a vertical_fov");
+        }
+        camera.view_height = o.optional_float("view_height", NumberRule::positive, 0.0f);
     }
     camera.aperture_radius =
         o.optional_float("aperture_radius", NumberRule::non_negative, camera.aperture_radius);

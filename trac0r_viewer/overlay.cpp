@@ -200,8 +200,15 @@ std::string overlay_text(const OverlayFigures& f) {
                    f.height);
     const glm::vec3 p = f.camera.position;
     const glm::vec3 d = glm::normalize(f.camera.direction);
-    text += format("camera   pos (%.3f, %.3f, %.3f)  dir (%.3f, %.3f, %.3f)  fov %.1f\n", p.x, p.y,
-                   p.z, d.x, d.y, d.z, f.camera.vertical_fov);
+    if (f.camera.projection == trac0r::Projection::orthographic) {
+        text += format(
+            "camera   pos (%.3f, %.3f, %.3f)  dir (%.3f, %.3f, %.3f)  orthographic, "
+            "%.3g m high\n",
+            p.x, p.y, p.z, d.x, d.y, d.z, f.camera.view_height);
+    } else {
+        text += format("camera   pos (%.3f, %.3f, %.3f)  dir (%.3f, %.3f, %.3f)  fov %.1f\n", p.x,
+                       p.y, p.z, d.x, d.y, d.z, f.camera.vertical_fov);
+    }
     if (f.camera.aperture_radius > 0.0f) {
         text += format("lens     aperture radius %.3g m  focus at %.3g m\n",
                        f.camera.aperture_radius, f.camera.focus_distance);

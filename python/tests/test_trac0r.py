@@ -329,9 +329,11 @@ def test_a_model_file_opens_on_its_own_as_in_the_program(tmp_path):
     assert np.array_equal(img, ref)
 
 
-def test_a_camera_block_moves_the_camera_as_the_programs_camera_flag(tmp_path):
+@pytest.mark.parametrize("lens", [{"vertical_fov": 50},
+                                  {"projection": "orthographic", "view_height": 0.8}])
+def test_a_camera_block_moves_the_camera_as_the_programs_camera_flag(tmp_path, lens):
     import json
-    camera = {"position": [0.2, 0.1, -0.3], "direction": [-0.3, -0.1, 1], "vertical_fov": 50}
+    camera = {"position": [0.2, 0.1, -0.3], "direction": [-0.3, -0.1, 1], **lens}
     (tmp_path / "camera.json").write_text(json.dumps({"camera": camera}))
     scene = trac0r.builtin_scene()
     scene.set_camera(camera)

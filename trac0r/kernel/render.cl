@@ -71,9 +71,9 @@ typedef struct TileShared {
 // leaves that the tile's rays may enter, found once by the first work-item
 // (bundle_finish_leaves) into the group's local memory, or by traversal
 // where there are too many (camera_hit). Every work-item of the group calls
-// it (barriers), with the group's `shared`. Through a thin lens the rays
-// do not share an origin: the leaf count is -1, and each ray traverses the
-// tree. (The barriers stay on every path: PoCL gave wrong results with an
+// it (barriers), with the group's `shared`. Through a thin lens, or from
+// an orthographic camera, the rays do not share an origin: the leaf count
+// is -1, and each ray traverses the tree. (The barriers stay on every path: PoCL gave wrong results with an
 // early return before them, though the condition is the group's own.)
 T0_INLINE Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int inside,
                               const Ray* ray, __local TileShared* shared) {
@@ -82,7 +82,7 @@ T0_INLINE Hit tile_camera_hit(const SceneView* scene, CameraRecord camera, int i
     inverse[item] =
         inside ? (float4)(ray->inv_direction, ray->any_parallel ? 0.0f : 1.0f) : (float4)(0.0f);
     barrier(CLK_LOCAL_MEM_FENCE);
-    if (item == 0u && camera.extent.z > 0.0f) {
+    if (item == 0u && (camera.extent.z > 0.0f || camera_is_orthographic(camera))) {
         shared->leaf_count = -1;
     } else if (item == 0u) {
         RayBundle b;

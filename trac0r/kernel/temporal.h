@@ -100,17 +100,21 @@ T0_INLINE float4 reproject_history(CameraRecord camera, CameraRecord previous, f
         return none;
     }
     const Ray ray = camera_ray(camera, (float)x, (float)y, 0.5f, 0.5f);
-    // The first hit, relative to the previous camera.
+    // The first hit, relative to the previous camera (an orthographic
+    // camera's rays start away from its position).
     const float t = here.normal_depth.w / dot(ray.direction, xyz(camera.forward));
-    const float3 p = offset + ray.direction * t;
+    const float3 p = offset + (ray.origin - xyz(camera.position)) + ray.direction * t;
     const float depth = dot(p, xyz(previous.forward));
     if (!(depth > 0.0f)) {
         return none;
     }
     const float width = (float)previous.size.x;
     const float height = (float)previous.size.y;
-    const float sx = dot(p, xyz(previous.right)) / (depth * previous.extent.x);
-    const float sy = dot(p, xyz(previous.up)) / (depth * previous.extent.y);
+    // Where the previous view saw p: on its image plane at distance one,
+    // or, orthographic, on the plane through its position.
+    const float scale = camera_is_orthographic(previous) ? 1.0f : depth;
+    const float sx = dot(p, xyz(previous.right)) / (scale * previous.extent.x);
+    const float sy = dot(p, xyz(previous.up)) / (scale * previous.extent.y);
     // Continuous pixel coordinates of the previous image, less half a pixel:
     // the taps are the four pixel centres around it.
     const float u = (sx + 1.0f) * 0.5f * width - 0.5f;

@@ -19,12 +19,13 @@ T0_NAMESPACE_BEGIN
 // its camera ray's hit among those leaves (camera_hit): the same hits as
 // traversal, in less time (kernel/tuning.h; docs/performance.md, "Camera
 // rays per tile"). Whether it rendered the tile: not through a thin lens,
-// whose rays start all over the aperture, not at one point.
+// whose rays start all over the aperture, nor from an orthographic camera,
+// whose rays start all over the image plane, not at one point.
 inline bool render_tile_bundled(const SceneView* scene, CameraRecord cam, AccumPixel* accum,
                                 t0_u64 seed, t0_u32 frame, int max_depth, long x0, long y0, long x1,
                                 long y1, long width) {
     if (!T0_HAS_FEATURE(scene, T0_FEATURE_BVH) || (x1 - x0) * (y1 - y0) > T0_TILE * T0_TILE ||
-        cam.extent.z > 0.0f) {
+        cam.extent.z > 0.0f || camera_is_orthographic(cam)) {
         return false;
     }
     PixelSample samples[T0_TILE * T0_TILE];

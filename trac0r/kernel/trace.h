@@ -17,22 +17,40 @@
 
 T0_NAMESPACE_BEGIN
 
-// The point of the image plane at distance one along forward that pixel
-// (x, y) (row 0 at the top) shows at sub-pixel position (jitter_x,
-// jitter_y) in [0, 1)^2, relative to the camera: forward component 1.
-T0_INLINE float3 camera_plane_point(CameraRecord cam, float x, float y, float jitter_x,
-                                    float jitter_y) {
+// Whether the camera is orthographic (its rays parallel, along forward,
+// from points of the image plane), not a pinhole or a thin lens.
+T0_INLINE int camera_is_orthographic(CameraRecord cam) { return cam.forward.w != 0.0f; }
+
+// Where pixel (x, y) (row 0 at the top) at sub-pixel position (jitter_x,
+// jitter_y) in [0, 1)^2 lies on the image plane, in units of cam.extent:
+// (-1, -1) the bottom-left corner, (1, 1) the top-right one.
+T0_INLINE float2 camera_screen_point(CameraRecord cam, float x, float y, float jitter_x,
+                                     float jitter_y) {
     const float width = (float)cam.size.x;
     const float height = (float)cam.size.y;
-    const float sx = (2.0f * (x + jitter_x) / width - 1.0f) * cam.extent.x;
-    const float sy = (1.0f - 2.0f * (y + jitter_y) / height) * cam.extent.y;
-    return xyz(cam.forward) + xyz(cam.right) * sx + xyz(cam.up) * sy;
+    return make_float2(2.0f * (x + jitter_x) / width - 1.0f, 1.0f - 2.0f * (y + jitter_y) / height);
 }
 
-// A primary ray of the pinhole through pixel (x, y) at (jitter_x, jitter_y).
+// The point of the image plane at distance one along forward that pixel
+// (x, y) shows at (jitter_x, jitter_y), relative to the camera: forward
+// component 1. For an orthographic camera, the offset of the ray's origin
+// from the camera's position, plus forward.
+T0_INLINE float3 camera_plane_point(CameraRecord cam, float x, float y, float jitter_x,
+                                    float jitter_y) {
+    const float2 s = camera_screen_point(cam, x, y, jitter_x, jitter_y);
+    return xyz(cam.forward) + xyz(cam.right) * (s.x * cam.extent.x) +
+           xyz(cam.up) * (s.y * cam.extent.y);
+}
+
+// A primary ray of the pinhole through pixel (x, y) at (jitter_x, jitter_y);
+// of an orthographic camera, along forward from that pixel's point of the
+// image plane through the camera's position.
 T0_INLINE Ray camera_ray(CameraRecord cam, float x, float y, float jitter_x, float jitter_y) {
-    return make_ray(xyz(cam.position),
-                    normalize(camera_plane_point(cam, x, y, jitter_x, jitter_y)));
+    const float3 d = camera_plane_point(cam, x, y, jitter_x, jitter_y);
+    if (camera_is_orthographic(cam)) {
+        return make_ray(xyz(cam.position) + (d - xyz(cam.forward)), xyz(cam.forward));
+    }
+    return make_ray(xyz(cam.position), normalize(d));
 }
 
 // A thin lens (pbrt's): the ray from a point on the aperture through the
@@ -41,12 +59,18 @@ T0_INLINE Ray camera_ray(CameraRecord cam, float x, float y, float jitter_x, flo
 // and a point at depth z blurs to a disc of radius
 // aperture * |z - focus| / (z * focus) on the image plane at distance one.
 // `lens` in [0, 1)^2 picks the aperture point (polar: uniform on the disc).
+// An orthographic camera's lens is centred on each pixel's point of the
+// image plane and focuses its parallel ray (pbrt's OrthographicCamera).
 T0_INLINE Ray camera_lens_ray(CameraRecord cam, float x, float y, float jitter_x, float jitter_y,
                               float2 lens) {
     const float3 d = camera_plane_point(cam, x, y, jitter_x, jitter_y);
     const float r = cam.extent.z * sqrt(lens.x);
     const float2_cs turn = turn_cos_sin(lens.y);
     const float3 on_lens = xyz(cam.right) * (r * turn.c) + xyz(cam.up) * (r * turn.s);
+    if (camera_is_orthographic(cam)) {
+        const float3 centre = xyz(cam.position) + (d - xyz(cam.forward));
+        return make_ray(centre + on_lens, normalize(xyz(cam.forward) * cam.extent.w - on_lens));
+    }
     return make_ray(xyz(cam.position) + on_lens, normalize(d * cam.extent.w - on_lens));
 }
 

@@ -215,10 +215,11 @@ typedef struct T0_ALIGN16 MaterialRecord {
 // plane's half extents at distance one.
 typedef struct T0_ALIGN16 CameraRecord {
     float4 position;  // xyz
-    float4 forward;   // xyz, unit
+    float4 forward;   // xyz, unit; w: 0 perspective, 1 orthographic
     float4 right;     // xyz, unit: normalize(cross(forward, world_up)) (right-handed)
     float4 up;        // xyz, unit: cross(right, forward)
-    float4 extent;    // x: tan(vfov/2) * aspect, y: tan(vfov/2), z: the lens' aperture
+    float4 extent;    // x: tan(vfov/2) * aspect, y: tan(vfov/2) (orthographic: half the
+                      // view's width and height in metres), z: the lens' aperture
                       // radius (0: a pinhole), w: the focus distance along forward
     uint4 size;       // x: width, y: height
 } CameraRecord;
