@@ -126,14 +126,20 @@ TEST_CASE("a glTF's promised triangles, and a file promising more than the machi
           "[gltf]") {
     // Mesh 0: 30 indices (10 triangles) and a strip of 5 vertices (3);
     // mesh 1: 9 vertices without indices (3). Node 0 and node 2 (a child
-    // of node 1) instance mesh 0, node 3 mesh 1; node 4 is in no scene.
+    // of node 1, moved) instance mesh 0, node 3 mesh 1; node 4 is in no
+    // scene.
     const std::string json = R"({"scene": 0, "scenes": [{"nodes": [0, 1, 3]}],
-      "nodes": [{"mesh": 0}, {"children": [2]}, {"mesh": 0}, {"mesh": 1}, {"mesh": 1}],
+      "nodes": [{"mesh": 0}, {"children": [2], "translation": [1, 0, 0]}, {"mesh": 0},
+                {"mesh": 1}, {"mesh": 1}],
       "meshes": [{"primitives": [{"attributes": {"POSITION": 1}, "indices": 0},
                                  {"attributes": {"POSITION": 1}, "mode": 5}]},
                  {"primitives": [{"attributes": {"POSITION": 2}}]}],
       "accessors": [{"count": 30}, {"count": 5}, {"count": 9}]})";
     CHECK(gltf_promised_triangles(json) == 2 * (10 + 3) + 3);
+    // Node 2 unmoved places mesh 0 where node 0 does: read once.
+    std::string repeated = json;
+    repeated.replace(repeated.find(R"(, "translation": [1, 0, 0])"), 26, "");
+    CHECK(gltf_promised_triangles(repeated) == 10 + 3 + 3);
     CHECK(gltf_promised_triangles("not json") == 0);
     // 10^12 triangles: refused before the reader sees the file (its
     // buffer does not even exist).

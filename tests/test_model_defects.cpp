@@ -140,6 +140,40 @@ TEST_CASE("a glTF texture that is not there: a warning from the reader's child p
     CHECK_THAT(strict_error(json), Contains("/missing.png: cannot open texture"));
 }
 
+TEST_CASE("glTF nodes placing a mesh where another already did: drawn once, with a warning",
+          "[defects][mesh]") {
+    // One triangle, placed by four nodes: the origin twice, moved along x,
+    // and the origin again.
+    TempDir dir;
+    const float values[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const std::string buffer(reinterpret_cast<const char*>(values), sizeof values);
+    dir.write("n.gltf", R"({"asset": {"version": "2.0"}, "scene": 0,
+  "scenes": [{"nodes": [0, 1, 2, 3]}],
+  "nodes": [{"mesh": 0}, {"mesh": 0}, {"mesh": 0, "translation": [2, 0, 0]}, {"mesh": 0}],
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" +
+                            base64(buffer) + R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 0]}]})");
+    const std::string json =
+        dir.write("s.json", R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},
+                      "shapes": [{"type": "mesh", "file": "n.gltf", "material": "white"}]})");
+    const Scene scene = load_scene_file(json);
+    REQUIRE(scene.warnings.size() == 1);
+    CHECK(scene.warnings[0] == dir.path() +
+                                   "/n.gltf: warning: a node places mesh 0 exactly where "
+                                   "another node already placed it; drawn once (2 times) "
+                                   "(--strict refuses it)");
+    REQUIRE(scene.shapes.size() == 1);
+    REQUIRE(scene.shapes[0].triangles.size() == 2);
+    CHECK(scene.shapes[0].triangles[0].v1.x == Approx(1.0f));
+    CHECK(scene.shapes[0].triangles[1].v1.x == Approx(3.0f));
+    CHECK_THAT(strict_error(json),
+               Contains("/n.gltf: a node places mesh 0 exactly where another node already "
+                        "placed it"));
+}
+
 TEST_CASE("a mesh without a material takes the default grey, or the scene's \"default\"",
           "[defects][scene_loader]") {
     TempDir dir;

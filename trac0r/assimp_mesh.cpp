@@ -17,11 +17,13 @@
 #include <assimp/importerdesc.h>
 #include <assimp/scene.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <functional>
 #include <new>
+#include <set>
 #include <stdexcept>
 #include <utility>
 
@@ -165,6 +167,30 @@ std::string assimp_reader_name(bool ply) {
 // alone, our conversion of its scene into plain parts, materials and
 // textures; everything that touches assimp's structures is here. Throws
 // std::runtime_error naming the file for what assimp or our checks refuse.
+// Two nodes that place one mesh with the same transform draw it twice in
+// one place: coincident copies (the same surface met twice, which glass
+// refracts twice) that only cost memory. A defect: each mesh is drawn once
+// at each place (shared/repro's nodes_flat_1e6 is 10^6 nodes placing one
+// box at the origin, which took 12 M triangles and 8 GB).
+void skip_repeated_instances(std::vector<std::pair<unsigned, aiMatrix4x4>>* instances,
+                             const std::string& path, ModelDefects* defects) {
+    std::set<std::pair<unsigned, std::array<float, 16>>> seen;
+    std::size_t kept = 0;
+    for (const std::pair<unsigned, aiMatrix4x4>& instance : *instances) {
+        std::array<float, 16> m;
+        std::memcpy(m.data(), &instance.second, sizeof m);
+        if (!seen.emplace(instance.first, m).second) {
+            defects->report(path, 0,
+                            "a node places mesh " + std::to_string(instance.first) +
+                                " exactly where another node already placed it",
+                            "drawn once");
+            continue;
+        }
+        (*instances)[kept++] = instance;
+    }
+    instances->resize(kept);
+}
+
 std::string import_assimp(const std::string& path, const std::string& text, bool ply, bool smooth,
                           bool file_materials, std::uint64_t texel_budget, bool strict) {
     Assimp::Importer importer;
@@ -217,6 +243,8 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     if (scene->mRootNode != nullptr) {
         walk(*scene->mRootNode, aiMatrix4x4(), 0);
     }
+    ModelDefects defects(strict);
+    skip_repeated_instances(&instances, path, &defects);
     PartBuilder parts;
     for (const std::pair<unsigned, aiMatrix4x4>& instance : instances) {
         const aiMesh& mesh = *scene->mMeshes[instance.first];
@@ -321,7 +349,6 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     }
     // A texture as assimp_texture reads it; one that is not there or does
     // not decode is a defect (-1: the material's factor alone).
-    ModelDefects defects(strict);
     const auto texture_of = [&](const aiMaterial& m, std::initializer_list<aiTextureType> types,
                                 const char* what) {
         try {

@@ -4,6 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
+#include <cstring>
+#include <set>
 #include <stdexcept>
 #include <vector>
 
@@ -67,11 +70,19 @@ std::uint64_t gltf_promised_triangles(const std::string& json_text) {
         per_mesh[m] = mesh_triangles(doc, meshes[m]);
     }
     std::uint64_t total = 0;
+    // A mesh placed twice with the same transform is read once (the
+    // reader's skip_repeated_instances).
+    std::set<std::pair<std::size_t, std::array<double, 16>>> seen;
     try {
-        walk_gltf_nodes(doc, "", [&](std::size_t, const json& node, const glm::dmat4&) {
+        walk_gltf_nodes(doc, "", [&](std::size_t, const json& node, const glm::dmat4& world) {
             if (node.contains("mesh") && node["mesh"].is_number_unsigned() &&
                 node["mesh"].get<std::size_t>() < per_mesh.size()) {
-                total += per_mesh[node["mesh"].get<std::size_t>()];
+                const std::size_t mesh = node["mesh"].get<std::size_t>();
+                std::array<double, 16> m;
+                std::memcpy(m.data(), &world, sizeof m);
+                if (seen.emplace(mesh, m).second) {
+                    total += per_mesh[mesh];
+                }
             }
         });
     } catch (const std::runtime_error&) {

@@ -11,7 +11,8 @@
 namespace trac0r {
 
 // The triangles of the default scene's nodes (each node's mesh, once per
-// node that instances it): a triangle primitive's index count (or vertex
+// node that instances it with a transform of its own; the reader skips a
+// repeated one): a triangle primitive's index count (or vertex
 // count without indices) over 3, a strip's or fan's less 2. 0 where the
 // JSON cannot be read.
 std::uint64_t gltf_promised_triangles(const std::string& json_text);

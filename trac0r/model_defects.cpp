@@ -47,7 +47,9 @@ std::vector<std::string> ModelDefects::lines() const {
     for (const Kind& k : kinds_) {
         std::string line = located(k.file, k.line) + ": warning: " + k.what + "; " + k.done;
         if (k.count > 1) {
-            line += " (" + std::to_string(k.count) + " times; the first here)";
+            // "here": the line given, where the file has lines.
+            line += " (" + std::to_string(k.count) +
+                    (k.line > 0 ? " times; the first here)" : " times)");
         }
         out.push_back(line + " (--strict refuses it)");
     }

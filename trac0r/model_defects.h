@@ -36,7 +36,8 @@ class ModelDefects {
     void add_lines(const std::vector<std::string>& lines);
 
     // One line per kind, in the order first met: "file:line: warning:
-    // what; done (N times)" ("... done" alone where there is one).
+    // what; done (N times; the first here)" ("... done" alone where there
+    // is one; "(N times)" where no line applies).
     std::vector<std::string> lines() const;
 
   private:
