@@ -6,9 +6,9 @@
 #include "viewer_process.h"
 
 using namespace trac0r;
-using trac0r_scene_test::strict;
 using Catch::Matchers::Contains;
 using Catch::Matchers::EndsWith;
+using trac0r_scene_test::strict;
 
 namespace {
 
@@ -145,17 +145,10 @@ TEST_CASE("glTF nodes placing a mesh where another already did: drawn once, with
     // One triangle, placed by four nodes: the origin twice, moved along x,
     // and the origin again.
     TempDir dir;
-    const float values[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-    const std::string buffer(reinterpret_cast<const char*>(values), sizeof values);
     dir.write("n.gltf", R"({"asset": {"version": "2.0"}, "scene": 0,
   "scenes": [{"nodes": [0, 1, 2, 3]}],
   "nodes": [{"mesh": 0}, {"mesh": 0}, {"mesh": 0, "translation": [2, 0, 0]}, {"mesh": 0}],
-  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
-  "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" +
-                            base64(buffer) + R"("}],
-  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
-  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-                 "min": [0, 0, 0], "max": [1, 1, 0]}]})");
+  )" + gltf_one_triangle_tail());
     const std::string json =
         dir.write("s.json", R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},
                       "shapes": [{"type": "mesh", "file": "n.gltf", "material": "white"}]})");

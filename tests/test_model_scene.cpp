@@ -112,8 +112,6 @@ TEST_CASE("a glTF's own camera and KHR_lights_punctual lights make its scene", "
     // cd (1 W/sr) at (1, 2, 3); a red spot of 1366 cd under a parent node
     // moved by (0, 10, 0), turned to point down (-90 degrees about x), its
     // cone 0.2 to 0.4 rad; a directional light of 6830 lux pointing down.
-    const float values[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-    const std::string buffer(reinterpret_cast<const char*>(values), sizeof values);
     const double h = std::sqrt(0.5);
     char rotations[256];
     std::snprintf(rotations, sizeof rotations, "[0, %.17g, 0, %.17g]|[%.17g, 0, 0, %.17g]", h, h,
@@ -141,12 +139,7 @@ TEST_CASE("a glTF's own camera and KHR_lights_punctual lights make its scene", "
                                   R"(, "extensions": {"KHR_lights_punctual": {"light": 2}}}],
   "cameras": [{"type": "perspective", "perspective": {"yfov": 0.5, "aspectRatio": 2.0,
                                                        "znear": 0.1}}],
-  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
-  "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" +
-                                  base64(buffer) + R"("}],
-  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
-  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-                 "min": [0, 0, 0], "max": [1, 1, 0]}]})");
+  )" + gltf_one_triangle_tail());
     std::string json;
     const Scene scene = model_scene(path, LoadOptions(), &json);
     CAPTURE(json);
@@ -187,20 +180,13 @@ TEST_CASE("a glTF's own camera and KHR_lights_punctual lights make its scene", "
 TEST_CASE("a glTF's orthographic camera makes an orthographic scene camera", "[model_scene]") {
     // One triangle seen by an orthographic camera at (0, 0, 4) looking
     // along -z: xmag 3 and ymag 1.5 (half the view's width and height).
-    const float values[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-    const std::string buffer(reinterpret_cast<const char*>(values), sizeof values);
     const auto gltf = [&](const std::string& magnification) {
         return R"({"asset": {"version": "2.0"}, "scene": 0,
   "scenes": [{"nodes": [0, 1]}],
   "nodes": [{"mesh": 0}, {"camera": 0, "translation": [0, 0, 4]}],
   "cameras": [{"type": "orthographic", "orthographic": {)" +
                magnification + R"(, "znear": 0.1, "zfar": 100}}],
-  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
-  "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" +
-               base64(buffer) + R"("}],
-  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
-  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
-                 "min": [0, 0, 0], "max": [1, 1, 0]}]})";
+  )" + gltf_one_triangle_tail();
     };
     TempDir dir;
     const std::string path = dir.write("ortho.gltf", gltf(R"("xmag": 3, "ymag": 1.5)"));

@@ -241,6 +241,20 @@ inline std::string base64(const std::string& bytes) {
     return out;
 }
 
+// The end of a glTF file whose mesh 0 is one triangle, (0, 0, 0),
+// (1, 0, 0), (0, 1, 0), its buffer inline: "meshes" to "accessors" and the
+// closing brace; a test writes the rest (asset, scenes, nodes, ...) before.
+inline std::string gltf_one_triangle_tail() {
+    const float values[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const std::string buffer(reinterpret_cast<const char*>(values), sizeof values);
+    return R"("meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" +
+           base64(buffer) + R"("}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 0]}]})";
+}
+
 // A directory under /tmp holding files written by a test; removed after.
 class TempDir {
   public:
