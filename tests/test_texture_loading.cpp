@@ -185,6 +185,43 @@ TEST_CASE("base-colour textures from MTL and glTF, with the file's coordinates",
         dir.write("t.gltf", textured_triangle_gltf("t.png", R"({"wrapS": 10497})"));
         CHECK(load_scene_file(mesh_scene("t.gltf")).textures[0].wrap_u == TextureWrap::repeat);
     }
+    SECTION("one image under two samplers is two textures; under one, one") {
+        // Materials a and c take the image clamped, b repeated: assimp
+        // gives each material its own copy of the sampler's modes.
+        std::string gltf = textured_triangle_gltf("t.png", R"({"wrapS": 33071, "wrapT": 33071})");
+        const auto swap = [&](const std::string& from, const std::string& to) {
+            REQUIRE(gltf.find(from) != std::string::npos);
+            gltf.replace(gltf.find(from), from.size(), to);
+        };
+        swap(R"({"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0})",
+             R"({"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 0},
+                {"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 1},
+                {"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": 2})");
+        swap(R"([{"name": "logo", )",
+             R"([{"name": "a", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}},
+                {"name": "b", "pbrMetallicRoughness": {"baseColorTexture": {"index": 1}}},
+                {"name": "c", )");
+        swap(R"("textures": [{"source": 0, "sampler": 0}])",
+             R"("textures": [{"source": 0, "sampler": 0}, {"source": 0}])");
+        dir.write("t.gltf", gltf);
+        const Scene scene = load_scene_file(mesh_scene("t.gltf"));
+        REQUIRE(scene.textures.size() == 2);
+        const auto texture_of = [&](const std::string& name) {
+            for (const Material& m : scene.materials) {
+                if (m.name == name) {
+                    REQUIRE(m.texture >= 0);
+                    return scene.textures[static_cast<std::size_t>(m.texture)];
+                }
+            }
+            FAIL("no material " << name);
+            return Texture();
+        };
+        CHECK(texture_of("a").wrap_u == TextureWrap::clamp);
+        CHECK(texture_of("b").wrap_u == TextureWrap::repeat);
+        CHECK(texture_of("b").wrap_v == TextureWrap::repeat);
+        CHECK(texture_of("c").wrap_v == TextureWrap::clamp);
+        CHECK(texture_of("a").source == texture_of("c").source);
+    }
     SECTION("a texture that cannot be read or decoded is named with its material") {
         dir.write("m.obj", quad_obj);
         dir.write("m.mtl", "newmtl tex\nmap_Kd nope.png\nnewmtl tex2\n");

@@ -73,17 +73,6 @@ int assimp_texture(const aiScene& scene, const aiMaterial& m, const std::string&
     // The sampler's wrap modes (glTF's wrapS, wrapT; REPEAT where none).
     const TextureWrap wrap_u = texture_wrap(m, AI_MATKEY_MAPPINGMODE_U(found_type, 0));
     const TextureWrap wrap_v = texture_wrap(m, AI_MATKEY_MAPPINGMODE_V(found_type, 0));
-    // An image with other wrap modes is another texture of the scene.
-    const std::string wrap_key = wrap_u == TextureWrap::repeat && wrap_v == TextureWrap::repeat
-                                     ? ""
-                                     : " (wrap " + std::to_string(static_cast<unsigned>(wrap_u)) +
-                                           "," + std::to_string(static_cast<unsigned>(wrap_v)) +
-                                           ")";
-    const auto wrapped = [&](Texture t) {
-        t.wrap_u = wrap_u;
-        t.wrap_v = wrap_v;
-        return t;
-    };
     aiString material_name;
     m.Get(AI_MATKEY_NAME, material_name);
     const std::string file = name.C_Str();
@@ -91,45 +80,44 @@ int assimp_texture(const aiScene& scene, const aiMaterial& m, const std::string&
                               "': " + what + " texture '" + printable(file, 200) + "'";
     const aiTexture* embedded = scene.GetEmbeddedTexture(name.C_Str());
     if (embedded != nullptr) {
-        return texture_index(mesh, path + " " + file + wrap_key, [&] {
-            return wrapped([&] {
-                if (embedded->mHeight != 0) {
-                    // Uncompressed: mWidth x mHeight texels, BGRA.
-                    if (embedded->mWidth == 0 ||
-                        embedded->mWidth > static_cast<unsigned>(max_texture_side) ||
-                        embedded->mHeight > static_cast<unsigned>(max_texture_side)) {
-                        throw std::runtime_error(where + ": expected each side at most " +
-                                                 std::to_string(max_texture_side));
-                    }
-                    check_texture_room(where, static_cast<int>(embedded->mWidth),
-                                       static_cast<int>(embedded->mHeight), room);
-                    Texture t;
-                    t.source = path + " " + file;
-                    t.width = static_cast<int>(embedded->mWidth);
-                    t.height = static_cast<int>(embedded->mHeight);
-                    t.texels.resize(static_cast<std::size_t>(t.width) * t.height);
-                    for (std::size_t i = 0; i < t.texels.size(); ++i) {
-                        const aiTexel& c = embedded->pcData[i];
-                        t.texels[i] = static_cast<std::uint32_t>(c.r) |
-                                      static_cast<std::uint32_t>(c.g) << 8 |
-                                      static_cast<std::uint32_t>(c.b) << 16 |
-                                      static_cast<std::uint32_t>(c.a) << 24;
-                    }
-                    return t;
+        const auto decode = [&] {
+            if (embedded->mHeight != 0) {
+                // Uncompressed: mWidth x mHeight texels, BGRA.
+                if (embedded->mWidth == 0 ||
+                    embedded->mWidth > static_cast<unsigned>(max_texture_side) ||
+                    embedded->mHeight > static_cast<unsigned>(max_texture_side)) {
+                    throw std::runtime_error(where + ": expected each side at most " +
+                                             std::to_string(max_texture_side));
                 }
-                // Compressed (PNG, JPEG): mWidth bytes.
-                return decode_texture(where, path + " " + file,
-                                      reinterpret_cast<const unsigned char*>(embedded->pcData),
-                                      embedded->mWidth, room);
-            }());
-        });
+                check_texture_room(where, static_cast<int>(embedded->mWidth),
+                                   static_cast<int>(embedded->mHeight), room);
+                Texture t;
+                t.source = path + " " + file;
+                t.width = static_cast<int>(embedded->mWidth);
+                t.height = static_cast<int>(embedded->mHeight);
+                t.texels.resize(static_cast<std::size_t>(t.width) * t.height);
+                for (std::size_t i = 0; i < t.texels.size(); ++i) {
+                    const aiTexel& c = embedded->pcData[i];
+                    t.texels[i] = static_cast<std::uint32_t>(c.r) |
+                                  static_cast<std::uint32_t>(c.g) << 8 |
+                                  static_cast<std::uint32_t>(c.b) << 16 |
+                                  static_cast<std::uint32_t>(c.a) << 24;
+                }
+                return t;
+            }
+            // Compressed (PNG, JPEG): mWidth bytes.
+            return decode_texture(where, path + " " + file,
+                                  reinterpret_cast<const unsigned char*>(embedded->pcData),
+                                  embedded->mWidth, room);
+        };
+        return texture_index(mesh, path + " " + file, decode, wrap_u, wrap_v);
     }
     if (!file.empty() && file[0] == '*') {
         throw std::runtime_error(where + ": the file has no embedded image of that number");
     }
     const std::string texture = texture_path_beside(path, file);
-    return texture_index(mesh, texture + wrap_key,
-                         [&] { return wrapped(load_texture_file(where, texture, room)); });
+    return texture_index(
+        mesh, texture, [&] { return load_texture_file(where, texture, room); }, wrap_u, wrap_v);
 }
 
 // Leaves `importer` with only its reader named `name` (an

@@ -13,16 +13,23 @@
 
 namespace trac0r {
 
-// The index in mesh.textures of the texture from `source`, made by
-// load() the first time a material of the file uses it.
+// The index in mesh.textures of the texture from `source` with the wrap
+// modes wrap_u and wrap_v, made by load() (and given those modes) the
+// first time a material of the file uses the image so: the same image
+// under another sampler is another texture.
 template <typename Load>
-int texture_index(MeshParts& mesh, const std::string& source, Load load) {
+int texture_index(MeshParts& mesh, const std::string& source, Load load,
+                  TextureWrap wrap_u = TextureWrap::repeat,
+                  TextureWrap wrap_v = TextureWrap::repeat) {
     for (std::size_t i = 0; i < mesh.textures.size(); ++i) {
-        if (mesh.textures[i].source == source) {
+        const Texture& t = mesh.textures[i];
+        if (t.source == source && t.wrap_u == wrap_u && t.wrap_v == wrap_v) {
             return static_cast<int>(i);
         }
     }
     mesh.textures.push_back(load());
+    mesh.textures.back().wrap_u = wrap_u;
+    mesh.textures.back().wrap_v = wrap_v;
     return static_cast<int>(mesh.textures.size()) - 1;
 }
 
