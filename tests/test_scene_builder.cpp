@@ -216,6 +216,10 @@ TEST_CASE("what the builder refuses, a scene file is refused for in the same wor
     bright.emittance = 1e31f;
     Lamp hot;
     hot.power = 1e31f;
+    Lamp directionless_sun;
+    directionless_sun.type = LampType::sun;
+    directionless_sun.direction = glm::vec3(0.0f);
+    directionless_sun.power = 1.0f;
     Environment sky;
     sky.color = glm::vec3(2.0f);
     sky.strength = 1e30f;
@@ -260,6 +264,12 @@ TEST_CASE("what the builder refuses, a scene file is refused for in the same wor
          [&](SceneBuilder& b) { b.add_lamp(hot); },
          "point light: intensity: the colour times the intensity is 1e+31 in a channel, above "
          "1e30, the most the renderer can sum over a pixel's samples in float"},
+        {"a sun without a direction",
+         scene_with("",
+                    R"(, "lights": [{"type": "sun", "direction": [0, 0, 0], "irradiance": 1}])"),
+         [&](SceneBuilder& b) { b.add_lamp(directionless_sun); },
+         "sun light: direction: expected a direction (3 finite numbers, not all zero): towards "
+         "the sun, got [0, 0, 0]"},
         {"an environment past float's sum",
          scene_with("", R"(, "environment": {"color": [2, 2, 2], "strength": 1e30})"),
          [&](SceneBuilder& b) { b.set_environment(sky); },
