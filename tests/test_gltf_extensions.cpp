@@ -5,6 +5,7 @@
 #include "test_support.h"
 
 #include "trac0r/gltf_json.h"
+#include "trac0r/gltf_nodes.h"
 #include "trac0r/gltf_size.h"
 
 #include <cmath>
@@ -135,12 +136,12 @@ TEST_CASE("a glTF's promised triangles, and a file promising more than the machi
                                  {"attributes": {"POSITION": 1}, "mode": 5}]},
                  {"primitives": [{"attributes": {"POSITION": 2}}]}],
       "accessors": [{"count": 30}, {"count": 5}, {"count": 9}]})";
-    CHECK(gltf_promised_triangles(json) == 2 * (10 + 3) + 3);
+    CHECK(gltf_promised_triangles(json, "f.gltf") == 2 * (10 + 3) + 3);
     // Node 2 unmoved places mesh 0 where node 0 does: read once.
     std::string repeated = json;
     repeated.replace(repeated.find(R"(, "translation": [1, 0, 0])"), 26, "");
-    CHECK(gltf_promised_triangles(repeated) == 10 + 3 + 3);
-    CHECK(gltf_promised_triangles("not json") == 0);
+    CHECK(gltf_promised_triangles(repeated, "f.gltf") == 10 + 3 + 3);
+    CHECK(gltf_promised_triangles("not json", "f.gltf") == 0);
     // 10^12 triangles: refused before the reader sees the file (its
     // buffer does not even exist).
     TempDir dir;
@@ -157,4 +158,32 @@ TEST_CASE("a glTF's promised triangles, and a file promising more than the machi
         load_mesh_parts(path, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f), 0, true, true),
         Catch::Contains("huge.gltf: cannot read mesh: it promises 1000000000000 "
                         "triangles, which would take about "));
+}
+
+TEST_CASE("glTF nodes nested too deep for the reader are refused before it runs", "[gltf]") {
+    // A chain of n nodes, the last placing the triangle: 257 levels below
+    // the root is one too many (assimp's recursion crashed on 2 x 10^4).
+    const auto chain = [](int n) {
+        std::string nodes;
+        for (int i = 0; i + 1 < n; ++i) {
+            nodes += R"({"children": [)" + std::to_string(i + 1) + "]}, ";
+        }
+        return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [)" +
+               nodes +
+               R"({"mesh": 0}],
+  )" + gltf_one_triangle_tail();
+    };
+    TempDir dir;
+    const std::string deep = dir.write("deep.gltf", chain(258));
+    CHECK_THROWS_WITH(
+        load_mesh_parts(deep, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f), 0, true, true),
+        dir.path() + "/deep.gltf: cannot read mesh: its nodes nest deeper than 256");
+    CHECK_THROWS_AS(gltf_promised_triangles(chain(258), "deep.gltf"), GltfNodesTooDeep);
+    // 256 levels below the root: read, the triangle where the chain puts it.
+    const std::string fits = dir.write("fits.gltf", chain(257));
+    const MeshParts parts =
+        load_mesh_parts(fits, glm::vec3(0.0f), glm::vec3(0.0f), glm::vec3(1.0f), 0, true, true);
+    REQUIRE(parts.parts.size() == 1);
+    CHECK(parts.parts[0].shape.triangles.size() == 1);
 }

@@ -2,6 +2,7 @@
 
 #include "trac0r/file_materials.h"
 #include "trac0r/gltf_json.h"
+#include "trac0r/gltf_nodes.h"
 #include "trac0r/gltf_size.h"
 #include "trac0r/input_checks.h"
 #include "trac0r/input_file.h"
@@ -209,7 +210,7 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     // Each node's meshes, with the node's transform (and its parents'):
     // (mesh index, transform) in the order of a depth-first walk.
     std::vector<std::pair<unsigned, aiMatrix4x4>> instances;
-    const int max_node_depth = 256;
+    const int max_node_depth = max_gltf_node_depth;
     const std::function<void(const aiNode&, const aiMatrix4x4&, int)> walk =
         [&](const aiNode& node, const aiMatrix4x4& parent, int depth) {
             if (depth > max_node_depth) {
@@ -448,7 +449,7 @@ MeshParts load_assimp(const std::string& path, const glm::vec3& position,
         // A glTF that promises more triangles than the machine can hold
         // is refused before its reader allocates them.
         const std::uint64_t triangles =
-            gltf_promised_triangles(gltf_json_text(text, has_extension(path, ".glb")));
+            gltf_promised_triangles(gltf_json_text(text, has_extension(path, ".glb")), path);
         const std::uint64_t memory = 2 * mesh_import_memory();
         if (memory > 0 && triangles > memory / bytes_per_loaded_triangle) {
             throw std::runtime_error(

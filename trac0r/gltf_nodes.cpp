@@ -92,7 +92,11 @@ void walk_gltf_nodes(
     std::vector<bool> seen(nodes.size(), false);
     const std::function<void(std::size_t, const glm::dmat4&, int)> walk =
         [&](std::size_t index, const glm::dmat4& parent, int depth) {
-            if (depth > 256 || seen[index] || !nodes[index].is_object()) {
+            if (depth > max_gltf_node_depth) {
+                throw GltfNodesTooDeep(path + ": cannot read mesh: its nodes nest deeper than " +
+                                       std::to_string(max_gltf_node_depth));
+            }
+            if (seen[index] || !nodes[index].is_object()) {
                 return;
             }
             seen[index] = true;

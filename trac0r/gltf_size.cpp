@@ -58,7 +58,7 @@ std::uint64_t mesh_triangles(const json& doc, const json& mesh) {
 
 }  // namespace
 
-std::uint64_t gltf_promised_triangles(const std::string& json_text) {
+std::uint64_t gltf_promised_triangles(const std::string& json_text, const std::string& path) {
     const json doc = json::parse(json_text, nullptr, false);
     if (doc.is_discarded() || !doc.is_object() || !doc.contains("nodes") ||
         !doc["nodes"].is_array() || !doc.contains("meshes") || !doc["meshes"].is_array()) {
@@ -74,7 +74,7 @@ std::uint64_t gltf_promised_triangles(const std::string& json_text) {
     // reader's skip_repeated_instances).
     std::set<std::pair<std::size_t, std::array<double, 16>>> seen;
     try {
-        walk_gltf_nodes(doc, "", [&](std::size_t, const json& node, const glm::dmat4& world) {
+        walk_gltf_nodes(doc, path, [&](std::size_t, const json& node, const glm::dmat4& world) {
             if (node.contains("mesh") && node["mesh"].is_number_unsigned() &&
                 node["mesh"].get<std::size_t>() < per_mesh.size()) {
                 const std::size_t mesh = node["mesh"].get<std::size_t>();
@@ -85,6 +85,8 @@ std::uint64_t gltf_promised_triangles(const std::string& json_text) {
                 }
             }
         });
+    } catch (const GltfNodesTooDeep&) {
+        throw;
     } catch (const std::runtime_error&) {
         // A transform that is not finite: the reader refuses the file.
     }

@@ -14,8 +14,9 @@ namespace trac0r {
 // node that instances it with a transform of its own; the reader skips a
 // repeated one): a triangle primitive's index count (or vertex
 // count without indices) over 3, a strip's or fan's less 2. 0 where the
-// JSON cannot be read.
-std::uint64_t gltf_promised_triangles(const std::string& json_text);
+// JSON cannot be read. Throws GltfNodesTooDeep (gltf_nodes.h) naming
+// `path` for nodes nested too deep for the reader.
+std::uint64_t gltf_promised_triangles(const std::string& json_text, const std::string& path);
 
 // About what trac0r holds a loaded triangle in, at its peak (loading,
 // packing and the BVH: an OBJ of 10^7 triangles took 4.5 GB).
