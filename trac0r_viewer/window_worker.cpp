@@ -35,6 +35,10 @@ RenderWorker::RenderWorker(std::unique_ptr<trac0r::Renderer> renderer, BackendFa
       settings_(settings),
       camera_(full_->scene().camera),
       full_started_(Clock::now()),
+      view_history_(
+          [this](const trac0r::kernel::CameraRecord& camera) -> const trac0r::GuideImages& {
+              return guides_of(camera);
+          }),
       frame_ready_(std::move(frame_ready)),
       thread_(&RenderWorker::run, this) {}
 
@@ -144,7 +148,7 @@ std::string RenderWorker::pause_reason_now() const {
     // The target by the last estimate (refreshed about twice a second, so the
     // window pauses within about half a second of reaching it), from 8 spp
     // on, as a batch render checks it.
-    const bool error_reached = last_estimate_spp_ >= 8 && stop.error_reached(last_estimate_);
+    const bool error_reached = estimate_.spp() >= 8 && stop.error_reached(estimate_.value());
     switch (
         stop.reason(full_->frames(), seconds_since(full_started_), error_reached, full_->full())) {
     case trac0r::StopReason::spp:
@@ -189,8 +193,8 @@ void RenderWorker::run() {
                 // A request that changed nothing (a backend switch to the
                 // backend in use, or one that failed): the same image under
                 // the new generation, not one more sample past --spp.
-                publish(*full_, false, Clock::now(),
-                        shown_full_.pixels.empty() ? full_->image() : shown_full_);
+                const trac0r::Image& last = view_history_.last_full_frame();
+                publish(*full_, false, Clock::now(), last.pixels.empty() ? full_->image() : last);
             } else if (requests.camera_changed && preview_factor_ > 1) {
                 render_preview();
             } else {
@@ -239,7 +243,7 @@ void RenderWorker::apply(const Requests& requests) {
     }
     if (requests.restart) {
         full_stale_ = true;
-        drop_history_ = true;
+        view_history_.drop();
     }
     if (requests.focus_x >= 0) {
         focus_on(requests.focus_x, requests.focus_y);
@@ -274,7 +278,7 @@ void RenderWorker::change_backend(const std::string& name) {
                                                    settings_.pack);
         preview_.reset();  // made again on the new backend when needed
         full_stale_ = true;
-        drop_history_ = true;
+        view_history_.drop();
         guide_images_ = trac0r::GuideImages();
         tell("backend: " + name + " (" + full_->backend().device() + ")");
     } catch (const std::exception& e) {
@@ -313,12 +317,10 @@ void RenderWorker::render_preview() {
     // and temporal reuse would smear it into streaks.
     preview_->set_frame_sequence(preview_frames_++, 1);
     preview_->render_frame();
-    settle_history();
-    history_ = trac0r::temporal_blend(
-        history_, preview_->image(), static_cast<float>(preview_->frames()),
-        preview_->camera_record(),
+    const trac0r::Image shown = view_history_.preview(
+        preview_->image(), static_cast<float>(preview_->frames()), preview_->camera_record(),
         trac0r::render_guides(preview_->packed(), preview_->camera_record()));
-    publish(*preview_, true, start, history_.image());
+    publish(*preview_, true, start, shown);
 }
 
 const trac0r::GuideImages& RenderWorker::guides_of(const trac0r::kernel::CameraRecord& camera) {
@@ -329,32 +331,18 @@ const trac0r::GuideImages& RenderWorker::guides_of(const trac0r::kernel::CameraR
     return guide_images_;
 }
 
-void RenderWorker::settle_history() {
-    if (drop_history_) {
-        history_ = trac0r::TemporalFrame();
-        history_is_shown_full_ = false;
-        drop_history_ = false;
-    } else if (history_is_shown_full_) {
-        history_ = trac0r::temporal_blend(trac0r::TemporalFrame(), shown_full_,
-                                          static_cast<float>(shown_full_spp_), shown_full_camera_,
-                                          guides_of(shown_full_camera_));
-        history_is_shown_full_ = false;
-    }
-}
-
 void RenderWorker::render_full() {
     if (full_stale_) {
         // What was shown last (the moves' frames, or the old view's
         // accumulation) is carried into the new accumulation's first
-        // frames; history_ stays what is shown until one of them is.
-        settle_history();
-        carried_ = history_;
+        // frames.
+        view_history_.start_accumulation();
         full_->set_camera(camera_);  // restarts accumulation
         full_started_ = Clock::now();
         full_stale_ = false;
-        last_estimate_spp_ = 0;
+        estimate_.restart();
         guides_.clear();  // a new view or size: made again when the filter is on
-        last_filtered_spp_ = 0;
+        filtered_.restart();
         pause_reason_.clear();
     }
     const Clock::time_point start = Clock::now();
@@ -366,24 +354,8 @@ void RenderWorker::render_full() {
         ++cancelled_frames_;
         return;
     }
-    trac0r::Image shown = full_->image();
-    if (!carried_.empty() && full_->frames() >= carried_history_frames) {
-        carried_ = trac0r::TemporalFrame();
-    }
-    if (carried_.empty()) {
-        // The next move starts from this frame, made into history_ only
-        // then: most full frames are followed by another.
-        history_is_shown_full_ = true;
-    } else {
-        history_ =
-            trac0r::temporal_blend(carried_, shown, static_cast<float>(full_->frames()),
-                                   full_->camera_record(), guides_of(full_->camera_record()));
-        history_is_shown_full_ = false;
-        shown = history_.image();
-    }
-    shown_full_ = shown;
-    shown_full_spp_ = full_->frames();
-    shown_full_camera_ = full_->camera_record();
+    const trac0r::Image shown =
+        view_history_.full_frame(full_->image(), full_->frames(), full_->camera_record());
     publish(*full_, false, start, shown);
 }
 
@@ -394,37 +366,19 @@ double RenderWorker::noise_estimate() {
     // Fresh when there is none for this accumulation yet, when it is old,
     // and for the last frame before a --spp or --seconds pause, which stays
     // on screen.
-    const double interval =
-        std::max(noise_estimate_interval, noise_estimate_cost_factor * last_estimate_cost_);
-    const bool due =
-        last_estimate_spp_ == 0 || seconds_since(last_estimate_time_) >= interval || paused();
-    if (due && last_estimate_spp_ != full_->frames()) {
-        const Clock::time_point start = Clock::now();
-        last_estimate_ =
-            trac0r::estimate_relative_mse(full_->accumulator(), full_->width(), full_->height());
-        last_estimate_spp_ = full_->frames();
-        last_estimate_time_ = Clock::now();
-        last_estimate_cost_ = seconds_since(start);
-    }
-    return last_estimate_;
+    return estimate_.get(full_->frames(), paused(), [&] {
+        return trac0r::estimate_relative_mse(full_->accumulator(), full_->width(), full_->height());
+    });
 }
 
 trac0r::Image RenderWorker::filtered_image() {
-    const double interval = std::max(filter_interval, filter_cost_factor * last_filter_cost_);
-    const bool due =
-        last_filtered_spp_ == 0 || seconds_since(last_filtered_time_) >= interval || paused();
-    if (due && last_filtered_spp_ != full_->frames()) {
-        const Clock::time_point start = Clock::now();
+    return filtered_.get(full_->frames(), paused(), [&] {
         if (guides_.empty()) {
             guides_ = trac0r::filter_guides(guides_of(full_->camera_record()));
         }
-        last_filtered_ = trac0r::filter_image(full_->accumulator(), full_->width(), full_->height(),
-                                              guides_, T0_FILTER_PASSES, filter_workspace_);
-        last_filtered_spp_ = full_->frames();
-        last_filtered_time_ = Clock::now();
-        last_filter_cost_ = seconds_since(start);
-    }
-    return last_filtered_;
+        return trac0r::filter_image(full_->accumulator(), full_->width(), full_->height(), guides_,
+                                    T0_FILTER_PASSES, filter_workspace_);
+    });
 }
 
 void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time_point start,
@@ -446,18 +400,15 @@ void RenderWorker::publish(trac0r::Renderer& renderer, bool preview, Clock::time
         }
         pause_reason_ = pause_reason_now();  // before noise_estimate, which asks paused()
         frame.paused_by = pause_reason_;
-        if (!pause_reason_.empty() && !carried_.empty()) {
+        if (!pause_reason_.empty() && view_history_.pause(frame.accumulation)) {
             // Paused before what the moves left has faded out: the image
             // it stays on is the accumulation itself.
-            carried_ = trac0r::TemporalFrame();
-            history_is_shown_full_ = true;
-            shown_full_ = frame.accumulation;
             frame.image = frame.accumulation;
         }
     }
     frame.accumulation_seconds = preview ? 0.0 : accumulation_seconds_;
     frame.relative_mse = preview ? std::numeric_limits<double>::infinity() : noise_estimate();
-    frame.relative_mse_spp = preview ? 0 : last_estimate_spp_;
+    frame.relative_mse_spp = preview ? 0 : estimate_.spp();
     if (!preview && filter_ && full_->frames() > 0) {
         frame.filtered = filtered_image();  // after pause_reason_: a pause filters its frame
     }

@@ -20,6 +20,9 @@
 #ifndef TRAC0R_VIEWER_WINDOW_WORKER_H
 #define TRAC0R_VIEWER_WINDOW_WORKER_H
 
+#include "refreshed.h"
+#include "view_history.h"
+
 #include "trac0r/camera.h"
 #include "trac0r/filter.h"
 #include "trac0r/guides.h"
@@ -163,9 +166,6 @@ class RenderWorker {
     void render_full();
     // The guides of `camera`'s view of full_'s scene, made once per view.
     const trac0r::GuideImages& guides_of(const trac0r::kernel::CameraRecord& camera);
-    // history_ from the last full frame shown, where that is what was shown
-    // last.
-    void settle_history();
     // Publishes `shown` (and, for a full frame, the running mean);
     // frame_seconds counts from `start`.
     void publish(trac0r::Renderer& renderer, bool preview, Clock::time_point start,
@@ -186,34 +186,18 @@ class RenderWorker {
     bool full_stale_ = false;  // full_ has not seen camera_ or a restart yet
     Clock::time_point full_started_;
     std::uint64_t applied_generation_ = 0;
-    double last_estimate_ = 0.0;
-    std::uint32_t last_estimate_spp_ = 0;  // 0: none since the last restart
-    std::string pause_reason_;             // of the last full frame (pause_reason_now)
-    double accumulation_seconds_ = 0.0;    // how long it ran, until a pause
-    Clock::time_point last_estimate_time_;
-    double last_estimate_cost_ = 0.0;  // seconds
+    Refreshed<double> estimate_{noise_estimate_interval, noise_estimate_cost_factor};
+    std::string pause_reason_;           // of the last full frame (pause_reason_now)
+    double accumulation_seconds_ = 0.0;  // how long it ran, until a pause
     bool filter_ = false;
     std::vector<trac0r::kernel::FilterGuide> guides_;  // of full_'s view; empty: to be made
-    trac0r::Image last_filtered_;
-    std::uint32_t last_filtered_spp_ = 0;  // 0: none since the last restart
-    Clock::time_point last_filtered_time_;
-    double last_filter_cost_ = 0.0;             // seconds
+    Refreshed<trac0r::Image> filtered_{filter_interval, filter_cost_factor};
     trac0r::FilterWorkspace filter_workspace_;  // its buffers, kept between refreshes
     // The guides of one view (render_guides), for the filter and temporal
     // reuse: made again only for another view, size or backend.
     trac0r::GuideImages guide_images_;
     trac0r::kernel::CameraRecord guide_camera_{};
-    // Temporal reuse: the frame on display with its guides (empty: none,
-    // or the last full frame shown, made from shown_full_ when needed);
-    // what the moves left, blended into the full frames after a stop; the
-    // last full frame as shown, with its samples and camera.
-    trac0r::TemporalFrame history_;
-    bool history_is_shown_full_ = false;
-    bool drop_history_ = false;  // a restart or backend switch: start from nothing
-    trac0r::TemporalFrame carried_;
-    trac0r::Image shown_full_;
-    std::uint32_t shown_full_spp_ = 0;
-    trac0r::kernel::CameraRecord shown_full_camera_{};
+    ViewHistory view_history_;          // temporal reuse while moving and after a stop
     std::uint32_t preview_frames_ = 0;  // previews rendered: each its own samples
 
     // Shared with the window's thread, under mutex_.
@@ -238,11 +222,6 @@ class RenderWorker {
 // The divisor of the preview's resolution: about a sixteenth of the pixels,
 // but no smaller than 80 x 60; 1 (no preview) for images too small for it.
 int preview_factor(int width, int height);
-
-// The full frames after a stop blend in what the moves left until the
-// accumulation has this many samples a pixel (then the history's share
-// would be at most a fifth).
-constexpr std::uint32_t carried_history_frames = 64;
 
 }  // namespace trac0r_viewer
 
