@@ -17,6 +17,7 @@
 #include "trac0r/scene_loader.h"
 
 #include "cli.h"
+#include "reference_cache.h"
 #include "timing.h"
 #ifdef TRAC0R_HAVE_OPENCL
 #include "trac0r/opencl_backend.h"
@@ -45,7 +46,11 @@ using namespace trac0r;
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using trac0r_bench::cached_reference;
 using trac0r_bench::parse_long;
+using trac0r_bench::Reference;
+using trac0r_bench::reference_cache_base;
+using trac0r_bench::reference_is_cached;
 using trac0r_bench::UsageError;
 
 const char* const description =
@@ -211,53 +216,9 @@ std::unique_ptr<Backend> make_backend(const std::string& name) {
     return std::make_unique<CpuBackend>();
 }
 
-// FNV-1a of the scene's text: the cache key of its reference.
-std::string text_hash(const std::string& text) {
-    std::uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : text) {
-        h = (h ^ c) * 1099511628211ull;
-    }
-    char out[17];
-    std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
-    return out;
-}
-
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-bool file_exists(const std::string& path) {
-    struct stat st;
-    return stat(path.c_str(), &st) == 0;
-}
-
-// The reference image and its own estimated relative MSE (what its noise
-// adds to every error measured against it).
-struct Reference {
-    Image image;
-    double own_rel_mse;
-};
-
 // The cache's file name of the rendered reference, without its extension.
 std::string cached_reference_base(const Options& o) {
-    const std::string text =
-        o.scene_path.empty() ? std::string(builtin_scene_json()) : read_text(o.scene_path);
-    const std::string stem =
-        o.scene_path.empty()
-            ? "builtin"
-            : o.scene_path.substr(o.scene_path.find_last_of('/') + 1,
-                                  o.scene_path.rfind('.') - o.scene_path.find_last_of('/') - 1);
-    return o.cache_dir + "/" + stem + "-" + text_hash(text) + "-" + std::to_string(o.width) + "x" +
-           std::to_string(o.height) + "-" + std::to_string(o.reference_spp) + "spp";
-}
-
-// Whether the cache holds the rendered reference named base
-// (cached_reference_base).
-bool reference_is_cached(const std::string& base) {
-    return file_exists(base + ".pfm") && file_exists(base + ".relmse");
+    return reference_cache_base(o.cache_dir, o.scene_path, o.width, o.height, o.reference_spp);
 }
 
 // The cache directory, made if missing, and writable: checked before the
@@ -291,30 +252,7 @@ Reference reference_image(const Options& o, const Scene& scene, const std::strin
                      o.reference_path.c_str());
         return ref;
     }
-    const std::string pfm = cache_base + ".pfm";
-    const std::string noise_file = cache_base + ".relmse";
-    if (reference_is_cached(cache_base)) {
-        std::fprintf(stderr, "reference: cached %s\n", pfm.c_str());
-        return {read_pfm(pfm), std::stod(read_text(noise_file))};
-    }
-    std::fprintf(stderr, "reference: rendering %ld spp on the CPU (seed 0x5eed), cached as %s\n",
-                 o.reference_spp, pfm.c_str());
-    Renderer r(scene, std::make_unique<CpuBackend>(), 0x5eed);
-    const Clock::time_point start = Clock::now();
-    long next_report = std::max(1L, o.reference_spp / 10);
-    while (static_cast<long>(r.frames()) < o.reference_spp) {
-        r.render_frame();
-        if (static_cast<long>(r.frames()) >= next_report) {
-            const double s = std::chrono::duration<double>(Clock::now() - start).count();
-            std::fprintf(stderr, "  reference %u / %ld spp, %.0f s\n", r.frames(), o.reference_spp,
-                         s);
-            next_report += std::max(1L, o.reference_spp / 10);
-        }
-    }
-    Reference ref{r.image(), estimate_relative_mse(r.accumulator(), o.width, o.height)};
-    write_pfm(pfm, ref.image);
-    std::ofstream(noise_file) << ref.own_rel_mse << "\n";
-    return ref;
+    return cached_reference(cache_base, scene, o.reference_spp);
 }
 
 struct Checkpoint {

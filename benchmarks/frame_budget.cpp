@@ -15,8 +15,9 @@
 // Times are CPU seconds over the machine's cores: a frame's time on that
 // many free cores (benchmarks/timing.h), beside the wall clock.
 #include "cli.h"
-#include "viewer_like.h"
+#include "reference_cache.h"
 #include "timing.h"
+#include "viewer_like.h"
 
 #include "trac0r/camera.h"
 #include "trac0r/cpu_backend.h"
@@ -52,6 +53,11 @@
 namespace {
 
 using namespace trac0r;
+using trac0r_bench::cached_reference;
+using trac0r_bench::Reference;
+using trac0r_bench::reference_cache_base;
+using trac0r_bench::reference_is_cached;
+using trac0r_bench::scene_stem;
 using trac0r_bench::UsageError;
 using Clock = std::chrono::steady_clock;
 
@@ -160,39 +166,6 @@ Options parse_options(int argc, char** argv) {
     return o;
 }
 
-std::string read_text(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-bool file_exists(const std::string& path) {
-    struct stat st;
-    return stat(path.c_str(), &st) == 0;
-}
-
-// FNV-1a: the cache key of a scene's reference.
-std::string text_hash(const std::string& text) {
-    std::uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : text) {
-        h = (h ^ c) * 1099511628211ull;
-    }
-    char out[17];
-    std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
-    return out;
-}
-
-std::string scene_stem(const Options& o) {
-    if (o.scene_path.empty()) {
-        return "builtin";
-    }
-    const std::size_t slash = o.scene_path.find_last_of('/');
-    const std::string name =
-        slash == std::string::npos ? o.scene_path : o.scene_path.substr(slash + 1);
-    return name.substr(0, name.rfind('.'));
-}
-
 std::unique_ptr<Renderer> make_renderer(const Scene& scene, std::uint64_t seed) {
     return std::make_unique<Renderer>(scene, std::make_unique<CpuBackend>(), seed,
                                       trac0r::PackOptions());
@@ -200,39 +173,13 @@ std::unique_ptr<Renderer> make_renderer(const Scene& scene, std::uint64_t seed) 
 
 // The converged reference of the scene's view: from the cache, or rendered
 // (seed 0x5eed; the runs use seed 1) and put there.
-struct Reference {
-    Image image;
-    double own_rel_mse;  // its estimated relative MSE: what it adds to every error
-};
-
 Reference reference_image(const Options& o, const Scene& scene) {
-    const std::string text =
-        o.scene_path.empty() ? std::string(builtin_scene_json()) : read_text(o.scene_path);
-    const std::string base = o.cache_dir + "/" + scene_stem(o) + "-" + text_hash(text) + "-" +
-                             std::to_string(o.width) + "x" + std::to_string(o.height) + "-" +
-                             std::to_string(o.reference_spp) + "spp-nee-sobol";
-    if (file_exists(base + ".pfm") && file_exists(base + ".relmse")) {
-        std::fprintf(stderr, "reference: cached %s.pfm\n", base.c_str());
-        return {read_pfm(base + ".pfm"), std::stod(read_text(base + ".relmse"))};
+    const std::string base = reference_cache_base(o.cache_dir, o.scene_path, o.width, o.height,
+                                                  o.reference_spp, "-nee-sobol");
+    if (!reference_is_cached(base)) {
+        check_directory("--cache", o.cache_dir);
     }
-    check_directory("--cache", o.cache_dir);
-    std::fprintf(stderr, "reference: rendering %ld spp (seed 0x5eed), cached as %s.pfm\n",
-                 o.reference_spp, base.c_str());
-    std::unique_ptr<Renderer> r = make_renderer(scene, 0x5eed);
-    const Clock::time_point start = Clock::now();
-    long next_report = std::max(1L, o.reference_spp / 10);
-    while (static_cast<long>(r->frames()) < o.reference_spp) {
-        r->render_frame();
-        if (static_cast<long>(r->frames()) >= next_report) {
-            std::fprintf(stderr, "  reference %u / %ld spp, %.0f s\n", r->frames(), o.reference_spp,
-                         std::chrono::duration<double>(Clock::now() - start).count());
-            next_report += std::max(1L, o.reference_spp / 10);
-        }
-    }
-    Reference ref{r->image(), estimate_relative_mse(r->accumulator(), r->width(), r->height())};
-    write_pfm(base + ".pfm", ref.image);
-    std::ofstream(base + ".relmse") << ref.own_rel_mse << "\n";
-    return ref;
+    return cached_reference(base, scene, o.reference_spp);
 }
 
 // A measured time: on machine_cores() free cores (CPU seconds / cores) and
@@ -326,8 +273,9 @@ std::string write_image_file(const Options& o, const std::string& name, const Im
     if (o.images_dir.empty()) {
         return "";
     }
-    const std::string path = o.images_dir + "/" + scene_stem(o) + "-" + std::to_string(o.width) +
-                             "x" + std::to_string(o.height) + "-" + name + ".pfm";
+    const std::string path = o.images_dir + "/" + scene_stem(o.scene_path) + "-" +
+                             std::to_string(o.width) + "x" + std::to_string(o.height) + "-" + name +
+                             ".pfm";
     write_pfm(path, image);
     return path;
 }
@@ -552,7 +500,7 @@ int run(int argc, char** argv) {
                "reused,spp_ms,filter_ms,temporal_ms,reference_spp,reference_rel_mse,image,"
                "reference\n";
         for (const Row& row : rows) {
-            csv << scene_stem(o) << "," << o.width << "," << o.height << ",";
+            csv << scene_stem(o.scene_path) << "," << o.width << "," << o.height << ",";
             if (row.budget_ms > 0.0) {
                 csv << row.budget_ms;
             }
