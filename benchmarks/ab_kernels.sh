@@ -49,7 +49,7 @@ order=()
 if "$cxx" -fno-toplevel-reorder -x c++ -c /dev/null -o /dev/null 2>/dev/null; then
     order=(-fno-toplevel-reorder)
 fi
-libs=(-ltinyobjloader -lassimp -lstb)
+libs=(-ltinyobjloader -lassimp -ltinyexr -lstb)
 if grep -q '^TRAC0R_OPENCL:BOOL=ON' "$build/CMakeCache.txt"; then
     libs+=(-lOpenCL)
 fi
