@@ -19,13 +19,12 @@ T0_NAMESPACE_BEGIN
 // its camera ray's hit among those leaves (camera_hit): the same hits as
 // traversal, in less time (kernel/tuning.h; docs/performance.md, "Camera
 // rays per tile"). Whether it rendered the tile: not through a thin lens,
-// whose rays start all over the aperture, nor from an orthographic camera,
-// whose rays start all over the image plane, not at one point.
+// whose rays start all over the aperture, not at one point.
 inline bool render_tile_bundled(const SceneView* scene, CameraRecord cam, AccumPixel* accum,
                                 t0_u64 seed, t0_u32 frame, int max_depth, long x0, long y0, long x1,
                                 long y1, long width) {
     if (!T0_HAS_FEATURE(scene, T0_FEATURE_BVH) || (x1 - x0) * (y1 - y0) > T0_TILE * T0_TILE ||
-        cam.extent.z > 0.0f || camera_is_orthographic(cam)) {
+        cam.extent.z > 0.0f) {
         return false;
     }
     PixelSample samples[T0_TILE * T0_TILE];
@@ -65,7 +64,12 @@ inline void render_tile(const SceneView* scene, CameraRecord cam, AccumPixel* ac
     const long y0 = tile.y0;
     const long x1 = tile.x1;
     const long y1 = tile.y1;
-    if (render_tile_bundled(scene, cam, accum, seed, frame, max_depth, x0, y0, x1, y1, width)) {
+    // An orthographic camera's rays start all over the image plane, not at
+    // one point: no bundle (tested here, not in render_tile_bundled, where
+    // the test cost 1 % of a frame on cornell_diffuse.json by changing how
+    // the compiler laid the function out; benchmarks/ab_kernels.sh).
+    if (!camera_is_orthographic(cam) &&
+        render_tile_bundled(scene, cam, accum, seed, frame, max_depth, x0, y0, x1, y1, width)) {
         return;
     }
     PixelSample samples[2];

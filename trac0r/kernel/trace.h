@@ -21,36 +21,39 @@ T0_NAMESPACE_BEGIN
 // from points of the image plane), not a pinhole or a thin lens.
 T0_INLINE int camera_is_orthographic(CameraRecord cam) { return cam.forward.w != 0.0f; }
 
-// Where pixel (x, y) (row 0 at the top) at sub-pixel position (jitter_x,
-// jitter_y) in [0, 1)^2 lies on the image plane, in units of cam.extent:
-// (-1, -1) the bottom-left corner, (1, 1) the top-right one.
-T0_INLINE float2 camera_screen_point(CameraRecord cam, float x, float y, float jitter_x,
-                                     float jitter_y) {
-    const float width = (float)cam.size.x;
-    const float height = (float)cam.size.y;
-    return make_float2(2.0f * (x + jitter_x) / width - 1.0f, 1.0f - 2.0f * (y + jitter_y) / height);
-}
-
 // The point of the image plane at distance one along forward that pixel
-// (x, y) shows at (jitter_x, jitter_y), relative to the camera: forward
-// component 1. For an orthographic camera, the offset of the ray's origin
-// from the camera's position, plus forward.
+// (x, y) (row 0 at the top) shows at sub-pixel position (jitter_x,
+// jitter_y) in [0, 1)^2, relative to the camera: forward component 1. For
+// an orthographic camera, the offset of the ray's origin from the
+// camera's position, plus forward.
 T0_INLINE float3 camera_plane_point(CameraRecord cam, float x, float y, float jitter_x,
                                     float jitter_y) {
-    const float2 s = camera_screen_point(cam, x, y, jitter_x, jitter_y);
-    return xyz(cam.forward) + xyz(cam.right) * (s.x * cam.extent.x) +
-           xyz(cam.up) * (s.y * cam.extent.y);
+    const float width = (float)cam.size.x;
+    const float height = (float)cam.size.y;
+    const float sx = (2.0f * (x + jitter_x) / width - 1.0f) * cam.extent.x;
+    const float sy = (1.0f - 2.0f * (y + jitter_y) / height) * cam.extent.y;
+    return xyz(cam.forward) + xyz(cam.right) * sx + xyz(cam.up) * sy;
 }
 
-// A primary ray of the pinhole through pixel (x, y) at (jitter_x, jitter_y);
-// of an orthographic camera, along forward from that pixel's point of the
-// image plane through the camera's position.
-T0_INLINE Ray camera_ray(CameraRecord cam, float x, float y, float jitter_x, float jitter_y) {
+// A primary ray of the pinhole through pixel (x, y) at (jitter_x, jitter_y).
+T0_INLINE Ray pinhole_ray(CameraRecord cam, float x, float y, float jitter_x, float jitter_y) {
+    return make_ray(xyz(cam.position),
+                    normalize(camera_plane_point(cam, x, y, jitter_x, jitter_y)));
+}
+
+// A primary ray of an orthographic camera: along forward from pixel (x, y)'s
+// point (at (jitter_x, jitter_y)) of the image plane through the camera's
+// position.
+T0_INLINE Ray orthographic_ray(CameraRecord cam, float x, float y, float jitter_x, float jitter_y) {
     const float3 d = camera_plane_point(cam, x, y, jitter_x, jitter_y);
-    if (camera_is_orthographic(cam)) {
-        return make_ray(xyz(cam.position) + (d - xyz(cam.forward)), xyz(cam.forward));
-    }
-    return make_ray(xyz(cam.position), normalize(d));
+    return make_ray(xyz(cam.position) + (d - xyz(cam.forward)), xyz(cam.forward));
+}
+
+// The camera's primary ray through pixel (x, y) at (jitter_x, jitter_y),
+// without a lens: a pinhole's or an orthographic camera's.
+T0_INLINE Ray camera_ray(CameraRecord cam, float x, float y, float jitter_x, float jitter_y) {
+    return camera_is_orthographic(cam) ? orthographic_ray(cam, x, y, jitter_x, jitter_y)
+                                       : pinhole_ray(cam, x, y, jitter_x, jitter_y);
 }
 
 // A thin lens (pbrt's): the ray from a point on the aperture through the
@@ -351,8 +354,10 @@ T0_INLINE void begin_pixel(const SceneView* scene, CameraRecord cam, t0_u32 pixe
     if (cam.extent.z > 0.0f) {
         const float2 lens = sample_2d(&s->sampler, T0_DIM_LENS);
         s->ray = camera_lens_ray(cam, (float)x, (float)y, jitter.x, jitter.y, lens);
+    } else if (camera_is_orthographic(cam)) {
+        s->ray = orthographic_ray(cam, (float)x, (float)y, jitter.x, jitter.y);
     } else {
-        s->ray = camera_ray(cam, (float)x, (float)y, jitter.x, jitter.y);
+        s->ray = pinhole_ray(cam, (float)x, (float)y, jitter.x, jitter.y);
     }
 }
 
