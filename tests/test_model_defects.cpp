@@ -5,6 +5,12 @@
 #include "test_support.h"
 #include "viewer_process.h"
 
+#include "trac0r/gltf_json.h"
+#include "trac0r/gltf_repeats.h"
+#include "trac0r/input_file.h"
+
+#include <nlohmann/json.hpp>
+
 using namespace trac0r;
 using Catch::Matchers::Contains;
 using Catch::Matchers::EndsWith;
@@ -140,31 +146,63 @@ TEST_CASE("a glTF texture that is not there: a warning from the reader's child p
     CHECK_THAT(strict_error(json), Contains("/missing.png: cannot open texture"));
 }
 
-TEST_CASE("glTF nodes placing a mesh where another already did: drawn once, with a warning",
+TEST_CASE("glTF nodes repeating another's mesh and transform: drawn once, with a warning",
           "[defects][mesh]") {
-    // One triangle, placed by four nodes: the origin twice, moved along x,
-    // and the origin again.
+    // One triangle, placed by five nodes: the origin twice, moved along x,
+    // the origin again, and the origin by a node with a child (which
+    // stays in the file: only leaves are left out before the reader).
+    const std::string nodes = R"("scenes": [{"nodes": [0, 1, 2, 3, 4]}],
+  "nodes": [{"mesh": 0}, {"mesh": 0}, {"mesh": 0, "translation": [2, 0, 0]}, {"mesh": 0},
+            {"mesh": 0, "children": [5]}, {"translation": [0, 5, 0]}],)";
+    const float values[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const std::string bin(reinterpret_cast<const char*>(values), sizeof values);
+    // The .glb: the same nodes, the triangle in its binary chunk.
+    std::string glb_json = R"({"asset": {"version": "2.0"}, "scene": 0, )" + nodes + R"(
+  "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "buffers": [{"byteLength": 36}],
+  "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 0]}]})";
+    glb_json.append((4 - glb_json.size() % 4) % 4, ' ');
+    const auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<char*>(&v), 4); };
+    const std::string glb = "glTF" + u32(2) +
+                            u32(static_cast<std::uint32_t>(28 + glb_json.size() + 36)) +
+                            u32(static_cast<std::uint32_t>(glb_json.size())) + "JSON" + glb_json +
+                            u32(36) + std::string("BIN\0", 4) + bin;
     TempDir dir;
-    dir.write("n.gltf", R"({"asset": {"version": "2.0"}, "scene": 0,
-  "scenes": [{"nodes": [0, 1, 2, 3]}],
-  "nodes": [{"mesh": 0}, {"mesh": 0}, {"mesh": 0, "translation": [2, 0, 0]}, {"mesh": 0}],
-  )" + gltf_one_triangle_tail());
-    const std::string json =
-        dir.write("s.json", R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},
-                      "shapes": [{"type": "mesh", "file": "n.gltf", "material": "white"}]})");
-    const Scene scene = load_scene_file(json);
-    REQUIRE(scene.warnings.size() == 1);
-    CHECK(scene.warnings[0] == dir.path() +
-                                   "/n.gltf: warning: a node places mesh 0 exactly where "
-                                   "another node already placed it; drawn once (2 times) "
-                                   "(--strict refuses it)");
-    REQUIRE(scene.shapes.size() == 1);
-    REQUIRE(scene.shapes[0].triangles.size() == 2);
-    CHECK(scene.shapes[0].triangles[0].v1.x == Approx(1.0f));
-    CHECK(scene.shapes[0].triangles[1].v1.x == Approx(3.0f));
-    CHECK_THAT(strict_error(json),
-               Contains("/n.gltf: a node places mesh 0 exactly where another node already "
-                        "placed it"));
+    dir.write("n.gltf", R"({"asset": {"version": "2.0"}, "scene": 0, )" + nodes + "\n  " +
+                            gltf_one_triangle_tail());
+    dir.write("n.glb", glb);
+    for (const std::string name : {"n.gltf", "n.glb"}) {
+        INFO(name);
+        const std::string json =
+            dir.write("s.json", R"({"materials": {"white": {"type": "diffuse", "color": [1, 1, 1]}},
+                      "shapes": [{"type": "mesh", "file": ")" +
+                                    name + R"(", "material": "white"}]})");
+        const Scene scene = load_scene_file(json);
+        REQUIRE(scene.warnings.size() == 1);
+        CHECK(scene.warnings[0] == dir.path() + "/" + name +
+                                       ": warning: a node repeats another node's mesh and "
+                                       "transform; drawn once (3 times) (--strict refuses it)");
+        REQUIRE(scene.shapes.size() == 1);
+        REQUIRE(scene.shapes[0].triangles.size() == 2);
+        CHECK(scene.shapes[0].triangles[0].v1.x == Approx(1.0f));
+        CHECK(scene.shapes[0].triangles[1].v1.x == Approx(3.0f));
+        CHECK_THAT(strict_error(json),
+                   Contains("/" + name + ": a node repeats another node's mesh and transform"));
+        // What the reader is given: the two repeating leaves out of the
+        // scene's list, the rest as it was.
+        std::size_t removed = 0;
+        const std::string text = gltf_without_repeated_leaves(
+            read_input_file(dir.path() + "/" + name, "mesh"), name == "n.glb", name, &removed);
+        CHECK(removed == 2);
+        const nlohmann::json doc = nlohmann::json::parse(gltf_json_text(text, name == "n.glb"));
+        CHECK(doc["scenes"][0]["nodes"] == nlohmann::json({0, 2, 4}));
+        CHECK(doc["nodes"].size() == 6);
+        if (name == "n.glb") {
+            CHECK(text.substr(text.size() - 36) == bin);  // the binary chunk kept
+        }
+    }
 }
 
 TEST_CASE("a mesh without a material takes the default grey, or the scene's \"default\"",

@@ -3,6 +3,7 @@
 #include "trac0r/file_materials.h"
 #include "trac0r/gltf_json.h"
 #include "trac0r/gltf_nodes.h"
+#include "trac0r/gltf_repeats.h"
 #include "trac0r/gltf_size.h"
 #include "trac0r/input_checks.h"
 #include "trac0r/input_file.h"
@@ -13,8 +14,10 @@
 #include "trac0r/ply_header.h"
 
 #include <assimp/BaseImporter.h>
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/GltfMaterial.h>
 #include <assimp/Importer.hpp>
+#include <assimp/MemoryIOWrapper.h>
 #include <assimp/importerdesc.h>
 #include <assimp/scene.h>
 
@@ -156,11 +159,32 @@ std::string assimp_reader_name(bool ply) {
 // alone, our conversion of its scene into plain parts, materials and
 // textures; everything that touches assimp's structures is here. Throws
 // std::runtime_error naming the file for what assimp or our checks refuse.
-// Two nodes that place one mesh with the same transform draw it twice in
-// one place: coincident copies (the same surface met twice, which glass
-// refracts twice) that only cost memory. A defect: each mesh is drawn once
-// at each place (shared/repro's nodes_flat_1e6 is 10^6 nodes placing one
-// box at the origin, which took 12 M triangles and 8 GB).
+// An assimp file system that reads `path` from memory (the file as the
+// reader is to see it) and every other file (buffers, images beside it)
+// from disk, so that relative URIs still resolve beside `path`.
+class OneFileInMemory : public Assimp::DefaultIOSystem {
+  public:
+    OneFileInMemory(std::string path, std::string bytes)
+        : path_(std::move(path)), bytes_(std::move(bytes)) {}
+    bool Exists(const char* file) const override {
+        return path_ == file || DefaultIOSystem::Exists(file);
+    }
+    Assimp::IOStream* Open(const char* file, const char* mode) override {
+        if (path_ == file) {
+            return new Assimp::MemoryIOStream(reinterpret_cast<const std::uint8_t*>(bytes_.data()),
+                                              bytes_.size());
+        }
+        return DefaultIOSystem::Open(file, mode);
+    }
+
+  private:
+    std::string path_;
+    std::string bytes_;  // owned by the importer with this, as the streams it reads
+};
+
+// Nodes placing one mesh with the same transform (gltf_repeats.h) that
+// were not left out of the file (they have children): each mesh drawn
+// once at each place.
 void skip_repeated_instances(std::vector<std::pair<unsigned, aiMatrix4x4>>* instances,
                              const std::string& path, ModelDefects* defects) {
     std::set<std::pair<unsigned, std::array<float, 16>>> seen;
@@ -169,10 +193,7 @@ void skip_repeated_instances(std::vector<std::pair<unsigned, aiMatrix4x4>>* inst
         std::array<float, 16> m;
         std::memcpy(m.data(), &instance.second, sizeof m);
         if (!seen.emplace(instance.first, m).second) {
-            defects->report(path, 0,
-                            "a node places mesh " + std::to_string(instance.first) +
-                                " exactly where another node already placed it",
-                            "drawn once");
+            defects->report(path, 0, gltf_repeat_defect, gltf_repeat_done);
             continue;
         }
         (*instances)[kept++] = instance;
@@ -194,9 +215,22 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     const bool gltf = has_extension(path, ".gltf");
     keep_only_reader(importer, ply ? "Stanford Polygon Library (PLY) Importer" : "glTF2 Importer",
                      path);
+    // The file as assimp is to see it: without the nodes that repeat
+    // another's mesh and transform, where it has any.
+    ModelDefects defects(strict);
+    std::size_t repeated = 0;
+    const std::string pruned =
+        ply ? "" : gltf_without_repeated_leaves(text, !gltf, path, &repeated);
+    if (repeated > 0) {
+        defects.report(path, 0, gltf_repeat_defect, gltf_repeat_done, static_cast<long>(repeated));
+        if (gltf) {
+            importer.SetIOHandler(new OneFileInMemory(path, pruned));
+        }
+    }
+    const std::string& bytes = pruned.empty() ? text : pruned;
     const aiScene* scene =
         gltf ? importer.ReadFile(path, flags)
-             : importer.ReadFileFromMemory(text.data(), text.size(), flags,
+             : importer.ReadFileFromMemory(bytes.data(), bytes.size(), flags,
                                            has_extension(path, ".glb") ? "glb" : "ply");
     if (scene == nullptr || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
         std::string reason = importer.GetErrorString();
@@ -232,7 +266,6 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     if (scene->mRootNode != nullptr) {
         walk(*scene->mRootNode, aiMatrix4x4(), 0);
     }
-    ModelDefects defects(strict);
     skip_repeated_instances(&instances, path, &defects);
     PartBuilder parts;
     for (const std::pair<unsigned, aiMatrix4x4>& instance : instances) {

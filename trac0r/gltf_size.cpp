@@ -70,8 +70,8 @@ std::uint64_t gltf_promised_triangles(const std::string& json_text, const std::s
         per_mesh[m] = mesh_triangles(doc, meshes[m]);
     }
     std::uint64_t total = 0;
-    // A mesh placed twice with the same transform is read once (the
-    // reader's skip_repeated_instances).
+    // A mesh placed twice with the same transform counts once, as the
+    // reader draws it once (gltf_repeats.h).
     std::set<std::pair<std::size_t, std::array<double, 16>>> seen;
     try {
         walk_gltf_nodes(doc, path, [&](std::size_t, const json& node, const glm::dmat4& world) {

@@ -13,22 +13,22 @@ std::string located(const std::string& file, long line) {
 }  // namespace
 
 void ModelDefects::report(const std::string& file, long line, const std::string& what,
-                          const std::string& done) {
+                          const std::string& done, long times) {
     if (strict_) {
         throw std::runtime_error(located(file, line) + ": " + what);
     }
-    count(file, line, what, done);
+    count(file, line, what, done, times);
 }
 
 void ModelDefects::count(const std::string& file, long line, const std::string& what,
-                         const std::string& done) {
+                         const std::string& done, long times) {
     for (Kind& k : kinds_) {
         if (k.file == file && k.what == what) {
-            ++k.count;
+            k.count += times;
             return;
         }
     }
-    kinds_.push_back({file, line, what, done, 1});
+    kinds_.push_back({file, line, what, done, times});
 }
 
 void ModelDefects::report_message(const std::string& file, const std::string& message,

@@ -21,9 +21,9 @@ class ModelDefects {
     // wrong, `done` what lenient loading does about it ("skipped", "its
     // colour factor instead"). Strict: throws std::runtime_error
     // "file[:line]: what". Lenient: counted with the others of the same
-    // file and `what`, their first line kept.
+    // file and `what`, their first line kept; `times` defects at once.
     void report(const std::string& file, long line, const std::string& what,
-                const std::string& done);
+                const std::string& done, long times = 1);
 
     // A defect that a reader reported as its error `message` ("file: ...",
     // as it is thrown when strict): counted as report() does, `file:`
@@ -41,8 +41,8 @@ class ModelDefects {
     std::vector<std::string> lines() const;
 
   private:
-    void count(const std::string& file, long line, const std::string& what,
-               const std::string& done);
+    void count(const std::string& file, long line, const std::string& what, const std::string& done,
+               long times = 1);
 
     struct Kind {
         std::string file;

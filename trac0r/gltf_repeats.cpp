@@ -1,0 +1,119 @@
+#include "trac0r/gltf_repeats.h"
+
+#include "trac0r/gltf_json.h"
+#include "trac0r/gltf_nodes.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <set>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace trac0r {
+
+const char* const gltf_repeat_defect = "a node repeats another node's mesh and transform";
+const char* const gltf_repeat_done = "drawn once";
+
+namespace {
+
+using nlohmann::json;
+
+// Whether `node` is a leaf placing a mesh: nothing but the mesh hangs on it.
+bool mesh_leaf(const json& node) {
+    const bool children =
+        node.contains("children") && node["children"].is_array() && !node["children"].empty();
+    return node.contains("mesh") && !children && !node.contains("skin") && !node.contains("camera");
+}
+
+// `list` (an array of node indices) without those marked in `out`.
+void drop_marked(json& list, const std::vector<bool>& out) {
+    if (!list.is_array()) {
+        return;
+    }
+    json kept = json::array();
+    for (const json& n : list) {
+        if (!(n.is_number_unsigned() && n.get<std::size_t>() < out.size() &&
+              out[n.get<std::size_t>()])) {
+            kept.push_back(n);
+        }
+    }
+    list = std::move(kept);
+}
+
+// A .glb of `glb`'s header and binary chunk around the JSON chunk `json`
+// (glTF 2.0, 4.4: chunks 4-byte aligned, JSON padded with spaces).
+std::string glb_with_json(const std::string& glb, std::string json_text) {
+    std::uint32_t old_length = 0;
+    std::memcpy(&old_length, glb.data() + 12, sizeof old_length);
+    const std::size_t rest = 20 + static_cast<std::size_t>(old_length);
+    json_text.append((4 - json_text.size() % 4) % 4, ' ');
+    const std::uint32_t length = static_cast<std::uint32_t>(json_text.size());
+    const std::uint32_t total =
+        static_cast<std::uint32_t>(20 + json_text.size() + glb.size() - std::min(rest, glb.size()));
+    std::string out = glb.substr(0, 8);
+    out.append(reinterpret_cast<const char*>(&total), 4);
+    out.append(reinterpret_cast<const char*>(&length), 4);
+    out += "JSON";
+    out += json_text;
+    if (rest < glb.size()) {
+        out.append(glb, rest, std::string::npos);
+    }
+    return out;
+}
+
+}  // namespace
+
+std::string gltf_without_repeated_leaves(const std::string& text, bool glb, const std::string& path,
+                                         std::size_t* removed) {
+    *removed = 0;
+    json doc = json::parse(gltf_json_text(text, glb), nullptr, false);
+    // Without scenes every node is a root, which no list can take out.
+    if (doc.is_discarded() || !doc.is_object() || !doc.contains("nodes") ||
+        !doc["nodes"].is_array() || !doc.contains("scenes") || !doc["scenes"].is_array() ||
+        doc["scenes"].empty()) {
+        return "";
+    }
+    std::vector<bool> out(doc["nodes"].size(), false);
+    std::set<std::pair<std::size_t, std::array<double, 16>>> seen;
+    try {
+        walk_gltf_nodes(
+            doc, path, [&](std::size_t index, const json& node, const glm::dmat4& world) {
+                if (!node.contains("mesh") || !node["mesh"].is_number_unsigned()) {
+                    return;
+                }
+                std::array<double, 16> m;
+                std::memcpy(m.data(), &world, sizeof m);
+                if (!seen.emplace(node["mesh"].get<std::size_t>(), m).second && mesh_leaf(node)) {
+                    out[index] = true;
+                    ++*removed;
+                }
+            });
+    } catch (const std::runtime_error&) {
+        *removed = 0;  // a transform that is not finite: the reader says so
+        return "";
+    }
+    if (*removed == 0) {
+        return "";
+    }
+    for (json& node : doc["nodes"]) {
+        if (node.is_object() && node.contains("children")) {
+            drop_marked(node["children"], out);
+        }
+    }
+    if (doc.contains("scenes") && doc["scenes"].is_array()) {
+        for (json& scene : doc["scenes"]) {
+            if (scene.is_object() && scene.contains("nodes")) {
+                drop_marked(scene["nodes"], out);
+            }
+        }
+    }
+    const std::string json_text = doc.dump(-1, ' ', false, json::error_handler_t::replace);
+    return glb ? glb_with_json(text, json_text) : json_text;
+}
+
+}  // namespace trac0r
