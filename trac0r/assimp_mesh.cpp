@@ -155,10 +155,6 @@ std::string assimp_reader_name(bool ply) {
     return ply ? "the PLY reader (assimp)" : "the glTF reader (assimp)";
 }
 
-// The import itself, in the child process: assimp's reader of the format
-// alone, our conversion of its scene into plain parts, materials and
-// textures; everything that touches assimp's structures is here. Throws
-// std::runtime_error naming the file for what assimp or our checks refuse.
 // An assimp file system that reads `path` from memory (the file as the
 // reader is to see it) and every other file (buffers, images beside it)
 // from disk, so that relative URIs still resolve beside `path`.
@@ -184,16 +180,25 @@ class OneFileInMemory : public Assimp::DefaultIOSystem {
 
 // Nodes placing one mesh with the same transform (gltf_repeats.h) that
 // were not left out of the file (they have children): each mesh drawn
-// once at each place.
+// once at each place, and each node that repeated one counted once (it
+// has an instance for each of its mesh's primitives). `owners`: each
+// instance's node.
 void skip_repeated_instances(std::vector<std::pair<unsigned, aiMatrix4x4>>* instances,
-                             const std::string& path, ModelDefects* defects) {
+                             const std::vector<const aiNode*>& owners, const std::string& path,
+                             ModelDefects* defects) {
+    static_assert(sizeof(aiMatrix4x4) == sizeof(std::array<float, 16>),
+                  "assimp's matrices compared as 16 floats");
     std::set<std::pair<unsigned, std::array<float, 16>>> seen;
+    std::set<const aiNode*> repeating;
     std::size_t kept = 0;
-    for (const std::pair<unsigned, aiMatrix4x4>& instance : *instances) {
+    for (std::size_t i = 0; i < instances->size(); ++i) {
+        const std::pair<unsigned, aiMatrix4x4> instance = (*instances)[i];
         std::array<float, 16> m;
         std::memcpy(m.data(), &instance.second, sizeof m);
         if (!seen.emplace(instance.first, m).second) {
-            defects->report(path, 0, gltf_repeat_defect, gltf_repeat_done);
+            if (repeating.insert(owners[i]).second) {
+                defects->report(path, 0, gltf_repeat_defect, gltf_repeat_done);
+            }
             continue;
         }
         (*instances)[kept++] = instance;
@@ -201,6 +206,10 @@ void skip_repeated_instances(std::vector<std::pair<unsigned, aiMatrix4x4>>* inst
     instances->resize(kept);
 }
 
+// The import itself, in the child process: assimp's reader of the format
+// alone, our conversion of its scene into plain parts, materials and
+// textures; everything that touches assimp's structures is here. Throws
+// std::runtime_error naming the file for what assimp or our checks refuse.
 std::string import_assimp(const std::string& path, const std::string& text, bool ply, bool smooth,
                           bool file_materials, std::uint64_t texel_budget, bool strict) {
     Assimp::Importer importer;
@@ -219,9 +228,13 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     // another's mesh and transform, where it has any.
     ModelDefects defects(strict);
     std::size_t repeated = 0;
+    std::string first_repeat;
     const std::string pruned =
-        ply ? "" : gltf_without_repeated_leaves(text, !gltf, path, &repeated);
+        ply ? "" : gltf_without_repeated_leaves(text, !gltf, path, &repeated, &first_repeat);
     if (repeated > 0) {
+        if (strict) {
+            throw std::runtime_error(path + ": " + first_repeat);  // the node, to find it by
+        }
         defects.report(path, 0, gltf_repeat_defect, gltf_repeat_done, static_cast<long>(repeated));
         if (gltf) {
             importer.SetIOHandler(new OneFileInMemory(path, pruned));
@@ -244,17 +257,21 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     // Each node's meshes, with the node's transform (and its parents'):
     // (mesh index, transform) in the order of a depth-first walk.
     std::vector<std::pair<unsigned, aiMatrix4x4>> instances;
-    const int max_node_depth = max_gltf_node_depth;
+    std::vector<const aiNode*> owners;  // each instance's node
+    // The parent refused deeper glTF nodes (gltf_nodes.h); one level more
+    // for the root assimp adds above a scene of several.
+    const int max_node_depth = max_gltf_node_depth + 1;
     const std::function<void(const aiNode&, const aiMatrix4x4&, int)> walk =
         [&](const aiNode& node, const aiMatrix4x4& parent, int depth) {
             if (depth > max_node_depth) {
                 throw std::runtime_error(path + ": cannot read mesh: its nodes nest deeper than " +
-                                         std::to_string(max_node_depth));
+                                         std::to_string(max_gltf_node_depth));
             }
             const aiMatrix4x4 transform = parent * node.mTransformation;
             for (unsigned k = 0; k < node.mNumMeshes; ++k) {
                 if (node.mMeshes[k] < scene->mNumMeshes) {
                     instances.emplace_back(node.mMeshes[k], transform);
+                    owners.push_back(&node);
                 }
             }
             for (unsigned c = 0; c < node.mNumChildren; ++c) {
@@ -266,7 +283,7 @@ std::string import_assimp(const std::string& path, const std::string& text, bool
     if (scene->mRootNode != nullptr) {
         walk(*scene->mRootNode, aiMatrix4x4(), 0);
     }
-    skip_repeated_instances(&instances, path, &defects);
+    skip_repeated_instances(&instances, owners, path, &defects);
     PartBuilder parts;
     for (const std::pair<unsigned, aiMatrix4x4>& instance : instances) {
         const aiMesh& mesh = *scene->mMeshes[instance.first];

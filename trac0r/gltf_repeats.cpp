@@ -9,7 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
-#include <set>
+#include <map>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -28,6 +28,32 @@ bool mesh_leaf(const json& node) {
     const bool children =
         node.contains("children") && node["children"].is_array() && !node["children"].empty();
     return node.contains("mesh") && !children && !node.contains("skin") && !node.contains("camera");
+}
+
+// How many times each node is listed as a child or a scene's root.
+std::vector<int> references(const json& doc) {
+    std::vector<int> count(doc["nodes"].size(), 0);
+    const auto add = [&](const json& list) {
+        if (!list.is_array()) {
+            return;
+        }
+        for (const json& n : list) {
+            if (n.is_number_unsigned() && n.get<std::size_t>() < count.size()) {
+                ++count[n.get<std::size_t>()];
+            }
+        }
+    };
+    for (const json& node : doc["nodes"]) {
+        if (node.is_object() && node.contains("children")) {
+            add(node["children"]);
+        }
+    }
+    for (const json& scene : doc["scenes"]) {
+        if (scene.is_object() && scene.contains("nodes")) {
+            add(scene["nodes"]);
+        }
+    }
+    return count;
 }
 
 // `list` (an array of node indices) without those marked in `out`.
@@ -50,7 +76,8 @@ void drop_marked(json& list, const std::vector<bool>& out) {
 std::string glb_with_json(const std::string& glb, std::string json_text) {
     std::uint32_t old_length = 0;
     std::memcpy(&old_length, glb.data() + 12, sizeof old_length);
-    const std::size_t rest = 20 + static_cast<std::size_t>(old_length);
+    // The binary chunk starts after the old JSON chunk's padding.
+    const std::size_t rest = 20 + ((static_cast<std::size_t>(old_length) + 3) & ~std::size_t(3));
     json_text.append((4 - json_text.size() % 4) % 4, ' ');
     const std::uint32_t length = static_cast<std::uint32_t>(json_text.size());
     const std::uint32_t total =
@@ -69,8 +96,9 @@ std::string glb_with_json(const std::string& glb, std::string json_text) {
 }  // namespace
 
 std::string gltf_without_repeated_leaves(const std::string& text, bool glb, const std::string& path,
-                                         std::size_t* removed) {
+                                         std::size_t* removed, std::string* first) {
     *removed = 0;
+    first->clear();
     json doc = json::parse(gltf_json_text(text, glb), nullptr, false);
     // Without scenes every node is a root, which no list can take out.
     if (doc.is_discarded() || !doc.is_object() || !doc.contains("nodes") ||
@@ -78,8 +106,12 @@ std::string gltf_without_repeated_leaves(const std::string& text, bool glb, cons
         doc["scenes"].empty()) {
         return "";
     }
+    // A node listed twice (against the format, but read) is placed twice,
+    // once where the walk meets it: never left out.
+    const std::vector<int> listed = references(doc);
     std::vector<bool> out(doc["nodes"].size(), false);
-    std::set<std::pair<std::size_t, std::array<double, 16>>> seen;
+    // Each (mesh, world transform) met, with the node that placed it.
+    std::map<std::pair<std::size_t, std::array<double, 16>>, std::size_t> seen;
     try {
         walk_gltf_nodes(
             doc, path, [&](std::size_t index, const json& node, const glm::dmat4& world) {
@@ -88,13 +120,19 @@ std::string gltf_without_repeated_leaves(const std::string& text, bool glb, cons
                 }
                 std::array<double, 16> m;
                 std::memcpy(m.data(), &world, sizeof m);
-                if (!seen.emplace(node["mesh"].get<std::size_t>(), m).second && mesh_leaf(node)) {
+                const auto placed =
+                    seen.emplace(std::make_pair(node["mesh"].get<std::size_t>(), m), index);
+                if (!placed.second && mesh_leaf(node) && listed[index] == 1) {
                     out[index] = true;
-                    ++*removed;
+                    if (++*removed == 1) {
+                        *first = "node " + std::to_string(index) + " repeats node " +
+                                 std::to_string(placed.first->second) + "'s mesh and transform";
+                    }
                 }
             });
     } catch (const std::runtime_error&) {
         *removed = 0;  // a transform that is not finite: the reader says so
+        first->clear();
         return "";
     }
     if (*removed == 0) {

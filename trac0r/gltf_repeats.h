@@ -21,10 +21,13 @@ extern const char* const gltf_repeat_done;
 // and transform in the default scene's depth-first walk
 // (walk_gltf_nodes): their indices taken out of their parents' and the
 // scenes' lists, the JSON written again (a .glb's JSON chunk replaced,
-// its binary chunk kept). *removed: how many; "" where none is, or where
-// the JSON or its nodes cannot be read (the reader says why).
+// its binary chunk kept). *removed: how many; *first: which was the first
+// and which node it repeats ("node 3 repeats node 0's mesh and
+// transform"). "" where none is, or where the JSON or its nodes cannot be
+// read (the reader says why). A node listed in two places (against the
+// format) is never left out.
 std::string gltf_without_repeated_leaves(const std::string& text, bool glb, const std::string& path,
-                                         std::size_t* removed);
+                                         std::size_t* removed, std::string* first);
 
 }  // namespace trac0r
 

@@ -60,14 +60,17 @@ std::uint64_t mesh_triangles(const json& doc, const json& mesh) {
 
 std::uint64_t gltf_promised_triangles(const std::string& json_text, const std::string& path) {
     const json doc = json::parse(json_text, nullptr, false);
+    // The nodes are walked even without meshes: the walk refuses nodes
+    // nested too deep for the reader, which recurses through them all.
     if (doc.is_discarded() || !doc.is_object() || !doc.contains("nodes") ||
-        !doc["nodes"].is_array() || !doc.contains("meshes") || !doc["meshes"].is_array()) {
+        !doc["nodes"].is_array()) {
         return 0;
     }
-    const json& meshes = doc["meshes"];
-    std::vector<std::uint64_t> per_mesh(meshes.size());
-    for (std::size_t m = 0; m < meshes.size(); ++m) {
-        per_mesh[m] = mesh_triangles(doc, meshes[m]);
+    std::vector<std::uint64_t> per_mesh;
+    if (doc.contains("meshes") && doc["meshes"].is_array()) {
+        for (const json& mesh : doc["meshes"]) {
+            per_mesh.push_back(mesh_triangles(doc, mesh));
+        }
     }
     std::uint64_t total = 0;
     // A mesh placed twice with the same transform counts once, as the
