@@ -189,7 +189,8 @@ TEST_CASE("a glTF's orthographic camera makes an orthographic scene camera", "[m
   )" + gltf_one_triangle_tail();
     };
     TempDir dir;
-    const std::string path = dir.write("ortho.gltf", gltf(R"("xmag": 3, "ymag": 1.5)"));
+    // A negative magnification (which glTF says should not be) is its size.
+    const std::string path = dir.write("ortho.gltf", gltf(R"("xmag": 3, "ymag": -1.5)"));
     std::string json;
     const Scene scene = model_scene(path, LoadOptions(), &json);
     CAPTURE(json);
@@ -207,7 +208,7 @@ TEST_CASE("a glTF's orthographic camera makes an orthographic scene camera", "[m
         FAIL("no error");
     } catch (const std::exception& e) {
         CHECK_THAT(std::string(e.what()),
-                   Contains("node 1: camera: xmag, ymag: expected numbers > 0 (half the view's "
-                            "width and height), got 3.0, 0.0"));
+                   Contains("node 1: camera: xmag, ymag: expected numbers not zero and at most "
+                            "5e29 (half the view's width and height), got 3.0, 0.0"));
     }
 }

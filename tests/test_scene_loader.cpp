@@ -87,7 +87,6 @@ std::vector<std::string> scene_files() {
 const char* const tetrahedron_obj =
     "v 1 1 1\nv 1 -1 -1\nv -1 1 -1\nv -1 -1 1\nf 1 2 3\nf 1 4 2\nf 1 3 4\nf 2 4 3\n";
 
-
 // The error of a camera block read as cam.json, or "(no error)".
 std::string camera_block_error(const std::string& text) {
     try {
@@ -541,7 +540,8 @@ TEST_CASE("printable: control bytes escaped, cut between characters", "[scene_lo
     CHECK(printable("abcdefghij", 10) == "abcdefghij");  // fits exactly: not cut
 }
 
-TEST_CASE("a camera block loads over a scene's; bad ones are one message", "[scene_loader][camera]") {
+TEST_CASE("a camera block loads over a scene's; bad ones are one message",
+          "[scene_loader][camera]") {
     const glm::dvec3 origin(0.0);
     const Camera c = parse_camera_block(
         R"({"camera": {"position": [1, 2, 3], "direction": [0, 0, -1], "aperture_radius": 0.02,
@@ -584,9 +584,9 @@ TEST_CASE("an orthographic camera block: its keys, printed and read back, and it
         R"({"camera": {"projection": "orthographic", "view_height": 3.5}})", "cam.json", origin);
     CHECK(c.projection == Projection::orthographic);
     CHECK(c.view_height == 3.5f);
-    CHECK(parse_camera_block(R"({"projection": "perspective", "vertical_fov": 40})", "cam.json",
-                             origin)
-              .projection == Projection::perspective);
+    CHECK(camera_block_error(R"({"projection": "perspective", "view_height": 2})") ==
+          "cam.json: /view_height: view_height is an orthographic camera's: give "
+          "\"projection\": \"orthographic\", or a vertical_fov");
     Camera odd;
     odd.projection = Projection::orthographic;
     odd.view_height = 0.123457f;

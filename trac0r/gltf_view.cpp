@@ -68,13 +68,14 @@ GltfView gltf_view(const std::string& json_text, const std::string& path) {
                 view.vertical_fov = yfov * 180.0 / pi;
                 view.aspect = number(camera["perspective"], "aspectRatio", 0.0, at);
             } else if (type == "orthographic" && camera.contains("orthographic")) {
-                // xmag and ymag: half the view's width and height.
-                const double xmag = number(camera["orthographic"], "xmag", -1.0, at);
-                const double ymag = number(camera["orthographic"], "ymag", -1.0, at);
-                if (!(xmag > 0.0 && ymag > 0.0 && ymag <= 1e30)) {
-                    throw std::runtime_error(at + ": xmag, ymag: expected numbers > 0 (half the " +
-                                             "view's width and height), got " + json(xmag).dump() +
-                                             ", " + json(ymag).dump());
+                // xmag and ymag: half the view's width and height (which
+                // should not be negative: taken as their size).
+                const double xmag = std::fabs(number(camera["orthographic"], "xmag", 0.0, at));
+                const double ymag = std::fabs(number(camera["orthographic"], "ymag", 0.0, at));
+                if (!(xmag > 0.0 && ymag > 0.0 && xmag <= 5e29 && ymag <= 5e29)) {
+                    throw std::runtime_error(at + ": xmag, ymag: expected numbers not zero and " +
+                                             "at most 5e29 (half the view's width and height), " +
+                                             "got " + json(xmag).dump() + ", " + json(ymag).dump());
                 }
                 view.has_camera = true;
                 view.orthographic = true;

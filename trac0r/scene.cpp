@@ -53,10 +53,10 @@ std::uint64_t scene_digest(const Scene& scene) {
     h.vec3(scene.camera.position);
     h.vec3(scene.camera.direction);
     h.vec3(scene.camera.world_up);
-    h.value(scene.camera.vertical_fov);
-    if (scene.camera.projection == Projection::orthographic) {
-        h.value(scene.camera.view_height);
-    }
+    // The size of the view its projection uses (the other is not written
+    // or read with it).
+    h.value(scene.camera.projection == Projection::orthographic ? scene.camera.view_height
+                                                                 : scene.camera.vertical_fov);
     h.value(scene.render.width);
     h.value(scene.render.height);
     h.value(scene.render.max_depth);

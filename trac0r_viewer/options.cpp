@@ -21,7 +21,7 @@ const char* key_help_text() {
   Q / E              move down / up (also Ctrl / Space)
   Shift / Alt        move five times faster / slower
   right mouse drag   look around
-  mouse wheel        field of view (zoom)
+  mouse wheel        zoom (field of view; orthographic: view height)
   C                  print the camera as a scene file's "camera" block (stdout
                      and the window); --camera FILE loads it
   Home               back to the scene's camera
