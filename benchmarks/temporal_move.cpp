@@ -3,7 +3,7 @@
 // displayed frame's error against the converged image at the new view is
 // at most half of what a restart gives".
 //
-// As the window does it (trac0r_viewer/window_worker.cpp): the view is
+// As the window does it (trac0r_viewer/view_history.cpp): the view is
 // accumulated at full resolution (--history-spp), then the camera steps to
 // the right and the window shows one low-resolution frame (1 sample a
 // pixel, next-event estimation) per step. Shown with temporal reuse
