@@ -4,8 +4,12 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include <array>
 #include <cmath>
+#include <cstring>
+#include <map>
 #include <stdexcept>
+#include <utility>
 
 namespace trac0r {
 
@@ -115,6 +119,23 @@ void walk_gltf_nodes(
     for (std::size_t r : roots) {
         walk(r, glm::dmat4(1.0), 0);
     }
+}
+
+void walk_gltf_mesh_placements(
+    const json& doc, const std::string& path,
+    const std::function<void(std::size_t, const json&, std::size_t, long)>& visit) {
+    // Each (mesh, world transform) met, with the node that placed it.
+    std::map<std::pair<std::size_t, std::array<double, 16>>, std::size_t> placed;
+    walk_gltf_nodes(doc, path, [&](std::size_t index, const json& node, const glm::dmat4& world) {
+        if (!node.contains("mesh") || !node["mesh"].is_number_unsigned()) {
+            return;
+        }
+        const std::size_t mesh = node["mesh"].get<std::size_t>();
+        std::array<double, 16> m;
+        std::memcpy(m.data(), &world, sizeof m);
+        const auto first = placed.emplace(std::make_pair(mesh, m), index);
+        visit(index, node, mesh, first.second ? -1L : static_cast<long>(first.first->second));
+    });
 }
 
 }  // namespace trac0r

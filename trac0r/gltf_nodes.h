@@ -44,6 +44,15 @@ void walk_gltf_nodes(
     const nlohmann::json& doc, const std::string& path,
     const std::function<void(std::size_t, const nlohmann::json&, const glm::dmat4&)>& visit);
 
+// Calls visit(index, node, mesh, repeats) for each node of the walk
+// (walk_gltf_nodes) that places a mesh: `repeats` is the earlier node that
+// placed the same mesh with the same world transform (a coincident copy,
+// which the reader draws once: gltf_repeats.h), or -1 where none did.
+// Throws as walk_gltf_nodes does.
+void walk_gltf_mesh_placements(
+    const nlohmann::json& doc, const std::string& path,
+    const std::function<void(std::size_t, const nlohmann::json&, std::size_t, long)>& visit);
+
 }  // namespace trac0r
 
 #endif

@@ -6,10 +6,8 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <array>
 #include <cstdint>
 #include <cstring>
-#include <map>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -110,23 +108,14 @@ std::string gltf_without_repeated_leaves(const std::string& text, bool glb, cons
     // once where the walk meets it: never left out.
     const std::vector<int> listed = references(doc);
     std::vector<bool> out(doc["nodes"].size(), false);
-    // Each (mesh, world transform) met, with the node that placed it.
-    std::map<std::pair<std::size_t, std::array<double, 16>>, std::size_t> seen;
     try {
-        walk_gltf_nodes(
-            doc, path, [&](std::size_t index, const json& node, const glm::dmat4& world) {
-                if (!node.contains("mesh") || !node["mesh"].is_number_unsigned()) {
-                    return;
-                }
-                std::array<double, 16> m;
-                std::memcpy(m.data(), &world, sizeof m);
-                const auto placed =
-                    seen.emplace(std::make_pair(node["mesh"].get<std::size_t>(), m), index);
-                if (!placed.second && mesh_leaf(node) && listed[index] == 1) {
+        walk_gltf_mesh_placements(
+            doc, path, [&](std::size_t index, const json& node, std::size_t, long repeats) {
+                if (repeats >= 0 && mesh_leaf(node) && listed[index] == 1) {
                     out[index] = true;
                     if (++*removed == 1) {
                         *first = "node " + std::to_string(index) + " repeats node " +
-                                 std::to_string(placed.first->second) + "'s mesh and transform";
+                                 std::to_string(repeats) + "'s mesh and transform";
                     }
                 }
             });
@@ -143,11 +132,9 @@ std::string gltf_without_repeated_leaves(const std::string& text, bool glb, cons
             drop_marked(node["children"], out);
         }
     }
-    if (doc.contains("scenes") && doc["scenes"].is_array()) {
-        for (json& scene : doc["scenes"]) {
-            if (scene.is_object() && scene.contains("nodes")) {
-                drop_marked(scene["nodes"], out);
-            }
+    for (json& scene : doc["scenes"]) {
+        if (scene.is_object() && scene.contains("nodes")) {
+            drop_marked(scene["nodes"], out);
         }
     }
     const std::string json_text = doc.dump(-1, ' ', false, json::error_handler_t::replace);

@@ -4,9 +4,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <array>
-#include <cstring>
-#include <set>
 #include <stdexcept>
 #include <vector>
 
@@ -73,21 +70,14 @@ std::uint64_t gltf_promised_triangles(const std::string& json_text, const std::s
         }
     }
     std::uint64_t total = 0;
-    // A mesh placed twice with the same transform counts once, as the
-    // reader draws it once (gltf_repeats.h).
-    std::set<std::pair<std::size_t, std::array<double, 16>>> seen;
     try {
-        walk_gltf_nodes(doc, path, [&](std::size_t, const json& node, const glm::dmat4& world) {
-            if (node.contains("mesh") && node["mesh"].is_number_unsigned() &&
-                node["mesh"].get<std::size_t>() < per_mesh.size()) {
-                const std::size_t mesh = node["mesh"].get<std::size_t>();
-                std::array<double, 16> m;
-                std::memcpy(m.data(), &world, sizeof m);
-                if (seen.emplace(mesh, m).second) {
-                    total += per_mesh[mesh];
-                }
-            }
-        });
+        // A coincident copy counts once, as the reader draws it once.
+        walk_gltf_mesh_placements(doc, path,
+                                  [&](std::size_t, const json&, std::size_t mesh, long repeats) {
+                                      if (repeats < 0 && mesh < per_mesh.size()) {
+                                          total += per_mesh[mesh];
+                                      }
+                                  });
     } catch (const GltfNodesTooDeep&) {
         throw;
     } catch (const std::runtime_error&) {
