@@ -454,7 +454,7 @@ kernel::CameraRecord scaled_camera(const kernel::CameraRecord& camera, float sca
     c.position = glm::vec4(glm::vec3(c.position) * scale, c.position.w);
     c.extent.z *= scale;  // the lens' aperture radius and focus distance: lengths too
     c.extent.w *= scale;
-    if (c.forward.w != 0.0f) {
+    if (kernel::camera_is_orthographic(c)) {
         c.extent.x *= scale;  // an orthographic view's size
         c.extent.y *= scale;
     }

@@ -40,7 +40,7 @@ glm::vec3 to_camera_space(const kernel::CameraRecord& camera, const glm::vec3& w
 // orthographic camera's ray starts at right * sx + up * sy: a point on it
 // has sx = x_cam and sy = y_cam.
 glm::vec2 camera_space_to_image(const kernel::CameraRecord& camera, const glm::vec3& point) {
-    const bool orthographic = camera.forward.w != 0.0f;
+    const bool orthographic = kernel::camera_is_orthographic(camera);
     const float sx = orthographic ? point.x : point.x / point.z;
     const float sy = orthographic ? point.y : point.y / point.z;
     const float width = static_cast<float>(camera.size.x);

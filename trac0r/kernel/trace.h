@@ -17,10 +17,6 @@
 
 T0_NAMESPACE_BEGIN
 
-// Whether the camera is orthographic (its rays parallel, along forward,
-// from points of the image plane), not a pinhole or a thin lens.
-T0_INLINE int camera_is_orthographic(CameraRecord cam) { return cam.forward.w != 0.0f; }
-
 // The point of the image plane at distance one along forward that pixel
 // (x, y) (row 0 at the top) shows at sub-pixel position (jitter_x,
 // jitter_y) in [0, 1)^2, relative to the camera: forward component 1. For

@@ -224,6 +224,10 @@ typedef struct T0_ALIGN16 CameraRecord {
     uint4 size;       // x: width, y: height
 } CameraRecord;
 
+// Whether the camera is orthographic (its rays parallel, along forward,
+// from points of the image plane), not a pinhole or a thin lens.
+T0_INLINE int camera_is_orthographic(CameraRecord cam) { return cam.forward.w != 0.0f; }
+
 // Per pixel: a compensated (Kahan) sum of the radiance samples, so the mean
 // stays exact over very many frames, and Welford moments of the luminance
 // for the noise estimate.
