@@ -248,4 +248,13 @@ TEST_CASE(
     CHECK(zoom_camera(c, 0.5f).vertical_fov == Approx(c.vertical_fov * 0.5f));
     CHECK(zoom_camera(c, 100.0f).vertical_fov == fly_camera_max_fov);
     CHECK(zoom_camera(c, 1e-4f).vertical_fov == fly_camera_min_fov);
+    // An orthographic camera zooms its view's height, while that stays a
+    // height camera_problem takes.
+    Camera ortho = c;
+    ortho.projection = Projection::orthographic;
+    ortho.view_height = 2.0f;
+    CHECK(zoom_camera(ortho, 0.5f).view_height == 1.0f);
+    CHECK(zoom_camera(ortho, 0.5f).vertical_fov == c.vertical_fov);
+    ortho.view_height = 1e30f;
+    CHECK(zoom_camera(ortho, 10.0f).view_height == 1e30f);
 }

@@ -50,11 +50,8 @@ Camera turn_camera(const Camera& camera, float yaw_radians, float pitch_radians)
 Camera zoom_camera(const Camera& camera, float factor) {
     Camera result = camera;
     if (camera.projection == Projection::orthographic) {
-        const float height = camera.view_height * factor;
-        if (height > 0.0f && height <= 1e30f) {
-            result.view_height = height;
-        }
-        return result;
+        result.view_height = camera.view_height * factor;
+        return camera_problem(result) == nullptr ? result : camera;
     }
     result.vertical_fov =
         std::max(fly_camera_min_fov, std::min(fly_camera_max_fov, camera.vertical_fov * factor));
