@@ -144,7 +144,7 @@ __kernel void cast_rays(__global const TriangleRecord* triangles,
     if (i >= count) {
         return;
     }
-    const SceneView scene = scene_view(triangles, shapes, 0, nodes, packets, 0, 0, 0, 0, 0, 0, 0, 0, shape_count, 0u, 0u);
+    const SceneView scene = scene_view(triangles, shapes, 0, nodes, packets, 0, 0, 0, 0, 0, 0, 0, 0, shape_count, 0u, 0u, (float4)(0.0f));
     const Ray ray = make_ray(origins[i].xyz, directions[i].xyz);
     hit[i] = intersect_scene(&scene, &ray).triangle >= 0;
 }

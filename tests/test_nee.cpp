@@ -165,31 +165,7 @@ TEST_CASE("the NEE kernel builds as OpenCL C and agrees with the CPU backend", "
     const PackedScene packed = pack_scene(scene, nee);
     REQUIRE((packed.features & T0_FEATURE_NEE) != 0u);
     require_warning_free_build(packed);
-    // The same seed gives both backends the same random numbers, so most
-    // pixels agree to float rounding; a path that takes another branch on a
-    // last-bit difference diverges, so 90% of pixels must agree closely and
-    // every 6x6 block's mean within 5 standard errors of the difference.
-    const int frames = 16;
-    Renderer cpu(scene, std::make_unique<CpuBackend>(), 11, nee);
-    Renderer gpu(scene, std::make_unique<OpenClBackend>(0), 11, nee);
-    for (int i = 0; i < frames; ++i) {
-        cpu.render_frame();
-        gpu.render_frame();
-    }
-    const Image a = cpu.image();
-    const Image b = gpu.image();
-    const int close_pixels = close_pixel_count(a, b);
-    CAPTURE(close_pixels, a.pixels.size());
-    REQUIRE(close_pixels >= static_cast<int>(0.9 * a.pixels.size()));
-    const std::vector<BlockMean> ca = block_means(cpu.accumulator(), a.width, a.height, 6, 6);
-    const std::vector<BlockMean> gb = block_means(gpu.accumulator(), a.width, a.height, 6, 6);
-    for (std::size_t i = 0; i < ca.size(); ++i) {
-        // Twice one render's variance: the difference of two independent
-        // means (an upper bound: the shared seed correlates them).
-        const double se = std::sqrt(2.0 * ca[i].variance);
-        CAPTURE(ca[i].x, ca[i].y, ca[i].mean, gb[i].mean, se);
-        REQUIRE(std::fabs(ca[i].mean - gb[i].mean) <= 5.0 * se + 1e-6);
-    }
+    require_opencl_agrees_with_cpu(scene, nee, 16, 0.9);
 }
 
 namespace {

@@ -408,7 +408,7 @@ __kernel void tile_hits(__global const TriangleRecord* triangles, __global const
                         __global const TrianglePacket* packets, CameraRecord camera, ulong seed,
                         uint frame, __global float4* bundled, __global float4* traversed,
                         __global float4* directions, __global int* counts) {
-    const SceneView scene = scene_view(triangles, 0, 0, nodes, packets, 0, 0, 0, 0, 0, 0, 0, 0, 0u, 0u, 0u);
+    const SceneView scene = scene_view(triangles, 0, 0, nodes, packets, 0, 0, 0, 0, 0, 0, 0, 0, 0u, 0u, 0u, (float4)(0.0f));
     __local TileShared shared;
     const TileSample t = tile_sample(&scene, camera, seed, frame, &shared);
     if (t.inside) {

@@ -6,10 +6,12 @@
 
 #include <catch2/catch.hpp>
 
+#include "trac0r/cpu_backend.h"
 #include "trac0r/image_io.h"
 #include "trac0r/kernel/types.h"
 #include "trac0r/opencl_backend.h"
 #include "trac0r/packed_scene.h"
+#include "trac0r/renderer.h"
 #include "trac0r/scene_loader.h"
 #include "trac0r/shape.h"
 
@@ -19,6 +21,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -188,6 +191,35 @@ inline int close_pixel_count(const Image& a, const Image& b) {
         close += d.x + d.y + d.z <= 1e-3f * (1.0f + a.pixels[i].x + a.pixels[i].y + a.pixels[i].z);
     }
     return close;
+}
+
+// A scene rendered with `options` on the CPU backend and on OpenCL device
+// 0, `frames` frames from the same seed, which gives both the same random
+// numbers: at least `close_share` of the pixels agree to float rounding (a
+// path that takes another branch on a last-bit difference diverges), and
+// every 6x6 block's mean is within 5 standard errors of the difference
+// (twice one render's variance: an upper bound, as the seed correlates
+// them).
+inline void require_opencl_agrees_with_cpu(const Scene& scene, const PackOptions& options,
+                                           int frames, double close_share) {
+    Renderer cpu(scene, std::make_unique<CpuBackend>(), 11, options);
+    Renderer gpu(scene, std::make_unique<OpenClBackend>(0), 11, options);
+    for (int i = 0; i < frames; ++i) {
+        cpu.render_frame();
+        gpu.render_frame();
+    }
+    const Image a = cpu.image();
+    const Image b = gpu.image();
+    const int close_pixels = close_pixel_count(a, b);
+    CAPTURE(close_pixels, a.pixels.size());
+    REQUIRE(close_pixels >= static_cast<int>(close_share * a.pixels.size()));
+    const std::vector<BlockMean> ca = block_means(cpu.accumulator(), a.width, a.height, 6, 6);
+    const std::vector<BlockMean> gb = block_means(gpu.accumulator(), a.width, a.height, 6, 6);
+    for (std::size_t i = 0; i < ca.size(); ++i) {
+        const double se = std::sqrt(2.0 * ca[i].variance);
+        CAPTURE(ca[i].x, ca[i].y, ca[i].mean, gb[i].mean, se);
+        REQUIRE(std::fabs(ca[i].mean - gb[i].mean) <= 5.0 * se + 1e-6);
+    }
 }
 
 // Pearson's chi-square of observed counts against expected ones, the cells

@@ -1,5 +1,6 @@
 #include "trac0r/cpu_backend.h"
 
+#include "trac0r/kernel/bdpt.h"
 #include "trac0r/kernel/tile.h"
 #include "trac0r/packed_scene.h"
 
@@ -36,6 +37,10 @@ std::string openmp_device(int threads) {
 struct CpuBackend::State {
     PackedScene scene;
     std::vector<kernel::AccumPixel> accum;
+    // Bidirectional path tracing: each pixel's own light in a frame, and
+    // the light subpaths' splats (kernel/splat.h), four sums a pixel.
+    std::vector<glm::vec4> frame_radiance;
+    std::vector<kernel::t0_i64> splats;
 };
 
 CpuBackend::CpuBackend(int threads)
@@ -48,8 +53,15 @@ CpuBackend::~CpuBackend() = default;
 void CpuBackend::set_scene(const PackedScene& scene) { state_->scene = scene; }
 
 void CpuBackend::reset(int width, int height) {
-    state_->accum.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height),
-                  kernel::AccumPixel{});
+    const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    state_->accum.assign(pixels, kernel::AccumPixel{});
+    if ((state_->scene.features & T0_FEATURE_BDPT) != 0u) {
+        state_->frame_radiance.assign(pixels, glm::vec4(0.0f));
+        state_->splats.assign(4 * pixels, 0);
+    } else {
+        state_->frame_radiance.clear();
+        state_->splats.clear();
+    }
 }
 
 void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t seed,
@@ -75,6 +87,9 @@ bool CpuBackend::render_frame_cancellable(const kernel::CameraRecord& camera, st
     // skipped (an OpenMP loop cannot be left early), each at the cost of a
     // load.
     std::atomic<bool> cancelled(false);
+    if ((state_->scene.features & T0_FEATURE_BDPT) != 0u) {
+        return render_bdpt(view, scaled, seed, frame, max_depth, cancel);
+    }
 #pragma omp parallel num_threads(threads_)
     {
         const DenormalsAreZero denormals;  // in every thread of the team
@@ -87,6 +102,49 @@ bool CpuBackend::render_frame_cancellable(const kernel::CameraRecord& camera, st
             const kernel::TileRect rect =
                 kernel::tile_rect(static_cast<std::uint32_t>(t), width, height);
             kernel::render_tile(&view, scaled, accum, seed, frame, max_depth, rect, width);
+        }
+    }
+    return !cancelled.load();
+}
+
+// Bidirectional path tracing: every pixel's sample (its light subpath's
+// splats land anywhere), then every pixel's merge; in tiles of T0_TILE
+// rows' worth of pixels, handed out dynamically, with `cancel` asked
+// before each.
+bool CpuBackend::render_bdpt(const kernel::SceneView& view, const kernel::CameraRecord& camera,
+                             std::uint64_t seed, std::uint32_t frame, int max_depth,
+                             const CancelCheck& cancel) {
+    const long pixels = static_cast<long>(state_->accum.size());
+    if (state_->splats.size() != 4 * state_->accum.size()) {
+        state_->frame_radiance.assign(state_->accum.size(), glm::vec4(0.0f));
+        state_->splats.assign(4 * state_->accum.size(), 0);
+    }
+    glm::vec4* radiance = state_->frame_radiance.data();
+    kernel::t0_i64* splats = state_->splats.data();
+    kernel::AccumPixel* accum = state_->accum.data();
+    const long chunk = 64;
+    const long chunks = (pixels + chunk - 1) / chunk;
+    std::atomic<bool> cancelled(false);
+#pragma omp parallel num_threads(threads_)
+    {
+        const DenormalsAreZero denormals;
+#pragma omp for schedule(dynamic, 1)
+        for (long c = 0; c < chunks; ++c) {
+            if (cancel && (cancelled.load(std::memory_order_relaxed) || cancel())) {
+                cancelled.store(true, std::memory_order_relaxed);
+                continue;
+            }
+            const long end = std::min(pixels, (c + 1) * chunk);
+            for (long p = c * chunk; p < end; ++p) {
+                kernel::bdpt_sample(&view, camera, static_cast<std::uint32_t>(p), seed, frame,
+                                    max_depth, kernel::bdpt_all_strategies(), radiance, splats);
+            }
+        }
+        if (!cancelled.load()) {
+#pragma omp for schedule(static)
+            for (long p = 0; p < pixels; ++p) {
+                kernel::bdpt_merge(accum, radiance, splats, static_cast<std::uint32_t>(p));
+            }
         }
     }
     return !cancelled.load();

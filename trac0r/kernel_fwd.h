@@ -14,6 +14,7 @@ namespace kernel {
 struct AccumPixel;
 struct CameraRecord;
 struct FilterGuide;
+struct SceneView;
 }  // namespace kernel
 
 }  // namespace trac0r

@@ -75,6 +75,10 @@ enum RenderFrameArg : cl_uint {
     arg_distant_count,  // uint
     arg_light_nodes,    // __global const LightTreeNode*
     arg_tangents,       // __global const VertexTangents*
+    arg_sphere,         // float4
+    // bdpt_frame's, after render_frame's:
+    arg_frame_radiance,  // __global float4*
+    arg_splats,          // __global long*
 };
 
 // Sets render_frame's argument `index` to `value`: a cl_mem for a buffer,
@@ -163,6 +167,13 @@ struct OpenClBackend::State {
     OpenClKernel kernel;
     SceneBuffers scene;
     OpenClMem accum;
+    // Bidirectional path tracing (T0_FEATURE_BDPT): its frame kernel (in
+    // `kernel`), the merge, each pixel's own light and the splat sums.
+    bool bdpt = false;
+    OpenClKernel merge;
+    OpenClMem frame_radiance;
+    OpenClMem splats;
+    glm::vec4 sphere = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
     std::size_t pixels = 0;
     bool bvh = false;  // the BVH's program: a tile a work-group
     cl_uint shape_count = 0;
@@ -201,9 +212,17 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
     cl_program program =
         cached_opencl_program(*state_->device, "", options, &state_->build_seconds);
     state_->kernel.reset();
+    state_->merge.reset();
     cl_int status = CL_SUCCESS;
-    state_->kernel.reset(clCreateKernel(program, "render_frame", &status));
-    check(status, "clCreateKernel(render_frame)");
+    state_->bdpt = (scene.features & T0_FEATURE_BDPT) != 0u;
+    const char* name = state_->bdpt ? "bdpt_frame" : "render_frame";
+    state_->kernel.reset(clCreateKernel(program, name, &status));
+    check(status, (std::string("clCreateKernel(") + name + ")").c_str());
+    if (state_->bdpt) {
+        state_->merge.reset(clCreateKernel(program, "bdpt_merge_frame", &status));
+        check(status, "clCreateKernel(bdpt_merge_frame)");
+    }
+    state_->sphere = scene.sphere;
     state_->options = options;
     // The BVH's program renders a tile of 8 x 8 pixels a work-group of 64
     // (render.cl), the flat list's a pixel a work-item in groups of the
@@ -214,7 +233,7 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
     // frames on cornell.json took 4.5 % less time. The flat list, which
     // has no such array, took 3 % more (bench_backends, alternated;
     // docs/performance.md, "Kernel tuning").
-    state_->bvh = (scene.features & T0_FEATURE_BVH) != 0u;
+    state_->bvh = (scene.features & T0_FEATURE_BVH) != 0u && !state_->bdpt;
     if (state_->bvh) {
         std::size_t most = 0;
         check(clGetKernelWorkGroupInfo(state_->kernel.get(), state_->device->device,
@@ -264,6 +283,24 @@ void OpenClBackend::reset(int width, int height) {
                                            sizeof(kernel::AccumPixel) * pixels, nullptr, &status));
         check(status, "clCreateBuffer(accumulator)");
         state_->pixels = pixels;
+        state_->frame_radiance.reset();
+        state_->splats.reset();
+    }
+    if (state_->bdpt && !state_->splats) {
+        state_->frame_radiance.reset(clCreateBuffer(state_->device->context.get(),
+                                                    CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels,
+                                                    nullptr, &status));
+        check(status, "clCreateBuffer(frame radiance)");
+        state_->splats.reset(clCreateBuffer(state_->device->context.get(), CL_MEM_READ_WRITE,
+                                            4 * sizeof(cl_long) * pixels, nullptr, &status));
+        check(status, "clCreateBuffer(splats)");
+    }
+    if (state_->bdpt) {
+        const cl_long none = 0;
+        check(
+            clEnqueueFillBuffer(state_->device->queue.get(), state_->splats.get(), &none,
+                                sizeof none, 0, 4 * sizeof(cl_long) * pixels, 0, nullptr, nullptr),
+            "clEnqueueFillBuffer(splats)");
     }
     const cl_float zero = 0.0f;
     check(clEnqueueFillBuffer(state_->device->queue.get(), state_->accum.get(), &zero, sizeof zero,
@@ -306,6 +343,13 @@ bool OpenClBackend::render_frame_cancellable(const kernel::CameraRecord& camera,
     set_arg(k, arg_distant_count, state_->distant_count);
     set_arg(k, arg_light_nodes, state_->scene.light_nodes.get());
     set_arg(k, arg_tangents, state_->scene.tangents.get());
+    const cl_float4 sphere = {
+        {state_->sphere.x, state_->sphere.y, state_->sphere.z, state_->sphere.w}};
+    set_arg(k, arg_sphere, sphere);
+    if (state_->bdpt) {
+        set_arg(k, arg_frame_radiance, state_->frame_radiance.get());
+        set_arg(k, arg_splats, state_->splats.get());
+    }
     std::size_t global = 0;
     const std::size_t* local = nullptr;  // the driver's choice
     if (state_->bvh) {
@@ -315,6 +359,12 @@ bool OpenClBackend::render_frame_cancellable(const kernel::CameraRecord& camera,
     } else {
         // A multiple of 64, which a driver choosing the groups can split evenly.
         global = (state_->pixels + 63) / 64 * 64;
+        if (state_->bdpt) {
+            // Groups of 64 too: each work-item holds its two subpaths (4.2
+            // KB), and PoCL keeps a group's private arrays side by side on
+            // its thread's stack, which groups of thousands overflowed.
+            local = &kTileItems;
+        }
     }
     cl_command_queue queue = state_->device->queue.get();
     // Parts of whole tiles (64 work-items each, both ways), launched with a
@@ -356,6 +406,21 @@ bool OpenClBackend::render_frame_cancellable(const kernel::CameraRecord& camera,
             }
             waited = std::move(next);
         }
+    }
+    if (finished && state_->bdpt) {
+        // Every pixel's sample and splats are in: accumulate them.
+        cl_kernel merge = state_->merge.get();
+        const cl_uint pixels = static_cast<cl_uint>(state_->pixels);
+        const cl_mem buffers[3] = {state_->accum.get(), state_->frame_radiance.get(),
+                                   state_->splats.get()};
+        for (cl_uint i = 0; i < 3; ++i) {
+            check(clSetKernelArg(merge, i, sizeof(cl_mem), &buffers[i]), "clSetKernelArg");
+        }
+        check(clSetKernelArg(merge, 3, sizeof pixels, &pixels), "clSetKernelArg");
+        const std::size_t merge_global = (state_->pixels + 63) / 64 * 64;
+        check(clEnqueueNDRangeKernel(queue, merge, 1, nullptr, &merge_global, nullptr, 0, nullptr,
+                                     nullptr),
+              "clEnqueueNDRangeKernel(bdpt_merge_frame)");
     }
     // A frame is done when render_frame returns, so timings are honest and
     // the queue never runs far ahead of the viewer.

@@ -79,9 +79,9 @@ std::uint32_t material_feature(const Material& m) {
 }
 
 const char* const feature_bit_names[T0_FEATURE_COUNT] = {
-    "emissive", "diffuse", "glass",   "glossy",      "emittance", "flat",      "bvh",       "nee",
-    "sobol",    "smooth",  "texture", "environment", "lamps",     "one_sided", "light_tree",
-    "conductor", "plastic", "principled", "rough_glass", "alpha"};
+    "emissive",   "diffuse",   "glass",   "glossy",     "emittance",   "flat",  "bvh",
+    "nee",        "sobol",     "smooth",  "texture",    "environment", "lamps", "one_sided",
+    "light_tree", "conductor", "plastic", "principled", "rough_glass", "alpha", "bdpt"};
 
 // What this build's kernel can do at all.
 const std::uint32_t implemented_features =
@@ -89,7 +89,7 @@ const std::uint32_t implemented_features =
     T0_FEATURE_EMITTANCE | T0_FEATURE_FLAT | T0_FEATURE_BVH | T0_FEATURE_NEE | T0_FEATURE_SOBOL |
     T0_FEATURE_SMOOTH | T0_FEATURE_TEXTURE | T0_FEATURE_ENVIRONMENT | T0_FEATURE_LAMPS |
     T0_FEATURE_ONE_SIDED | T0_FEATURE_LIGHT_TREE | T0_FEATURE_CONDUCTOR | T0_FEATURE_PLASTIC |
-    T0_FEATURE_PRINCIPLED | T0_FEATURE_ROUGH_GLASS | T0_FEATURE_ALPHA;
+    T0_FEATURE_PRINCIPLED | T0_FEATURE_ROUGH_GLASS | T0_FEATURE_ALPHA | T0_FEATURE_BDPT;
 
 }  // namespace
 
@@ -112,6 +112,7 @@ kernel::SceneView PackedScene::view() const {
     v.environment = environment.data();
     v.distant_count = distant_count;
     v.light_nodes = light_nodes.data();
+    v.sphere = sphere;
     return v;
 }
 
@@ -339,6 +340,24 @@ float coordinate_scale(double typical, double largest) {
     return std::ldexp(1.0f, power);
 }
 
+// A sphere around the triangles: their box's centre and half its
+// diagonal, a little more (a unit sphere at the origin for none).
+glm::vec4 bounding_sphere(const std::vector<kernel::TriangleRecord>& triangles) {
+    if (triangles.empty()) {
+        return glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    }
+    glm::vec3 lo(std::numeric_limits<float>::max());
+    glm::vec3 hi(-std::numeric_limits<float>::max());
+    for (const kernel::TriangleRecord& t : triangles) {
+        for (const glm::vec4& v : {t.v0, t.v1, t.v2}) {
+            lo = glm::min(lo, glm::vec3(v));
+            hi = glm::max(hi, glm::vec3(v));
+        }
+    }
+    const float radius = 0.5f * glm::length(hi - lo) * 1.001f;
+    return glm::vec4(0.5f * (lo + hi), radius > 0.0f ? radius : 1.0f);
+}
+
 }  // namespace
 
 PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
@@ -439,10 +458,17 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
     pack_normals(usable, packed_index, packed);
     pack_textures(scene, usable, packed_index, packed);
     pack_tangents(scene, usable, packed_index, packed);
-    pack_lights(scene, packed, packed_index, options.light_sampler);
+    // Bidirectional path tracing picks lights by power alone (its
+    // densities have no place for the tree's dependence on the point).
+    const bool bdpt = options.integrator == Integrator::bdpt;
+    pack_lights(scene, packed, packed_index, bdpt ? LightSampler::power : options.light_sampler);
     if (options.integrator == Integrator::nee && !packed.lights.empty()) {
         packed.features |= T0_FEATURE_NEE;
     }
+    if (bdpt) {
+        packed.features |= T0_FEATURE_BDPT;
+    }
+    packed.sphere = bounding_sphere(packed.triangles);
     if (options.sampler == SamplerKind::sobol) {
         packed.features |= T0_FEATURE_SOBOL;
     }

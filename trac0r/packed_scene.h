@@ -52,6 +52,10 @@ struct PackedScene {
     // the camera's position by it (scaled_camera); code that runs the kernel
     // on a packed scene itself must do the same.
     float scale = 1.0f;
+    // A sphere around every packed triangle (xyz: centre, w: radius; a unit
+    // sphere at the origin without triangles): where bidirectional path
+    // tracing's light subpaths from distant lights start (SceneView.sphere).
+    glm::vec4 sphere = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
 
     kernel::SceneView view() const;
 };
@@ -59,6 +63,8 @@ struct PackedScene {
 // Packs the scene: the acceleration structure (flat shapes with AABBs, or a
 // BVH), triangles (vertices, normal), materials, the light list, and the
 // feature mask (with T0_FEATURE_NEE for Integrator::nee when anything emits,
+// T0_FEATURE_BDPT for Integrator::bdpt, whose lights are always picked by
+// power,
 // T0_FEATURE_SOBOL for SamplerKind::sobol, T0_FEATURE_SMOOTH when a
 // triangle has vertex normals).
 // Degenerate triangles (zero area, non-finite vertices) can never be hit

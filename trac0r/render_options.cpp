@@ -8,8 +8,8 @@ namespace {
 
 const EnumName<Accel> accel_names[] = {
     {Accel::flat, "flat"}, {Accel::bvh, "bvh"}, {Accel::automatic, "auto"}};
-const EnumName<Integrator> integrator_names[] = {{Integrator::naive, "naive"},
-                                                 {Integrator::nee, "nee"}};
+const EnumName<Integrator> integrator_names[] = {
+    {Integrator::naive, "naive"}, {Integrator::nee, "nee"}, {Integrator::bdpt, "bdpt"}};
 const EnumName<LightSampler> light_sampler_names[] = {{LightSampler::power, "power"},
                                                       {LightSampler::tree, "tree"},
                                                       {LightSampler::automatic, "auto"}};

@@ -29,6 +29,8 @@ enum class Integrator {
     naive,  // the thesis' algorithm: emission is found by scattering alone
     nee,    // next-event estimation (a light sample at each diffuse or rough
             // glossy hit) combined with scattering by MIS
+    bdpt,   // bidirectional path tracing: a light subpath and a camera
+            // subpath joined in every way, weighted by MIS (kernel/bdpt.h)
 };
 
 // Where a path's random numbers come from (kernel/sampler.h).
@@ -66,7 +68,7 @@ struct PackOptions {
 Accel parse_accel(const std::string& name);
 const char* to_string(Accel accel);
 
-// "naive", "nee" and back; parse_integrator throws std::invalid_argument.
+// "naive", "nee", "bdpt" and back; parse_integrator throws std::invalid_argument.
 Integrator parse_integrator(const std::string& name);
 const char* to_string(Integrator integrator);
 

@@ -1,8 +1,12 @@
 #include "trac0r/renderer.h"
 
 #include "trac0r/kernel/accumulate.h"
+#include "trac0r/kernel/bdpt_vertex.h"
 #include "trac0r/kernel/types.h"
 #include "trac0r/packed_scene.h"
+
+#include <stdexcept>
+#include <string>
 
 namespace trac0r {
 
@@ -28,6 +32,13 @@ PackOptions for_backend(PackOptions options, const Backend& backend) {
 Renderer::Renderer(const Scene& scene, std::unique_ptr<Backend> backend, std::uint64_t seed,
                    const PackOptions& pack_options)
     : scene_(scene), kernel_(new KernelState), backend_(std::move(backend)), seed_(seed) {
+    if (pack_options.integrator == Integrator::bdpt && scene.render.max_depth > T0_BDPT_MAX_DEPTH) {
+        throw std::invalid_argument("the bdpt integrator takes paths of at most " +
+                                    std::to_string(T0_BDPT_MAX_DEPTH) + " vertices (max_depth " +
+                                    std::to_string(scene.render.max_depth) + "): use --max-depth " +
+                                    std::to_string(T0_BDPT_MAX_DEPTH) +
+                                    " or less, or --integrator nee");
+    }
     kernel_->packed = pack_scene(scene, for_backend(pack_options, *backend_));
     kernel_->camera = make_camera_record(scene.camera, scene.render.width, scene.render.height);
     backend_->set_scene(kernel_->packed);

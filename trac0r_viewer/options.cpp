@@ -128,8 +128,10 @@ void define_options(trac0r_cli::CommandLine& cl, Options& o) {
                "maximum path length in vertices (default: the scene's)", "D");
     cl.integer("--threads", &o.threads, 1, 1024, "CPU threads (default: all)");
     cl.choice("--accel", &o.accel, "flat|bvh|auto", "acceleration structure (default auto)");
-    cl.choice("--integrator", &o.integrator, "naive|nee",
-              "next-event estimation with MIS (nee, default), or the thesis' algorithm");
+    cl.choice("--integrator", &o.integrator, "naive|nee|bdpt",
+              "next-event estimation with MIS (nee, default), bidirectional path tracing "
+              "(bdpt: caustics; at most 16 vertices a path; docs/bdpt.md), or the thesis' "
+              "algorithm");
     cl.choice("--sampler", &o.sampler, "random|sobol",
               "Owen-scrambled Sobol points, stratified (sobol, default), or the thesis' "
               "xorshift1024* numbers");

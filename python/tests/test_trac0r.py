@@ -210,7 +210,7 @@ def test_bad_input_raises_with_the_loaders_messages(tmp_path):
     with pytest.raises(ValueError, match=r"backend: expected 'cpu' or 'opencl', got 'gpu'"):
         trac0r.render(trac0r.builtin_scene(), spp=1, backend="gpu")
     with pytest.raises(ValueError, match=r"naive"):
-        trac0r.render(trac0r.builtin_scene(), spp=1, integrator="bdpt")
+        trac0r.render(trac0r.builtin_scene(), spp=1, integrator="mlt")
     with pytest.raises(ValueError, match=r"layers"):
         trac0r.render_images(trac0r.builtin_scene(), spp=1, layers=["colour"])
     scene = trac0r.builtin_scene()

@@ -1,6 +1,7 @@
 // The OpenCL entry point: the same kernel headers the CPU backend compiles.
 // The library embeds this file after the headers (cmake/embed.cmake), and
 // builds it with -DT0_FEATURES=<mask> so unused branches are compiled out.
+#include "bdpt.h"
 #include "filter.h"
 #include "temporal.h"
 #include "tile_grid.h"
@@ -17,7 +18,7 @@ scene_view(__global const TriangleRecord* triangles, __global const ShapeRecord*
            __global const VertexTangents* tangents, __global const TextureRecord* textures,
            __global const uint* texels, __global const float4* environment,
            __global const LightTreeNode* light_nodes, uint shape_count, uint light_count,
-           uint distant_count) {
+           uint distant_count, float4 sphere) {
     SceneView scene;
     scene.triangles = triangles;
     scene.shapes = shapes;
@@ -33,6 +34,7 @@ scene_view(__global const TriangleRecord* triangles, __global const ShapeRecord*
     scene.environment = environment;
     scene.distant_count = distant_count;
     scene.light_nodes = light_nodes;
+    scene.sphere = sphere;
     scene.shape_count = shape_count;
     scene.light_count = light_count;
     scene.features = T0_FEATURES;
@@ -130,10 +132,10 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
                            __global const TextureRecord* textures, __global const uint* texels,
                            __global const float4* environment, uint distant_count,
                            __global const LightTreeNode* light_nodes,
-                           __global const VertexTangents* tangents) {
+                           __global const VertexTangents* tangents, float4 sphere) {
     const SceneView scene = scene_view(triangles, shapes, materials, nodes, packets, lights,
                                        normals, uvs, tangents, textures, texels, environment,
-                                       light_nodes, shape_count, light_count, distant_count);
+                                       light_nodes, shape_count, light_count, distant_count, sphere);
     if (!T0_HAS_FEATURE(&scene, T0_FEATURE_BVH)) {
         // A pixel a work-item.
         const uint pixel = (uint)get_global_id(0);
@@ -150,6 +152,43 @@ __kernel void render_frame(__global const TriangleRecord* triangles,
                           trace_path_from(&scene, t.sample.ray, t.first, max_depth, &t.sample.sampler));
     }
 }
+
+// Bidirectional path tracing (bdpt.h), a pixel a work-item: its sample,
+// with render_frame's arguments and the frame's two buffers; bdpt_merge
+// then accumulates every pixel's, once all the splats are in. Only in the
+// programs of scenes that use it: the build of the others stays as fast.
+#if (T0_FEATURES & T0_FEATURE_BDPT) != 0u
+__kernel void bdpt_frame(__global const TriangleRecord* triangles,
+                         __global const ShapeRecord* shapes,
+                         __global const MaterialRecord* materials, __global const BvhNode* nodes,
+                         uint shape_count, CameraRecord camera, __global AccumPixel* accum,
+                         ulong seed, uint frame, int max_depth,
+                         __global const LightRecord* lights, uint light_count,
+                         __global const TrianglePacket* packets,
+                         __global const VertexNormals* normals, __global const TriangleUVs* uvs,
+                         __global const TextureRecord* textures, __global const uint* texels,
+                         __global const float4* environment, uint distant_count,
+                         __global const LightTreeNode* light_nodes,
+                         __global const VertexTangents* tangents, float4 sphere,
+                         __global float4* frame_radiance, __global long* splats) {
+    const SceneView scene = scene_view(triangles, shapes, materials, nodes, packets, lights,
+                                       normals, uvs, tangents, textures, texels, environment,
+                                       light_nodes, shape_count, light_count, distant_count, sphere);
+    const uint pixel = (uint)get_global_id(0);
+    if (pixel < camera.size.x * camera.size.y) {
+        bdpt_sample(&scene, camera, pixel, seed, frame, max_depth, bdpt_all_strategies(),
+                    frame_radiance, splats);
+    }
+}
+
+__kernel void bdpt_merge_frame(__global AccumPixel* accum, __global const float4* frame_radiance,
+                               __global long* splats, uint pixels) {
+    const uint i = (uint)get_global_id(0);
+    if (i < pixels) {
+        bdpt_merge(accum, frame_radiance, splats, i);
+    }
+}
+#endif
 
 // The edge-preserving filter (filter.h), a pixel a work-item: the first
 // pass's input from the accumulator, the guides as the passes read them,

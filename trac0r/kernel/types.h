@@ -40,7 +40,8 @@
 #define T0_FEATURE_PRINCIPLED (1u << 17)
 #define T0_FEATURE_ROUGH_GLASS (1u << 18)
 #define T0_FEATURE_ALPHA (1u << 19)  // surfaces rays pass through (alpha.h)
-#define T0_FEATURE_COUNT 20
+#define T0_FEATURE_BDPT (1u << 20)   // bidirectional path tracing (bdpt.h)
+#define T0_FEATURE_COUNT 21
 
 T0_NAMESPACE_BEGIN
 
@@ -265,6 +266,9 @@ typedef struct SceneView {
     // Only with T0_FEATURE_LIGHT_TREE: the tree over the lights that are
     // not distant, its root first.
     T0_GLOBAL const LightTreeNode* light_nodes;
+    // A sphere around every triangle (xyz: its centre, w: its radius), from
+    // which light subpaths of distant lights start (light_emission.h).
+    float4 sphere;
 } SceneView;
 
 // Per-frame settings of the render.
