@@ -1,0 +1,83 @@
+// Bidirectional path tracing's multiple importance sampling (bdpt.h): a
+// strategy's weight among all those that make the same path, from the
+// densities its vertices keep (Veach 1997, section 10.2; pbrt-v4's
+// MISWeight), with the power heuristic.
+#ifndef TRAC0R_KERNEL_BDPT_MIS_H
+#define TRAC0R_KERNEL_BDPT_MIS_H
+
+#include "bdpt_vertex.h"
+
+T0_NAMESPACE_BEGIN
+
+// One step of the weight's sum: (rev / fwd)^2, a zero density (a delta
+// vertex's) counting as one (pbrt-v4's remap0), for the power heuristic.
+T0_INLINE float mis_ratio(float rev, float fwd) {
+    const float r = (rev != 0.0f ? rev : 1.0f) / (fwd != 0.0f ? fwd : 1.0f);
+    return r * r;
+}
+
+// The weight of strategy (s, t): its density over the sum of all the
+// strategies' that make the same path, each relative to the next, from
+// the densities the vertices keep, with those of the joined vertices and
+// their neighbours as the join makes them (pbrt-v4's MISWeight).
+// `sampled` is the light vertex for s = 1, or the camera's for t = 1.
+T0_INLINE float mis_weight(const SceneView* scene, CameraRecord cam, const PathVertex* camera,
+                           const PathVertex* light, int s, int t, const PathVertex* sampled) {
+    if (s + t == 2) {
+        return 1.0f;
+    }
+    const PathVertex* qs = s > 0 ? (s == 1 ? sampled : &light[s - 1]) : 0;
+    const PathVertex* pt = t == 1 ? sampled : &camera[t - 1];
+    const PathVertex* qs_minus = s > 1 ? &light[s - 2] : 0;
+    const PathVertex* pt_minus = t > 1 ? &camera[t - 2] : 0;
+    float pt_rev;
+    float pt_minus_rev = 0.0f;
+    float qs_rev = 0.0f;
+    float qs_minus_rev = 0.0f;
+    if (s > 0) {
+        pt_rev = vertex_pdf(scene, cam, qs_minus, qs, pt);
+    } else {
+        pt_rev = vertex_pdf_light_origin(scene, pt);
+    }
+    if (pt_minus != 0) {
+        if (s > 0) {
+            pt_minus_rev = vertex_pdf(scene, cam, qs, pt, pt_minus);
+        } else {
+            T0_GLOBAL const LightRecord* l = pt->distant ? 0 : vertex_light(scene, pt);
+            pt_minus_rev = vertex_pdf_light(scene, pt, l, pt_minus);
+        }
+    }
+    if (qs != 0) {
+        qs_rev = vertex_pdf(scene, cam, pt_minus, pt, qs);
+    }
+    if (qs_minus != 0) {
+        qs_minus_rev = vertex_pdf(scene, cam, pt, qs, qs_minus);
+    }
+    float sum = 0.0f;
+    float ri = 1.0f;
+    for (int i = t - 1; i > 0; --i) {
+        const float rev = i == t - 1 ? pt_rev : (i == t - 2 ? pt_minus_rev : camera[i].pdf_rev);
+        ri *= mis_ratio(rev, camera[i].pdf_fwd);
+        const int delta = i == t - 1 ? 0 : camera[i].delta;
+        if (!delta && !camera[i - 1].delta) {
+            sum += ri;
+        }
+    }
+    ri = 1.0f;
+    for (int i = s - 1; i >= 0; --i) {
+        const PathVertex* v = i == s - 1 ? qs : &light[i];
+        const float rev = i == s - 1 ? qs_rev : (i == s - 2 ? qs_minus_rev : light[i].pdf_rev);
+        ri *= mis_ratio(rev, v->pdf_fwd);
+        const int delta = i == s - 1 ? 0 : v->delta;
+        const int delta_before =
+            i > 0 ? light[i - 1].delta : (s == 1 ? sampled : light)->delta_light;
+        if (!delta && !delta_before) {
+            sum += ri;
+        }
+    }
+    return 1.0f / (1.0f + sum);
+}
+
+T0_NAMESPACE_END
+
+#endif
