@@ -79,6 +79,7 @@ struct Options {
     double seconds = 0.0;
     double target_rmse = 0.0;    // 0: none
     double target_relmse = 0.0;  // 0: none
+    std::vector<int> region;     // --region: x0, y0, x1, y1; empty: the whole image
     int width = 200;
     int height = 150;
     std::string reference_path;
@@ -111,7 +112,7 @@ Config parse_config(const std::string& spec) {
             c.accel = value;
         } else if (key == "max_depth") {
             c.max_depth = static_cast<int>(parse_long(where, value, 1, 100000));
-        } else if (key == "integrator" && (value == "naive" || value == "nee")) {
+        } else if (key == "integrator" && (value == "naive" || value == "nee" || value == "bdpt")) {
             c.integrator = value;
         } else if (key == "sampler" && (value == "random" || value == "sobol")) {
             c.sampler = value;
@@ -140,6 +141,38 @@ Config parse_config(const std::string& spec) {
     return c;
 }
 
+// "x0,y0,x1,y1": four integers, x0 < x1 and y0 < y1, none negative.
+std::vector<int> parse_region(const std::string& v) {
+    std::vector<int> r;
+    std::stringstream in(v);
+    std::string part;
+    while (std::getline(in, part, ',')) {
+        r.push_back(static_cast<int>(parse_long("--region", part, 0, 16384)));
+    }
+    if (r.size() != 4 || r[0] < 0 || r[1] < 0 || r[0] >= r[2] || r[1] >= r[3]) {
+        throw UsageError("--region " + v +
+                         ": expected X0,Y0,X1,Y1 with 0 <= X0 < X1, 0 <= Y0 < Y1");
+    }
+    return r;
+}
+
+// The pixels of `region` (x0, y0, x1, y1) of an image; the image itself
+// for no region.
+Image region_of(const Image& image, const std::vector<int>& region) {
+    if (region.size() != 4) {
+        return image;
+    }
+    Image out;
+    out.width = region[2] - region[0];
+    out.height = region[3] - region[1];
+    for (int y = region[1]; y < region[3]; ++y) {
+        for (int x = region[0]; x < region[2]; ++x) {
+            out.pixels.push_back(image.at(x, y));
+        }
+    }
+    return out;
+}
+
 // --help and --version are printed, and end the program.
 Options parse_options(int argc, char** argv) {
     Options o;
@@ -147,14 +180,15 @@ Options parse_options(int argc, char** argv) {
                                description, 22);
     cl.positional("SCENE.json", &o.scene_path, "the scene (default: the built-in Cornell box)");
     cl.on_extra([](const std::string& a) { throw UsageError(a + ": only one scene file"); });
-    cl.repeated("--config", "SPEC",
-                "a configuration, repeatable (default: backend=cpu): comma-separated key=value "
-                "of backend=cpu|opencl, accel=flat|bvh|auto, max_depth=N, integrator=naive|nee, "
-                "sampler=random|sobol, light_sampler=power|tree|auto (default: the library's, "
-                "cpu, auto, the scene's depth, naive, random, auto), each key at most once\ne.g. "
-                "--config backend=opencl --config "
-                "backend=cpu,max_depth=2",
-                [&o](const std::string& v) { o.configs.push_back(parse_config(v)); });
+    cl.repeated(
+        "--config", "SPEC",
+        "a configuration, repeatable (default: backend=cpu): comma-separated key=value "
+        "of backend=cpu|opencl, accel=flat|bvh|auto, max_depth=N, integrator=naive|nee|bdpt, "
+        "sampler=random|sobol, light_sampler=power|tree|auto (default: the library's, "
+        "cpu, auto, the scene's depth, naive, random, auto), each key at most once\ne.g. "
+        "--config backend=opencl --config "
+        "backend=cpu,max_depth=2",
+        [&o](const std::string& v) { o.configs.push_back(parse_config(v)); });
     cl.integer("--max-spp", &o.max_spp, 1, 1L << 24, "last checkpoint (default 1024)");
     cl.number("--target-rmse", &o.target_rmse, 1e-9, 1e9,
               "report the samples and time each configuration takes to an RMSE of E "
@@ -180,11 +214,19 @@ Options parse_options(int argc, char** argv) {
             "missing, its parent must exist; checked before anything renders)",
             "DIR");
     cl.text("--csv", &o.csv_path, "write the checkpoints as CSV (default convergence.csv)");
+    cl.value("--region", "X0,Y0,X1,Y1",
+             "measure the errors in the pixels x0 <= x < x1, y0 <= y < y1 alone (row 0 at the "
+             "top), e.g. a caustic",
+             [&o](const std::string& v) { o.region = parse_region(v); });
     if (!cl.parse_or_print(argc, argv)) {
         std::exit(0);
     }
     if (o.configs.empty()) {
         o.configs.push_back(parse_config("backend=cpu"));
+    }
+    if (o.region.size() == 4 && (o.region[2] > o.width || o.region[3] > o.height)) {
+        throw UsageError("--region: reaches past the " + std::to_string(o.width) + " x " +
+                         std::to_string(o.height) + " image");
     }
     if (!o.scene_path.empty() && trac0r::same_file(o.scene_path, o.csv_path)) {
         throw UsageError("--csv " + o.csv_path + ": is the scene file; it would be overwritten");
@@ -412,10 +454,11 @@ int run(const Options& o) {
                 continue;
             }
             Renderer& r = *run.renderer;
-            run.points.push_back(
-                Checkpoint{spp, run.seconds, run.wall_seconds, image_error(r.image(), ref.image),
-                           spp >= 2 ? estimate_relative_mse(r.accumulator(), o.width, o.height)
-                                    : std::nan("")});
+            run.points.push_back(Checkpoint{
+                spp, run.seconds, run.wall_seconds,
+                image_error(region_of(r.image(), o.region), region_of(ref.image, o.region)),
+                spp >= 2 ? estimate_relative_mse(r.accumulator(), o.width, o.height)
+                         : std::nan("")});
             // There: the next checkpoints would only cost time.
             run.stopped = any_target && at_targets(run.points.back());
         }

@@ -268,7 +268,7 @@ TEST_CASE("bench_complexity: numbers, backends and --csv as the others check the
 TEST_CASE("bench_convergence: bad --cache, --config and --reference-spp refused before rendering",
           "[benchmark_cli]") {
     check_help("bench_convergence",
-               {"--config SPEC", "each key at most once", "not with --reference",
+               {"--config SPEC", "key at most once", "not with --reference",
                 "sampler=random|sobol", "--target-rmse E", "--target-relmse E"});
     const std::string in = write_test_pfm("bench_cli_reference.pfm");
     std::ofstream("bench_cli_scene.json")
