@@ -276,7 +276,8 @@ spp, seconds, target_error: stop at whichever comes first (none: 64 spp);
 width, height, max_depth: override the scene's.
 seed: same seed, same image.
 backend: 'cpu' or 'opencl' (device: its index); threads: CPU threads (0: all).
-integrator: 'nee' (default) or 'naive'; sampler: 'sobol' (default) or 'random'.
+integrator: 'nee' (default), 'bdpt' (bidirectional: caustics; max_depth at
+    most 64) or 'naive'; sampler: 'sobol' (default) or 'random'.
 progress: called about 10 times a second with a Progress; returning False
     cancels (the frames so far come back).
 cancel: a CancelToken another thread may cancel.

@@ -53,6 +53,15 @@ def test_render_equals_the_program_bit_for_bit(tmp_path):
     assert np.array_equal(img, ref)
 
 
+def test_bdpt_renders_what_the_program_does_bit_for_bit(tmp_path):
+    # Its splats are integer sums: the same bits whatever the threads do.
+    scene = os.path.join(ROOT, "scenes/cornell.json")
+    img = trac0r.render(scene, spp=4, width=64, height=48, integrator="bdpt")
+    ref = viewer_pfm(tmp_path, scene, "--spp", "4", "--width", "64", "--height", "48",
+                     "--integrator", "bdpt")
+    assert np.array_equal(img, ref) and img.max() > 0
+
+
 def test_seconds_and_target_error_stop_a_render():
     r = trac0r.render_images(trac0r.builtin_scene(), target_error=0.5, spp=4096, width=32,
                              height=24)
