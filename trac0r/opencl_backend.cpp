@@ -234,7 +234,9 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
     // has no such array, took 3 % more (bench_backends, alternated;
     // docs/performance.md, "Kernel tuning").
     state_->bvh = (scene.features & T0_FEATURE_BVH) != 0u && !state_->bdpt;
-    if (state_->bvh) {
+    // Both run groups of 64 work-items: the BVH's program a tile, BDPT's
+    // 64 pixels (render_frame_cancellable).
+    if (state_->bvh || state_->bdpt) {
         std::size_t most = 0;
         check(clGetKernelWorkGroupInfo(state_->kernel.get(), state_->device->device,
                                        CL_KERNEL_WORK_GROUP_SIZE, sizeof most, &most, nullptr),
@@ -245,10 +247,12 @@ void OpenClBackend::set_scene(const PackedScene& scene) {
               "clGetDeviceInfo(CL_DEVICE_MAX_WORK_ITEM_SIZES)");
         most = std::min(most, sizes[0]);
         if (most < kTileItems) {
-            throw OpenClError("OpenCL device " + state_->device->description +
-                              " runs the BVH program in work-groups of at most " +
-                              std::to_string(most) + " work-items; it needs " +
-                              std::to_string(kTileItems) + " (one 8 x 8 tile): use --accel flat");
+            throw OpenClError("OpenCL device " + state_->device->description + " runs the " +
+                              (state_->bdpt ? "BDPT" : "BVH") +
+                              " program in work-groups of at most " + std::to_string(most) +
+                              " work-items; it needs " + std::to_string(kTileItems) +
+                              (state_->bdpt ? ": use --integrator nee or --backend cpu"
+                                            : " (one 8 x 8 tile): use --accel flat"));
         }
     }
     // Uploaded once per scene change; a frame sends only its small arguments.
@@ -286,7 +290,21 @@ void OpenClBackend::reset(int width, int height) {
         state_->frame_radiance.reset();
         state_->splats.reset();
     }
-    if (state_->bdpt && !state_->splats) {
+    if (state_->bdpt) {
+        clear_splats();
+    }
+    const cl_float zero = 0.0f;
+    check(clEnqueueFillBuffer(state_->device->queue.get(), state_->accum.get(), &zero, sizeof zero,
+                              0, sizeof(kernel::AccumPixel) * pixels, 0, nullptr, nullptr),
+          "clEnqueueFillBuffer(accumulator)");
+}
+
+// Bidirectional path tracing's frame buffers, made where missing (a scene
+// set since the last reset), and the splat sums zeroed.
+void OpenClBackend::clear_splats() {
+    const std::size_t pixels = state_->pixels;
+    cl_int status = CL_SUCCESS;
+    if (!state_->splats) {
         state_->frame_radiance.reset(clCreateBuffer(state_->device->context.get(),
                                                     CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels,
                                                     nullptr, &status));
@@ -295,17 +313,10 @@ void OpenClBackend::reset(int width, int height) {
                                             4 * sizeof(cl_long) * pixels, nullptr, &status));
         check(status, "clCreateBuffer(splats)");
     }
-    if (state_->bdpt) {
-        const cl_long none = 0;
-        check(
-            clEnqueueFillBuffer(state_->device->queue.get(), state_->splats.get(), &none,
-                                sizeof none, 0, 4 * sizeof(cl_long) * pixels, 0, nullptr, nullptr),
-            "clEnqueueFillBuffer(splats)");
-    }
-    const cl_float zero = 0.0f;
-    check(clEnqueueFillBuffer(state_->device->queue.get(), state_->accum.get(), &zero, sizeof zero,
-                              0, sizeof(kernel::AccumPixel) * pixels, 0, nullptr, nullptr),
-          "clEnqueueFillBuffer(accumulator)");
+    const cl_long none = 0;
+    check(clEnqueueFillBuffer(state_->device->queue.get(), state_->splats.get(), &none, sizeof none,
+                              0, 4 * sizeof(cl_long) * pixels, 0, nullptr, nullptr),
+          "clEnqueueFillBuffer(splats)");
 }
 
 void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t seed,
@@ -316,6 +327,9 @@ void OpenClBackend::render_frame(const kernel::CameraRecord& camera, std::uint64
 bool OpenClBackend::render_frame_cancellable(const kernel::CameraRecord& camera, std::uint64_t seed,
                                              std::uint32_t frame, int max_depth,
                                              const CancelCheck& cancel) {
+    if (state_->bdpt && !state_->splats) {
+        clear_splats();
+    }
     cl_kernel k = state_->kernel.get();
     const cl_ulong seed_arg = seed;
     const cl_uint frame_arg = frame;
@@ -360,7 +374,7 @@ bool OpenClBackend::render_frame_cancellable(const kernel::CameraRecord& camera,
         // A multiple of 64, which a driver choosing the groups can split evenly.
         global = (state_->pixels + 63) / 64 * 64;
         if (state_->bdpt) {
-            // Groups of 64 too: each work-item holds its two subpaths (4.2
+            // Groups of 64 too: each work-item holds its two subpaths (16
             // KB), and PoCL keeps a group's private arrays side by side on
             // its thread's stack, which groups of thousands overflowed.
             local = &kTileItems;

@@ -90,6 +90,7 @@ class OpenClBackend : public Backend {
 
   private:
     explicit OpenClBackend(std::unique_ptr<State> state);
+    void clear_splats();
 
     std::unique_ptr<State> state_;
 };

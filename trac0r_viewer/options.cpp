@@ -130,7 +130,7 @@ void define_options(trac0r_cli::CommandLine& cl, Options& o) {
     cl.choice("--accel", &o.accel, "flat|bvh|auto", "acceleration structure (default auto)");
     cl.choice("--integrator", &o.integrator, "naive|nee|bdpt",
               "next-event estimation with MIS (nee, default), bidirectional path tracing "
-              "(bdpt: caustics; at most 16 vertices a path; docs/bdpt.md), or the thesis' "
+              "(bdpt: caustics; at most 64 vertices a path; docs/bdpt.md), or the thesis' "
               "algorithm");
     cl.choice("--sampler", &o.sampler, "random|sobol",
               "Owen-scrambled Sobol points, stratified (sobol, default), or the thesis' "

@@ -16,6 +16,12 @@ T0_INLINE float mis_ratio(float rev, float fwd) {
     return r * r;
 }
 
+// The running product of the ratios, held finite: squared densities span
+// twice float's exponents, and an infinite product times a ratio that
+// underflowed to zero would be a NaN (a weight of zero is what a product
+// that large means).
+T0_INLINE float mis_product(float ri, float ratio) { return fmin(ri * ratio, 3.0e38f); }
+
 // The weight of strategy (s, t): its density over the sum of all the
 // strategies' that make the same path, each relative to the next, from
 // the densities the vertices keep, with those of the joined vertices and
@@ -34,12 +40,16 @@ T0_INLINE float mis_weight(const SceneView* scene, CameraRecord cam, const PathV
     float pt_minus_rev = 0.0f;
     float qs_rev = 0.0f;
     float qs_minus_rev = 0.0f;
-    if (s > 0) {
+    // (For t = 1 the camera's own densities, and for t = 2 pt_minus's,
+    // take no part: the sum has no strategy t = 0.)
+    if (t == 1) {
+        pt_rev = 0.0f;
+    } else if (s > 0) {
         pt_rev = vertex_pdf(scene, cam, qs_minus, qs, pt);
     } else {
         pt_rev = vertex_pdf_light_origin(scene, pt);
     }
-    if (pt_minus != 0) {
+    if (t > 2) {
         if (s > 0) {
             pt_minus_rev = vertex_pdf(scene, cam, qs, pt, pt_minus);
         } else {
@@ -57,7 +67,7 @@ T0_INLINE float mis_weight(const SceneView* scene, CameraRecord cam, const PathV
     float ri = 1.0f;
     for (int i = t - 1; i > 0; --i) {
         const float rev = i == t - 1 ? pt_rev : (i == t - 2 ? pt_minus_rev : camera[i].pdf_rev);
-        ri *= mis_ratio(rev, camera[i].pdf_fwd);
+        ri = mis_product(ri, mis_ratio(rev, camera[i].pdf_fwd));
         const int delta = i == t - 1 ? 0 : camera[i].delta;
         if (!delta && !camera[i - 1].delta) {
             sum += ri;
@@ -67,7 +77,7 @@ T0_INLINE float mis_weight(const SceneView* scene, CameraRecord cam, const PathV
     for (int i = s - 1; i >= 0; --i) {
         const PathVertex* v = i == s - 1 ? qs : &light[i];
         const float rev = i == s - 1 ? qs_rev : (i == s - 2 ? qs_minus_rev : light[i].pdf_rev);
-        ri *= mis_ratio(rev, v->pdf_fwd);
+        ri = mis_product(ri, mis_ratio(rev, v->pdf_fwd));
         const int delta = i == s - 1 ? 0 : v->delta;
         const int delta_before =
             i > 0 ? light[i - 1].delta : (s == 1 ? sampled : light)->delta_light;

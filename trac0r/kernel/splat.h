@@ -5,8 +5,8 @@
 // associative, so the sum is the same whatever order the adds come in,
 // and a frame stays a pure function of the scene, settings, seed and frame
 // on both backends. A splat's value is rounded to the unit (6e-8, below a
-// float's precision for any value above 1) and held at most 2^38 (2.7e11),
-// so that 2^25 of them in one pixel cannot overflow.
+// float's precision for any value above 1) and held at most 2^31 (2.1e9,
+// 2^55 units), so that 256 of them in one pixel cannot overflow.
 #ifndef TRAC0R_KERNEL_SPLAT_H
 #define TRAC0R_KERNEL_SPLAT_H
 
@@ -37,8 +37,8 @@ inline void splat_atomic_add(t0_i64* sum, t0_i64 value) {
 }
 #endif
 
-#define T0_SPLAT_UNITS 16777216.0f    // units per 1: 2^24
-#define T0_SPLAT_MAX 274877906944.0f  // 2^38
+#define T0_SPLAT_UNITS 16777216.0f  // units per 1: 2^24
+#define T0_SPLAT_MAX 2147483648.0f  // 2^31
 
 // One channel's value in units: rounded to the nearest, held to
 // [0, T0_SPLAT_MAX].
