@@ -81,7 +81,7 @@ T0_INLINE float3 connect_emission(const SceneView* scene, CameraRecord cam,
         return float3_splat(0.0f);
     }
     const float3 l = pt->beta * le;
-    return weighted ? l * mis_weight(scene, cam, camera, light, 0, t, 0) : l;
+    return weighted ? l * mis_weight(scene, cam, camera, light, 0, t, 0, -1.0f, -1.0f) : l;
 }
 
 // s = 1: a light sampled for camera vertex t - 1 (next-event estimation,
@@ -162,7 +162,9 @@ T0_INLINE float3 connect_light_sample(const SceneView* scene, CameraRecord cam,
     q.beta = arriving / pdf;
     q.pdf_fwd = vertex_pdf_light_origin(scene, &q);
     const float3 l = pt->beta * e.f_cos * q.beta;
-    return weighted ? l * mis_weight(scene, cam, camera, light, 1, t, &q) : l;
+    // The join's own evaluation gives the light vertex's reverse density.
+    const float q_rev = convert_density(scene, e.pdf, pt, &q);
+    return weighted ? l * mis_weight(scene, cam, camera, light, 1, t, &q, q_rev, -1.0f) : l;
 }
 
 // s >= 2, t >= 2: light vertex s - 1 joined to camera vertex t - 1.
@@ -190,7 +192,13 @@ T0_INLINE float3 connect_vertices(const SceneView* scene, CameraRecord cam,
     if (!any3(l) || !vertices_see(scene, pt, qs)) {
         return float3_splat(0.0f);
     }
-    return weighted ? l * mis_weight(scene, cam, camera, light, s, t, 0) : l;
+    if (!weighted) {
+        return l;
+    }
+    // The join's two evaluations give the light side's reverse densities.
+    const float qs_rev = convert_density(scene, at_camera.pdf, pt, qs);
+    const float qs_minus_rev = convert_density(scene, at_light.pdf, qs, &light[s - 2]);
+    return l * mis_weight(scene, cam, camera, light, s, t, 0, qs_rev, qs_minus_rev);
 }
 
 // t = 1: light vertex s - 1 (s >= 2) joined to a point of the camera's
@@ -236,7 +244,8 @@ T0_INLINE void connect_camera(const SceneView* scene, CameraRecord cam, const Pa
         return;
     }
     if (weighted) {
-        l *= mis_weight(scene, cam, 0, light, s, 1, &c);
+        const float qs_minus_rev = convert_density(scene, at_light.pdf, qs, &light[s - 2]);
+        l *= mis_weight(scene, cam, 0, light, s, 1, &c, -1.0f, qs_minus_rev);
     }
     splat_add(splats, (t0_u32)pixel, l);
 }

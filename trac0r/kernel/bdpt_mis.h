@@ -27,8 +27,12 @@ T0_INLINE float mis_product(float ri, float ratio) { return fmin(ri * ratio, 3.0
 // the densities the vertices keep, with those of the joined vertices and
 // their neighbours as the join makes them (pbrt-v4's MISWeight).
 // `sampled` is the light vertex for s = 1, or the camera's for t = 1.
+// known_qs_rev and known_qs_minus_rev are the reverse densities of the
+// light's joined vertex and the one before it where the caller has them
+// (from the material evaluations of the join itself), else negative.
 T0_INLINE float mis_weight(const SceneView* scene, CameraRecord cam, const PathVertex* camera,
-                           const PathVertex* light, int s, int t, const PathVertex* sampled) {
+                           const PathVertex* light, int s, int t, const PathVertex* sampled,
+                           float known_qs_rev, float known_qs_minus_rev) {
     if (s + t == 2) {
         return 1.0f;
     }
@@ -58,10 +62,11 @@ T0_INLINE float mis_weight(const SceneView* scene, CameraRecord cam, const PathV
         }
     }
     if (qs != 0) {
-        qs_rev = vertex_pdf(scene, cam, pt_minus, pt, qs);
+        qs_rev = known_qs_rev >= 0.0f ? known_qs_rev : vertex_pdf(scene, cam, pt_minus, pt, qs);
     }
     if (qs_minus != 0) {
-        qs_minus_rev = vertex_pdf(scene, cam, pt, qs, qs_minus);
+        qs_minus_rev = known_qs_minus_rev >= 0.0f ? known_qs_minus_rev
+                                                  : vertex_pdf(scene, cam, pt, qs, qs_minus);
     }
     float sum = 0.0f;
     float ri = 1.0f;

@@ -89,6 +89,11 @@ T0_INLINE int vertices_see(const SceneView* scene, const PathVertex* a, const Pa
 T0_INLINE int bdpt_walk(const SceneView* scene, Ray ray, float3 beta, float pdf_dir,
                         PathVertex* path, int n, int max_vertices, int adjoint, Sampler* sampler) {
     const float reference = fmax(beta.x, fmax(beta.y, beta.z));
+    // What a light subpath's refractions scaled its throughput by (1/eta^2
+    // into glass, eta^2 out): undone for the roulette, so that a subpath
+    // inside glass is not ended for a factor its way out restores (pbrt's
+    // etaScale).
+    float eta_scale = 1.0f;
     for (int depth = 0; n < max_vertices; ++depth) {
         const Hit hit = intersect_scene(scene, &ray);
         PathVertex* prev = &path[n - 1];
@@ -169,17 +174,20 @@ T0_INLINE int bdpt_walk(const SceneView* scene, Ray ray, float3 beta, float pdf_
         const float3 back = -ray.direction;  // towards prev
         float pdf_fwd_dir = 0.0f;
         float pdf_rev_dir = 0.0f;
-        if (v->delta) {
-            // Smooth glass is its own adjoint but for refraction's
-            // radiance scale, which the camera's integrand leaves out
-            // (rough_materials.h): light entering a denser medium is
-            // spread over 1/eta^2 as much solid angle.
-            if (adjoint && m->type.x == T0_MATERIAL_GLASS &&
-                dot(sc.direction, facing_geometric) < 0.0f) {
-                const float ior = m->params.z;
-                weight *= front ? 1.0f / (ior * ior) : ior * ior;
+        if (adjoint && (m->type.x == T0_MATERIAL_GLASS || m->type.x == T0_MATERIAL_ROUGH_GLASS) &&
+            dot(sc.direction, facing_geometric) < 0.0f) {
+            // Light entering a denser medium is spread over 1/eta^2 as much
+            // solid angle: smooth glass is its own adjoint but for this
+            // scale, which the camera's integrand leaves out
+            // (rough_materials.h); rough glass's evaluation below has it.
+            const float ior = m->params.z;
+            const float scale = front ? 1.0f / (ior * ior) : ior * ior;
+            if (v->delta) {
+                weight *= scale;
             }
-        } else {
+            eta_scale /= scale;
+        }
+        if (!v->delta) {
             pdf_fwd_dir = sc.pdf;
             const MaterialEval other = vertex_eval(scene, v, -sc.direction, back);
             pdf_rev_dir = other.pdf;
@@ -196,9 +204,11 @@ T0_INLINE int bdpt_walk(const SceneView* scene, Ray ray, float3 beta, float pdf_
         }
         prev->pdf_rev = convert_density(scene, pdf_rev_dir, v, prev);
         beta *= weight;
-        // Russian roulette on the throughput against the subpath's first:
-        // densities unchanged (the strategies' weights do not see it).
-        const float q = fmin(1.0f, 2.0f * fmax(beta.x, fmax(beta.y, beta.z)) / reference);
+        // Russian roulette once the throughput falls below the subpath's
+        // first: densities unchanged (the strategies' weights do not see
+        // it).
+        const float q = fmin(1.0f, fmax(beta.x, fmax(beta.y, beta.z)) * eta_scale *
+                                       (adjoint ? 1.0f : 2.0f) / reference);
         if (!survives_roulette(q, &beta, u_roulette)) {
             break;
         }
