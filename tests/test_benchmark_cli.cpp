@@ -268,8 +268,8 @@ TEST_CASE("bench_complexity: numbers, backends and --csv as the others check the
 TEST_CASE("bench_convergence: bad --cache, --config and --reference-spp refused before rendering",
           "[benchmark_cli]") {
     check_help("bench_convergence",
-               {"--config SPEC", "key at most once", "not with --reference",
-                "sampler=random|sobol", "--target-rmse E", "--target-relmse E"});
+               {"--config SPEC", "key at most once", "not with --reference", "sampler=random|sobol",
+                "--target-rmse E", "--target-relmse E"});
     const std::string in = write_test_pfm("bench_cli_reference.pfm");
     std::ofstream("bench_cli_scene.json")
         << R"({"materials": {"white": {"type": "diffuse", "color": [0.5, 0.5, 0.5]}},
