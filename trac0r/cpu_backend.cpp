@@ -1,6 +1,7 @@
 #include "trac0r/cpu_backend.h"
 
-#include "trac0r/kernel/bdpt.h"
+#include "trac0r/cpu_bdpt.h"
+
 #include "trac0r/kernel/tile.h"
 #include "trac0r/packed_scene.h"
 
@@ -40,7 +41,7 @@ struct CpuBackend::State {
     // Bidirectional path tracing: each pixel's own light in a frame, and
     // the light subpaths' splats (kernel/splat.h), four sums a pixel.
     std::vector<glm::vec4> frame_radiance;
-    std::vector<kernel::t0_i64> splats;
+    std::vector<std::int64_t> splats;
 };
 
 CpuBackend::CpuBackend(int threads)
@@ -88,7 +89,8 @@ bool CpuBackend::render_frame_cancellable(const kernel::CameraRecord& camera, st
     // load.
     std::atomic<bool> cancelled(false);
     if ((state_->scene.features & T0_FEATURE_BDPT) != 0u) {
-        return render_bdpt(view, scaled, seed, frame, max_depth, cancel);
+        return render_bdpt_frame(view, scaled, seed, frame, max_depth, threads_, state_->accum,
+                                 state_->frame_radiance, state_->splats, cancel);
     }
 #pragma omp parallel num_threads(threads_)
     {
@@ -102,49 +104,6 @@ bool CpuBackend::render_frame_cancellable(const kernel::CameraRecord& camera, st
             const kernel::TileRect rect =
                 kernel::tile_rect(static_cast<std::uint32_t>(t), width, height);
             kernel::render_tile(&view, scaled, accum, seed, frame, max_depth, rect, width);
-        }
-    }
-    return !cancelled.load();
-}
-
-// Bidirectional path tracing: every pixel's sample (its light subpath's
-// splats land anywhere), then every pixel's merge; in tiles of T0_TILE
-// rows' worth of pixels, handed out dynamically, with `cancel` asked
-// before each.
-bool CpuBackend::render_bdpt(const kernel::SceneView& view, const kernel::CameraRecord& camera,
-                             std::uint64_t seed, std::uint32_t frame, int max_depth,
-                             const CancelCheck& cancel) {
-    const long pixels = static_cast<long>(state_->accum.size());
-    if (state_->splats.size() != 4 * state_->accum.size()) {
-        state_->frame_radiance.assign(state_->accum.size(), glm::vec4(0.0f));
-        state_->splats.assign(4 * state_->accum.size(), 0);
-    }
-    glm::vec4* radiance = state_->frame_radiance.data();
-    kernel::t0_i64* splats = state_->splats.data();
-    kernel::AccumPixel* accum = state_->accum.data();
-    const long chunk = 64;
-    const long chunks = (pixels + chunk - 1) / chunk;
-    std::atomic<bool> cancelled(false);
-#pragma omp parallel num_threads(threads_)
-    {
-        const DenormalsAreZero denormals;
-#pragma omp for schedule(dynamic, 1)
-        for (long c = 0; c < chunks; ++c) {
-            if (cancel && (cancelled.load(std::memory_order_relaxed) || cancel())) {
-                cancelled.store(true, std::memory_order_relaxed);
-                continue;
-            }
-            const long end = std::min(pixels, (c + 1) * chunk);
-            for (long p = c * chunk; p < end; ++p) {
-                kernel::bdpt_sample(&view, camera, static_cast<std::uint32_t>(p), seed, frame,
-                                    max_depth, kernel::bdpt_all_strategies(), radiance, splats);
-            }
-        }
-        if (!cancelled.load()) {
-#pragma omp for schedule(static)
-            for (long p = 0; p < pixels; ++p) {
-                kernel::bdpt_merge(accum, radiance, splats, static_cast<std::uint32_t>(p));
-            }
         }
     }
     return !cancelled.load();

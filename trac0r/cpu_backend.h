@@ -48,9 +48,6 @@ class CpuBackend : public Backend {
     // The packed scene and the accumulator (the kernel's types, kept out of
     // this header: kernel_fwd.h).
     struct State;
-    bool render_bdpt(const kernel::SceneView& view, const kernel::CameraRecord& camera,
-                     std::uint64_t seed, std::uint32_t frame, int max_depth,
-                     const CancelCheck& cancel);
 
     int threads_;
     std::unique_ptr<State> state_;
