@@ -65,17 +65,28 @@ class WaitingBackend : public trac0r::CpuBackend {
     Gate* gate_;
 };
 
+// The built-in scene at a size that has a 1/4-resolution preview while
+// moving (80 x 60).
+trac0r::Scene scene_with_preview() {
+    trac0r::Scene scene = trac0r::builtin_scene();
+    scene.render.width = 320;
+    scene.render.height = 240;
+    return scene;
+}
+
+RenderWorker::BackendFactory waiting_backends(Gate* gate) {
+    return [gate](const std::string&) -> std::unique_ptr<trac0r::Backend> {
+        return std::make_unique<WaitingBackend>(gate);
+    };
+}
+
 }  // namespace
 
 TEST_CASE("a camera change stops the full frame in flight and shows the new view next",
           "[window_worker]") {
-    trac0r::Scene scene = trac0r::builtin_scene();
-    scene.render.width = 320;  // a 1/4-resolution preview while moving
-    scene.render.height = 240;
+    const trac0r::Scene scene = scene_with_preview();
     Gate gate;
-    auto make_backend = [&](const std::string&) -> std::unique_ptr<trac0r::Backend> {
-        return std::make_unique<WaitingBackend>(&gate);
-    };
+    const RenderWorker::BackendFactory make_backend = waiting_backends(&gate);
     std::mutex frame_mutex;
     std::condition_variable frame_ready;
     RenderWorker worker(std::make_unique<trac0r::Renderer>(scene, make_backend("cpu")),
@@ -109,4 +120,50 @@ TEST_CASE("a camera change stops the full frame in flight and shows the new view
     CHECK(worker.cancelled_frames() == 1);
     std::lock_guard<std::mutex> lock(gate.mutex);
     CHECK(gate.full_frames_cancelled == 1);
+}
+
+TEST_CASE(
+    "while the camera moves on its own, only previews are rendered, and a stop renders "
+    "in full",
+    "[window_worker]") {
+    const trac0r::Scene scene = scene_with_preview();
+    Gate gate;
+    const RenderWorker::BackendFactory make_backend = waiting_backends(&gate);
+    RenderWorker worker(std::make_unique<trac0r::Renderer>(scene, make_backend("cpu")),
+                        make_backend, trac0r_viewer::WorkerSettings(), [] {});
+    {
+        std::unique_lock<std::mutex> lock(gate.mutex);
+        REQUIRE(gate.changed.wait_for(lock, std::chrono::seconds(60),
+                                      [&] { return gate.full_frames_started >= 1; }));
+    }
+    // A movement key goes down: the view changes every tick. Between two
+    // ticks a full frame would be stopped by the next change; none starts.
+    worker.set_moving(true);
+    const std::uint64_t generation =
+        worker.set_camera(trac0r::move_camera(scene.camera, glm::vec3(0.0f, 0.0f, 0.1f)));
+    WorkerFrame frame;
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(50);
+    bool shown = false;
+    while (!shown && std::chrono::steady_clock::now() < until) {
+        shown = worker.take_frame(&frame);
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    REQUIRE(shown);
+    CHECK(frame.generation == generation);
+    CHECK(frame.preview);
+    // A tick is 10 ms; a quarter of a second of no change is far past one.
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    {
+        std::lock_guard<std::mutex> lock(gate.mutex);
+        CHECK(gate.full_frames_started == 1);  // the first, stopped by the move
+        CHECK(gate.full_frames_cancelled == 1);
+    }
+    CHECK_FALSE(worker.take_frame(&frame));  // nothing new: no preview of the same view
+
+    // The key comes up: the full accumulation of where the view stopped.
+    worker.set_moving(false);
+    std::unique_lock<std::mutex> lock(gate.mutex);
+    CHECK(gate.changed.wait_for(lock, std::chrono::seconds(60),
+                                [&] { return gate.full_frames_started >= 2; }));
+    REQUIRE(worker.failure().empty());
 }

@@ -95,6 +95,7 @@ class Session {
     bool quit_ = false;
     bool dirty_ = true;
     std::set<SDL_Keycode> held_;  // from events, so replayed keys count too
+    bool moving_ = false;         // what move() last told the worker
     bool looking_ = false;        // right button held
     int mouse_x_ = -1;
     int mouse_y_ = -1;

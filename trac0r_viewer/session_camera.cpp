@@ -78,7 +78,13 @@ glm::vec3 Session::move_direction() const {
 
 void Session::move(float seconds) {
     const glm::vec3 direction = move_direction();
-    if (direction == glm::vec3(0.0f) || seconds <= 0.0f) {
+    const bool moving = direction != glm::vec3(0.0f);
+    if (moving != moving_) {
+        // While keys move the view, the thread renders previews only.
+        moving_ = moving;
+        requested_generation_ = worker_->set_moving(moving);
+    }
+    if (!moving || seconds <= 0.0f) {
         return;
     }
     // A quarter of the scene's diagonal per second; Shift five times that,

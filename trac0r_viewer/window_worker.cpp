@@ -76,6 +76,10 @@ std::uint64_t RenderWorker::set_camera(const trac0r::Camera& camera) {
         true);
 }
 
+std::uint64_t RenderWorker::set_moving(bool moving) {
+    return request([&](Requests& r) { r.moving = moving ? 1 : 0; }, false);
+}
+
 std::uint64_t RenderWorker::restart() {
     return request([](Requests& r) { r.restart = true; }, true);
 }
@@ -143,6 +147,8 @@ void RenderWorker::tell(const std::string& message) {
 // holds): the image is done; nothing to do until a request.
 bool RenderWorker::paused() const { return !full_stale_ && !pause_reason_.empty(); }
 
+bool RenderWorker::idle() const { return paused() || (moving_ && preview_factor_ > 1); }
+
 std::string RenderWorker::pause_reason_now() const {
     const trac0r::StopRule& stop = settings_.stop;
     // The target by the last estimate (refreshed about twice a second, so the
@@ -178,7 +184,7 @@ void RenderWorker::run() {
             {
                 std::unique_lock<std::mutex> lock(mutex_);
                 wake_.wait(lock, [&] {
-                    return stop_ || pending_.generation != applied_generation_ || !paused();
+                    return stop_ || pending_.generation != applied_generation_ || !idle();
                 });
                 if (stop_) {
                     return;
@@ -197,7 +203,7 @@ void RenderWorker::run() {
                 publish(*full_, false, Clock::now(), last.pixels.empty() ? full_->image() : last);
             } else if (requests.camera_changed && preview_factor_ > 1) {
                 render_preview();
-            } else {
+            } else if (!idle()) {
                 render_full();
             }
         }
@@ -260,6 +266,9 @@ void RenderWorker::apply(const Requests& requests) {
     }
     if (requests.filter >= 0) {
         filter_ = requests.filter == 1;
+    }
+    if (requests.moving >= 0) {
+        moving_ = requests.moving == 1;
     }
     applied_generation_ = requests.generation;
 }

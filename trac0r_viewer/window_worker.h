@@ -111,6 +111,10 @@ class RenderWorker {
     // Requests, applied before the next frame. Each returns its generation:
     // frames that reflect it carry that number or a later one.
     std::uint64_t set_camera(const trac0r::Camera& camera);
+    // Whether the camera is moving on its own (a movement key held): it
+    // changes again within a tick, so between changes the thread renders
+    // nothing rather than start a full frame that the next change stops.
+    std::uint64_t set_moving(bool moving);
     std::uint64_t restart();
     // Renders width x height pixels from now on (the window's new size).
     std::uint64_t resize(int width, int height);
@@ -145,6 +149,7 @@ class RenderWorker {
         int filter = -1;  // -1: unchanged; 0: off; 1: on
         int focus_x = -1;  // >= 0: focus_at this pixel
         int focus_y = -1;
+        int moving = -1;  // -1: unchanged; 0: still; 1: moving
         std::uint64_t generation = 0;
     };
 
@@ -156,6 +161,9 @@ class RenderWorker {
     std::uint64_t request(Change change, bool cancels);
     void run();
     bool paused() const;
+    // Nothing to render until a request: paused, or between a moving
+    // camera's changes.
+    bool idle() const;
     // Why the accumulation is done now (publish decides it once a frame, so
     // that the frame on screen and the pause agree); empty: not done.
     std::string pause_reason_now() const;
@@ -184,6 +192,7 @@ class RenderWorker {
     WorkerSettings settings_;
     trac0r::Camera camera_;
     bool full_stale_ = false;  // full_ has not seen camera_ or a restart yet
+    bool moving_ = false;      // set_moving
     Clock::time_point full_started_;
     std::uint64_t applied_generation_ = 0;
     Refreshed<double> estimate_{noise_estimate_interval, noise_estimate_cost_factor};
