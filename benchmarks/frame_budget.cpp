@@ -7,7 +7,7 @@
 //             (render_guides, filter_guides, filter_image);
 //   temporal  while the camera moves, each frame floor((B - t_temporal) /
 //             t_spp) samples blended with the previous frame reprojected
-//             (render_guides, temporal_blend), as trac0r_viewer's window
+//             (render_surface_guides, temporal_blend), as trac0r_viewer's window
 //             does.
 //
 // t_spp, t_filter and t_temporal are medians measured side by side in the
@@ -232,7 +232,7 @@ Costs measure_costs(const Scene& scene, const Options& o) {
                          T0_FILTER_PASSES);
         });
         const Seconds c = timed([&] {
-            const GuideImages guides = render_guides(r->packed(), r->camera_record());
+            const GuideImages guides = render_surface_guides(r->packed(), r->camera_record());
             history =
                 temporal_blend(history, r->image(), 1.0f, r->camera_record(), guides, settings);
         });
@@ -342,7 +342,8 @@ Row render_temporal(const Scene& scene, const Options& o, const Image& reference
         }
         stats = TemporalStats();
         history = temporal_blend(history, r->image(), static_cast<float>(spp), r->camera_record(),
-                                 render_guides(r->packed(), r->camera_record()), settings, &stats);
+                                 render_surface_guides(r->packed(), r->camera_record()), settings,
+                                 &stats);
     }
     std::fprintf(stderr, "temporal: %s, %ld frames of %ld spp\n", budget_name(budget_ms).c_str(),
                  frames, spp);

@@ -121,7 +121,7 @@ int run(int argc, char** argv) {
     }
     TemporalFrame history = temporal_blend(
         TemporalFrame(), full->image(), static_cast<float>(full->frames()), full->camera_record(),
-        render_guides(full->packed(), full->camera_record()), settings);
+        render_surface_guides(full->packed(), full->camera_record()), settings);
 
     std::unique_ptr<Renderer> preview = make_renderer(scene, pw, ph, 1);
     Camera camera = scene.camera;
@@ -136,7 +136,7 @@ int run(int argc, char** argv) {
         preview->render_frame();
         restart = preview->image();
         history = temporal_blend(history, restart, 1.0f, preview->camera_record(),
-                                 render_guides(preview->packed(), preview->camera_record()),
+                                 render_surface_guides(preview->packed(), preview->camera_record()),
                                  settings, &stats);
     }
     const Image temporal = history.image();

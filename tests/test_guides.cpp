@@ -160,6 +160,7 @@ TEST_CASE("along a lamp's edge, the share of each pixel that sees the lamp", "[g
     scene.shapes.push_back(make_plane(glm::vec3(50.0f - 0.25f * pixel, 0.0f, 1.9f),
                                       glm::vec3(-half_pi, 0.0f, 0.0f), glm::vec2(100.0f), 2));
     const GuideImages g = guides_of(scene);
+    CHECK(g.lamp_edges);
     const glm::vec3 radiance = lamp.color * lamp.emittance;
     for (int y = 0; y < 12; ++y) {
         CAPTURE(y);
@@ -173,4 +174,47 @@ TEST_CASE("along a lamp's edge, the share of each pixel that sees the lamp", "[g
             CHECK((g.emitter[static_cast<std::size_t>(y) * 16 + x] != 0) == (x < 8));
         }
     }
+}
+
+TEST_CASE("surface guides are the centre rays' alone; the lamp-edge split comes after",
+          "[guides]") {
+    Scene scene =
+        facing_planes(diffuse("white", glm::vec3(0.5f)), diffuse("green", glm::vec3(1.0f)));
+    Material lamp;
+    lamp.name = "lamp";
+    lamp.type = MaterialType::emissive;
+    lamp.emittance = 8.0f;
+    scene.materials.push_back(lamp);
+    // The lamp's edge a quarter into pixel column 8, as above.
+    const float pixel = 2.0f * 1.9f * std::tan(glm::radians(30.0f)) * (16.0f / 12.0f) / 16.0f;
+    scene.shapes.push_back(make_plane(glm::vec3(50.0f - 0.25f * pixel, 0.0f, 1.9f),
+                                      glm::vec3(-half_pi, 0.0f, 0.0f), glm::vec2(100.0f), 2));
+    const PackedScene packed = pack_scene(scene);
+    const kernel::CameraRecord camera = make_camera_record(scene.camera, 16, 12);
+    const GuideImages full = render_guides(packed, camera);
+    GuideImages surface = render_surface_guides(packed, camera);
+    CHECK_FALSE(surface.lamp_edges);
+    CHECK(surface.depth == full.depth);
+    CHECK(surface.emitter == full.emitter);
+    for (std::size_t i = 0; i < surface.albedo.size(); ++i) {
+        CAPTURE(i);
+        CHECK(surface.albedo[i] == full.albedo[i]);
+        CHECK(surface.normal[i] == full.normal[i]);
+        // The centre ray's: all lamp or none, even in column 8.
+        CHECK(surface.emission[i].w == (surface.emitter[i] ? 1.0f : 0.0f));
+    }
+    CHECK(surface.emission[8].w == 0.0f);  // row 0, column 8: a quarter lamp
+    CHECK(full.emission[8].w > 0.2f);
+
+    // Made afterwards, the split is the one render_guides makes.
+    add_lamp_edges(packed, camera, &surface);
+    CHECK(surface.lamp_edges);
+    for (std::size_t i = 0; i < surface.emission.size(); ++i) {
+        CAPTURE(i);
+        CHECK(surface.emission[i] == full.emission[i]);
+    }
+    // Guides of another size are refused, naming the function.
+    GuideImages other = render_surface_guides(packed, make_camera_record(scene.camera, 8, 6));
+    CHECK_THROWS_WITH(add_lamp_edges(packed, camera, &other),
+                      Catch::Contains("add_lamp_edges") && Catch::Contains("size"));
 }

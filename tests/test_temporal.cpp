@@ -48,7 +48,7 @@ struct View {
 View view_of(const PackedScene& packed, const Camera& camera, int width, int height) {
     View v;
     v.camera = make_camera_record(camera, width, height);
-    v.guides = render_guides(packed, v.camera);
+    v.guides = render_surface_guides(packed, v.camera);  // as the window's
     return v;
 }
 

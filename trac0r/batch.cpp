@@ -55,7 +55,10 @@ void make_images(Renderer& renderer, const BatchOptions& options, BatchResult& r
     }
     GuideImages guides;
     if (options.filtered || layers.albedo || layers.normal || layers.depth) {
-        guides = render_guides(renderer.packed(), renderer.camera_record());
+        // The lamp-edge split only for the filter: the layers hold none of it.
+        guides = options.filtered
+                     ? render_guides(renderer.packed(), renderer.camera_record())
+                     : render_surface_guides(renderer.packed(), renderer.camera_record());
     }
     if (layers.any()) {
         result.layers = exr_layers(layers, guides, result.accumulator);

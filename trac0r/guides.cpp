@@ -5,11 +5,18 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 
 namespace trac0r {
 
 GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord& camera) {
+    GuideImages g = render_surface_guides(packed, camera);
+    add_lamp_edges(packed, camera, &g);
+    return g;
+}
+
+GuideImages render_surface_guides(const PackedScene& packed, const kernel::CameraRecord& camera) {
     GuideImages g;
     g.width = static_cast<int>(camera.size.x);
     g.height = static_cast<int>(camera.size.y);
@@ -39,6 +46,23 @@ GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord&
                                                  : p.albedo.w / packed.scale;
         }
     }
+    return g;
+}
+
+void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camera,
+                    GuideImages* guides) {
+    GuideImages& g = *guides;
+    if (g.lamp_edges) {
+        return;
+    }
+    if (g.width != static_cast<int>(camera.size.x) || g.height != static_cast<int>(camera.size.y)) {
+        throw std::invalid_argument("add_lamp_edges: the guides are not of this camera's size");
+    }
+    const int height = g.height;
+    const int width = g.width;
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    const kernel::SceneView view = packed.view();
+    const kernel::CameraRecord scaled = scaled_camera(camera, packed.scale);
     // Along a lamp's edge, the share of each pixel that sees it.
     std::vector<unsigned char> edge(pixels, 0);
     for (int y = 0; y < height; ++y) {
@@ -64,7 +88,7 @@ GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord&
             }
         }
     }
-    return g;
+    g.lamp_edges = true;
 }
 
 std::vector<float> mean_variance(const std::vector<kernel::AccumPixel>& accumulator) {

@@ -24,17 +24,30 @@ struct GuideImages {
     std::vector<unsigned char> emitter;  // 1 where the surface is a pure emitter (a lamp)
     // xyz: the mean radiance over the pixel of the pure emitters its rays
     // meet first, w: the share of the pixel that meets one (a box filter,
-    // as the render's samples). Where the centre rays of a pixel and its
-    // eight neighbours do not all agree on emitter or not (a lamp's edge
-    // runs through), from T0_GUIDE_EMISSION_RAYS rays over the pixel
-    // (kernel::pixel_emission); elsewhere from the centre ray.
+    // as the render's samples). With lamp_edges, where the centre rays of a
+    // pixel and its eight neighbours do not all agree on emitter or not (a
+    // lamp's edge runs through), from T0_GUIDE_EMISSION_RAYS rays over the
+    // pixel (kernel::pixel_emission); elsewhere, and everywhere without
+    // lamp_edges, from the centre ray.
     std::vector<glm::vec4> emission;
+    bool lamp_edges = false;  // add_lamp_edges has made emission's split
 };
 
 // One ray through each pixel's centre of `camera` (as the Renderer holds it:
 // in the scene's coordinates, before the packed scene's scale), on the CPU
-// whatever the backend: the same kernel code, compiled as C++.
+// whatever the backend: the same kernel code, compiled as C++. Then
+// add_lamp_edges: what the display filter needs.
 GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord& camera);
+
+// The centre rays alone, without the lamp-edge split: all that temporal
+// reuse and the EXR layers read (depth, normal, albedo), at a fraction of
+// the cost where lamps' edges cross many pixels.
+GuideImages render_surface_guides(const PackedScene& packed, const kernel::CameraRecord& camera);
+
+// The lamp-edge split of guides made by render_surface_guides of the same
+// view (nothing when it is made already).
+void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camera,
+                    GuideImages* guides);
 
 // Per pixel, the variance of its mean luminance: M2 / (n - 1) / n over its
 // n accepted samples; +inf where n < 2 (unknown).

@@ -328,13 +328,13 @@ void RenderWorker::render_preview() {
     preview_->render_frame();
     const trac0r::Image shown = view_history_.preview(
         preview_->image(), static_cast<float>(preview_->frames()), preview_->camera_record(),
-        trac0r::render_guides(preview_->packed(), preview_->camera_record()));
+        trac0r::render_surface_guides(preview_->packed(), preview_->camera_record()));
     publish(*preview_, true, start, shown);
 }
 
 const trac0r::GuideImages& RenderWorker::guides_of(const trac0r::kernel::CameraRecord& camera) {
     if (guide_images_.width == 0 || std::memcmp(&camera, &guide_camera_, sizeof camera) != 0) {
-        guide_images_ = trac0r::render_guides(full_->packed(), camera);
+        guide_images_ = trac0r::render_surface_guides(full_->packed(), camera);
         guide_camera_ = camera;
     }
     return guide_images_;
@@ -383,7 +383,9 @@ double RenderWorker::noise_estimate() {
 trac0r::Image RenderWorker::filtered_image() {
     return filtered_.get(full_->frames(), paused(), [&] {
         if (guides_.empty()) {
-            guides_ = trac0r::filter_guides(guides_of(full_->camera_record()));
+            guides_of(full_->camera_record());
+            trac0r::add_lamp_edges(full_->packed(), full_->camera_record(), &guide_images_);
+            guides_ = trac0r::filter_guides(guide_images_);
         }
         return trac0r::filter_image(full_->accumulator(), full_->width(), full_->height(), guides_,
                                     T0_FILTER_PASSES, filter_workspace_);

@@ -202,7 +202,8 @@ class RenderWorker {
     std::vector<trac0r::kernel::FilterGuide> guides_;  // of full_'s view; empty: to be made
     Refreshed<trac0r::Image> filtered_{filter_interval, filter_cost_factor};
     trac0r::FilterWorkspace filter_workspace_;  // its buffers, kept between refreshes
-    // The guides of one view (render_guides), for the filter and temporal
+    // The guides of one view (render_surface_guides; add_lamp_edges when
+    // the filter wants them), for the filter and temporal
     // reuse: made again only for another view, size or backend.
     trac0r::GuideImages guide_images_;
     trac0r::kernel::CameraRecord guide_camera_{};
