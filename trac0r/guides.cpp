@@ -63,8 +63,12 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
     const std::size_t pixels = static_cast<std::size_t>(width) * height;
     const kernel::SceneView view = packed.view();
     const kernel::CameraRecord scaled = scaled_camera(camera, packed.scale);
-    // Along a lamp's edge, the share of each pixel that sees it.
+    // Along a lamp's edge, the share of each pixel that sees it: where the
+    // centre rays of the pixel and its eight neighbours disagree (emitter
+    // or not), a lamp's edge may run through the pixel.
     std::vector<unsigned char> edge(pixels, 0);
+    const std::size_t corner_columns = static_cast<std::size_t>(width) + 1;
+    std::vector<unsigned char> corner_needed(corner_columns * (height + 1), 0);
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             int emitters = 0;
@@ -74,17 +78,52 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
                     (g.emitter[static_cast<std::size_t>(qy) * width + qx] ? emitters : others)++;
                 }
             }
-            edge[static_cast<std::size_t>(y) * width + x] = emitters > 0 && others > 0;
+            if (emitters > 0 && others > 0) {
+                edge[static_cast<std::size_t>(y) * width + x] = 1;
+                for (int c = 0; c < 4; ++c) {
+                    corner_needed[(y + c / 2) * corner_columns + x + c % 2] = 1;
+                }
+            }
+        }
+    }
+    // Most of those pixels it does not cross: a straight edge that crosses
+    // a pixel leaves one of its corners on each side (a half-plane that
+    // meets a square holds one of its corners), so where the four corners'
+    // rays agree with the centre's, so do T0_GUIDE_PROBE_RAYS rays over the
+    // pixel (for a lamp's corner poking in, or a thin lamp), the pixel is
+    // taken as its centre ray sees it. The others get the full count.
+    std::vector<unsigned char> corner_emitter(corner_needed.size(), 0);
+#pragma omp parallel for schedule(dynamic, 4)
+    for (int y = 0; y <= height; ++y) {
+        for (int x = 0; x <= width; ++x) {
+            const std::size_t c = y * corner_columns + x;
+            if (corner_needed[c]) {
+                glm::vec3 emitted;
+                const kernel::GuidePixel p =
+                    kernel::guide_ray(&view, scaled, static_cast<std::uint32_t>(x),
+                                      static_cast<std::uint32_t>(y), 0.0f, 0.0f, &emitted);
+                corner_emitter[c] = p.normal.w > 0.0f ? 1 : 0;
+            }
         }
     }
 #pragma omp parallel for schedule(dynamic, 4)
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * width + x;
-            if (edge[i]) {
-                g.emission[i] =
-                    kernel::pixel_emission(&view, scaled, static_cast<std::uint32_t>(x),
-                                           static_cast<std::uint32_t>(y), T0_GUIDE_EMISSION_RAYS);
+            if (!edge[i]) {
+                continue;
+            }
+            const unsigned char centre = g.emitter[i];
+            const std::size_t c = y * corner_columns + x;
+            const bool corners_agree =
+                corner_emitter[c] == centre && corner_emitter[c + 1] == centre &&
+                corner_emitter[c + corner_columns] == centre &&
+                corner_emitter[c + corner_columns + 1] == centre;
+            const std::uint32_t ux = static_cast<std::uint32_t>(x);
+            const std::uint32_t uy = static_cast<std::uint32_t>(y);
+            if (!corners_agree ||
+                !kernel::pixel_rays_agree(&view, scaled, ux, uy, T0_GUIDE_PROBE_RAYS, centre)) {
+                g.emission[i] = kernel::pixel_emission(&view, scaled, ux, uy, T0_GUIDE_EMISSION_RAYS);
             }
         }
     }

@@ -101,22 +101,31 @@ T0_INLINE GuidePixel pixel_guides(const SceneView* scene, CameraRecord camera, t
 // exact share).
 #define T0_GUIDE_EMISSION_RAYS 256
 
+// Rays per pixel that first test whether a lamp's edge crosses it at all
+// (trac0r/guides.cpp, add_lamp_edges).
+#define T0_GUIDE_PROBE_RAYS 16
+
+// Ray i's point in a pixel: the R2 sequence (Roberts 2018), whose points
+// place an edge of any slope evenly.
+T0_INLINE float2 r2_point(int i) {
+    const float fi = (float)i;
+    const float jx = 0.5f + fi * 0.7548776662f;
+    const float jy = 0.5f + fi * 0.5698402910f;
+    return make_float2(jx - floor(jx), jy - floor(jy));
+}
+
 // Over pixel (x, y), as its samples see it (a box filter): xyz the mean
 // radiance of the pure emitters that its rays meet first (through mirrors
 // and glass), w the share of the pixel that meets one. From `rays` rays
-// spread over the pixel by the R2 sequence (Roberts 2018), whose points
-// place an edge of any slope evenly.
+// spread over the pixel by r2_point.
 T0_INLINE float4 pixel_emission(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y,
                                 int rays) {
     float3 sum = float3_splat(0.0f);
     int hits = 0;
     for (int i = 0; i < rays; ++i) {
-        const float fi = (float)i;
-        const float jx = 0.5f + fi * 0.7548776662f;
-        const float jy = 0.5f + fi * 0.5698402910f;
+        const float2 j = r2_point(i);
         float3 emitted;
-        const GuidePixel g =
-            guide_ray(scene, camera, x, y, jx - floor(jx), jy - floor(jy), &emitted);
+        const GuidePixel g = guide_ray(scene, camera, x, y, j.x, j.y, &emitted);
         if (g.normal.w > 0.0f) {
             sum += emitted;
             ++hits;
@@ -124,6 +133,21 @@ T0_INLINE float4 pixel_emission(const SceneView* scene, CameraRecord camera, t0_
     }
     const float3 mean = sum / (float)rays;
     return make_float4(mean.x, mean.y, mean.z, (float)hits / (float)rays);
+}
+
+// Whether the first `rays` of pixel_emission's rays all meet a pure
+// emitter (emitter 1) or all meet none (emitter 0).
+T0_INLINE int pixel_rays_agree(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y,
+                               int rays, int emitter) {
+    for (int i = 0; i < rays; ++i) {
+        const float2 j = r2_point(i);
+        float3 emitted;
+        const GuidePixel g = guide_ray(scene, camera, x, y, j.x, j.y, &emitted);
+        if ((g.normal.w > 0.0f) != (emitter != 0)) {
+            return 0;
+        }
+    }
+    return 1;
 }
 
 T0_NAMESPACE_END
