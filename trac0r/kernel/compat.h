@@ -40,6 +40,7 @@
 typedef ulong t0_u64;
 typedef uint t0_u32;
 
+#define atan2_float atan2
 #define make_float2(x, y) ((float2)((x), (y)))
 #define make_float3(x, y, z) ((float3)((x), (y), (z)))
 #define make_float4(x, y, z, w) ((float4)((x), (y), (z), (w)))
@@ -125,6 +126,8 @@ using std::sqrt;
 inline float fmax(float a, float b) { return a > b || b != b ? a : b; }
 inline float fmin(float a, float b) { return a < b || b != b ? a : b; }
 
+// atan2 in float, as OpenCL C's (the C library's is double).
+inline float atan2_float(float y, float x) { return std::atan2(y, x); }
 inline float2 make_float2(float x, float y) { return float2(x, y); }
 inline float3 make_float3(float x, float y, float z) { return float3(x, y, z); }
 inline float4 make_float4(float x, float y, float z, float w) { return float4(x, y, z, w); }

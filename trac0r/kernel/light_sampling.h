@@ -13,6 +13,7 @@
 #include "ray.h"
 #include "ray_offset.h"
 #include "sampling.h"
+#include "spherical_triangle.h"
 #include "traverse.h"
 #include "types.h"
 
@@ -58,18 +59,28 @@ T0_INLINE float area_to_solid_angle(float pdf_area, float distance2, float cos_l
 // the emitting triangle tri; zero for a triangle that is not in the light
 // list. The cosine at the light is taken on either side (a one-sided
 // emitter's back, which this is asked about too, emits nothing anyway).
+// A triangle that sample_light samples by solid angle from `from` has
+// density pick / (its solid angle) in every direction that meets it.
 T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const TriangleRecord* tri,
                                       float3 direction, float distance, float3 from,
                                       float3 from_normal) {
     if (tri->ids.z == T0_NO_LIGHT) {
         return 0.0f;
     }
-    const float cos_light = fabs(dot(direction, xyz(tri->normal)));
     T0_GLOBAL const LightRecord* light = &scene->lights[tri->ids.z];
+    float pick = light->cdf.y;
     float pdf_area = light->cdf.z;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)) {
-        pdf_area = tree_light_pmf(scene, light, from, from_normal) / (0.5f * tri->normal.w);
+        pick = tree_light_pmf(scene, light, from, from_normal);
+        pdf_area = pick / (0.5f * tri->normal.w);
     }
+    const float omega = spherical_triangle_if_large(from, xyz(tri->v0), xyz(tri->v1), xyz(tri->v2),
+                                                    xyz(tri->normal), 0.5f * tri->normal.w)
+                            .solid_angle;
+    if (sample_by_solid_angle(omega)) {
+        return pick / omega;
+    }
+    const float cos_light = fabs(dot(direction, xyz(tri->normal)));
     return area_to_solid_angle(pdf_area, distance * distance, cos_light);
 }
 
@@ -243,9 +254,23 @@ T0_FORCE_INLINE ShadowedLight sample_light(const SceneView* scene,
     T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->ids.x];
     float b1 = 0.0f;
     float b2 = 0.0f;
-    sample_triangle_barycentrics(u.x, u.y, &b1, &b2);
     const float3 v0 = xyz(tri->v0);
-    const float3 point = v0 + (xyz(tri->v1) - v0) * b1 + (xyz(tri->v2) - v0) * b2;
+    const float3 v1 = xyz(tri->v1);
+    const float3 v2 = xyz(tri->v2);
+    // A triangle that looks large is sampled by solid angle: the nearest
+    // part of a lamp is then no likelier to be missed than the rest.
+    const SphericalTriangle seen =
+        spherical_triangle_if_large(position, v0, v1, v2, xyz(tri->normal), 0.5f * tri->normal.w);
+    const float omega = seen.solid_angle;
+    const int by_solid_angle = sample_by_solid_angle(omega);
+    if (by_solid_angle) {
+        if (!sample_spherical_triangle(seen, position, v0, v1, v2, u, &b1, &b2)) {
+            return no_light_sample();
+        }
+    } else {
+        sample_triangle_barycentrics(u.x, u.y, &b1, &b2);
+    }
+    const float3 point = v0 + (v1 - v0) * b1 + (v2 - v0) * b2;
     const float3 to_light = point - position;
     const float distance2 = dot(to_light, to_light);
     if (!(distance2 > 0.0f)) {
@@ -283,7 +308,8 @@ T0_FORCE_INLINE ShadowedLight sample_light(const SceneView* scene,
     if (occluded_now(scene, origin, shadow / shadow_length, shadow_length)) {
         return no_light_sample();
     }
-    const float light_pdf = area_to_solid_angle(pick_per_area, distance2, cos_light);
+    const float light_pdf =
+        by_solid_angle ? pick / omega : area_to_solid_angle(pick_per_area, distance2, cos_light);
     float3 emitted = material_emission(emitter);
     if (T0_HAS_FEATURE(scene, T0_FEATURE_TEXTURE)) {
         Hit at;

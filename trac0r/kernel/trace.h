@@ -274,8 +274,8 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
                 radiance += light.sent;  // its shadow ray traced (sample_light)
             }
             lights_sampled = 1;
+            sampled_from = position;  // what a triangle's solid angle is seen from
             if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)) {
-                sampled_from = position;
                 sampled_normal = facing_normal;
             }
         }
