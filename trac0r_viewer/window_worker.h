@@ -113,7 +113,8 @@ class RenderWorker {
     std::uint64_t set_camera(const trac0r::Camera& camera);
     // Whether the camera is moving on its own (a movement key held): it
     // changes again within a tick, so between changes the thread renders
-    // nothing rather than start a full frame that the next change stops.
+    // nothing rather than start a full frame that the next change stops
+    // (where there is a low-resolution preview to show meanwhile).
     std::uint64_t set_moving(bool moving);
     std::uint64_t restart();
     // Renders width x height pixels from now on (the window's new size).
