@@ -155,6 +155,10 @@ T0_ROW_CLONES void atrous_row(const TapPlanes& t, const PixelPlanes& in, int wid
 }  // namespace
 
 std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides) {
+    if (!guides.lamp_edges) {
+        throw std::invalid_argument(
+            "filter_guides: the guides have no lamp-edge split (add_lamp_edges, or render_guides)");
+    }
     const int width = guides.width;
     const int height = guides.height;
     std::vector<kernel::FilterGuide> out(guides.albedo.size());

@@ -15,6 +15,8 @@ namespace trac0r {
 
 // The filter's guides for the kernel: the camera ray's first non-specular
 // surface's albedo, depth and normal (render_guides), as FilterGuide.
+// Throws std::invalid_argument for guides without their lamp-edge split
+// (render_surface_guides without add_lamp_edges).
 std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides);
 
 // The CPU filter's working buffers (some 80 bytes a pixel), kept between

@@ -26,8 +26,10 @@ struct GuideImages {
     // meet first, w: the share of the pixel that meets one (a box filter,
     // as the render's samples). With lamp_edges, where the centre rays of a
     // pixel and its eight neighbours do not all agree on emitter or not (a
-    // lamp's edge runs through), from T0_GUIDE_EMISSION_RAYS rays over the
-    // pixel (kernel::pixel_emission); elsewhere, and everywhere without
+    // lamp's edge runs near) and the rays through its four corners or
+    // T0_GUIDE_PROBE_RAYS rays over it disagree with its centre's (the
+    // edge crosses it), from T0_GUIDE_EMISSION_RAYS rays over the pixel
+    // (kernel::pixel_emission); elsewhere, and everywhere without
     // lamp_edges, from the centre ray.
     std::vector<glm::vec4> emission;
     bool lamp_edges = false;  // add_lamp_edges has made emission's split

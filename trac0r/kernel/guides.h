@@ -114,40 +114,32 @@ T0_INLINE float2 r2_point(int i) {
     return make_float2(jx - floor(jx), jy - floor(jy));
 }
 
-// Over pixel (x, y), as its samples see it (a box filter): xyz the mean
-// radiance of the pure emitters that its rays meet first (through mirrors
-// and glass), w the share of the pixel that meets one. From `rays` rays
-// spread over the pixel by r2_point.
-T0_INLINE float4 pixel_emission(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y,
-                                int rays) {
-    float3 sum = float3_splat(0.0f);
-    int hits = 0;
-    for (int i = 0; i < rays; ++i) {
+// Rays first to last - 1 of pixel (x, y)'s r2_point sequence: adds to *sum
+// the radiance of the pure emitters they meet first (through mirrors and
+// glass) and to *hits how many meet one.
+T0_INLINE void pixel_emission_rays(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y,
+                                   int first, int last, float3* sum, int* hits) {
+    for (int i = first; i < last; ++i) {
         const float2 j = r2_point(i);
         float3 emitted;
         const GuidePixel g = guide_ray(scene, camera, x, y, j.x, j.y, &emitted);
         if (g.normal.w > 0.0f) {
-            sum += emitted;
-            ++hits;
+            *sum += emitted;
+            ++*hits;
         }
     }
-    const float3 mean = sum / (float)rays;
-    return make_float4(mean.x, mean.y, mean.z, (float)hits / (float)rays);
 }
 
-// Whether the first `rays` of pixel_emission's rays all meet a pure
-// emitter (emitter 1) or all meet none (emitter 0).
-T0_INLINE int pixel_rays_agree(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y,
-                               int rays, int emitter) {
-    for (int i = 0; i < rays; ++i) {
-        const float2 j = r2_point(i);
-        float3 emitted;
-        const GuidePixel g = guide_ray(scene, camera, x, y, j.x, j.y, &emitted);
-        if ((g.normal.w > 0.0f) != (emitter != 0)) {
-            return 0;
-        }
-    }
-    return 1;
+// Over pixel (x, y), as its samples see it (a box filter): xyz the mean
+// radiance of the pure emitters that its rays meet first, w the share of
+// the pixel that meets one; from its first `rays` rays.
+T0_INLINE float4 pixel_emission(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y,
+                                int rays) {
+    float3 sum = float3_splat(0.0f);
+    int hits = 0;
+    pixel_emission_rays(scene, camera, x, y, 0, rays, &sum, &hits);
+    const float3 mean = sum / (float)rays;
+    return make_float4(mean.x, mean.y, mean.z, (float)hits / (float)rays);
 }
 
 T0_NAMESPACE_END
