@@ -40,6 +40,8 @@ std::vector<Seen> cases() {
         {"behind", make_float3(0.2f, 0.3f, -0.4f), o, x, y},
         {"slim, obtuse", make_float3(1.0f, 0.02f, 0.15f), o, make_float3(2.0f, 0.0f, 0.0f),
          make_float3(1.0f, 0.1f, 0.0f)},
+        // Close over its centre: 6.07 sr, near the 6.22 sr bound.
+        {"nearly a hemisphere", make_float3(1.0f / 3.0f, 1.0f / 3.0f, 0.012f), o, x, y},
     };
 }
 

@@ -126,7 +126,8 @@ using std::sqrt;
 inline float fmax(float a, float b) { return a > b || b != b ? a : b; }
 inline float fmin(float a, float b) { return a < b || b != b ? a : b; }
 
-// atan2 in float, as OpenCL C's (the C library's is double).
+// atan2 in float, as OpenCL C's (unqualified here, atan2 is the C
+// library's, in double).
 inline float atan2_float(float y, float x) { return std::atan2(y, x); }
 inline float2 make_float2(float x, float y) { return float2(x, y); }
 inline float3 make_float3(float x, float y, float z) { return float3(x, y, z); }

@@ -53,6 +53,14 @@ T0_INLINE float area_to_solid_angle(float pdf_area, float distance2, float cos_l
     return pdf_area * distance2 / cos_light;
 }
 
+// An emitting triangle seen from p, where sample_light samples it by solid
+// angle (sample_by_solid_angle of its solid_angle): one function for both
+// the sample and the density of a hit, so that they decide alike.
+T0_INLINE SphericalTriangle emitter_seen_from(T0_GLOBAL const TriangleRecord* tri, float3 p) {
+    return spherical_triangle_if_large(p, xyz(tri->v0), xyz(tri->v1), xyz(tri->v2),
+                                       xyz(tri->normal), 0.5f * tri->normal.w);
+}
+
 // The density per solid angle, seen from distance away along unit
 // direction, with which next-event estimation at `from` (with normal
 // from_normal: the light tree's pick depends on them) picks a point on
@@ -74,9 +82,7 @@ T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const Tr
         pick = tree_light_pmf(scene, light, from, from_normal);
         pdf_area = pick / (0.5f * tri->normal.w);
     }
-    const float omega = spherical_triangle_if_large(from, xyz(tri->v0), xyz(tri->v1), xyz(tri->v2),
-                                                    xyz(tri->normal), 0.5f * tri->normal.w)
-                            .solid_angle;
+    const float omega = emitter_seen_from(tri, from).solid_angle;
     if (sample_by_solid_angle(omega)) {
         return pick / omega;
     }
@@ -208,7 +214,8 @@ T0_INLINE ShadowedLight sample_lamp(const SceneView* scene, T0_GLOBAL const Ligh
 }
 
 // Next-event estimation at a surface point: picks an emitting triangle in
-// proportion to its power and a uniform point on it, and returns the
+// proportion to its power and a point on it (uniform, or by solid angle
+// where it looks large: emitter_seen_from), and returns the
 // radiance it sends back along -incoming through the material, if nothing
 // is in between (its shadow ray: ShadowedLight), weighted by MIS against
 // the material's own sampling (whose hits on emitters carry the
@@ -259,8 +266,7 @@ T0_FORCE_INLINE ShadowedLight sample_light(const SceneView* scene,
     const float3 v2 = xyz(tri->v2);
     // A triangle that looks large is sampled by solid angle: the nearest
     // part of a lamp is then no likelier to be missed than the rest.
-    const SphericalTriangle seen =
-        spherical_triangle_if_large(position, v0, v1, v2, xyz(tri->normal), 0.5f * tri->normal.w);
+    const SphericalTriangle seen = emitter_seen_from(tri, position);
     const float omega = seen.solid_angle;
     const int by_solid_angle = sample_by_solid_angle(omega);
     if (by_solid_angle) {

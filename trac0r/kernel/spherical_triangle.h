@@ -27,7 +27,9 @@ T0_NAMESPACE_BEGIN
 
 // The triangle (v0, v1, v2) as seen from a point: the unit directions to
 // its corners and the solid angle it covers (Van Oosterom and Strackee
-// 1983; zero for a degenerate one, or the point in its plane).
+// 1983; zero for a degenerate one or a point in its plane outside it, 2 pi
+// for a point in the plane inside it, where it is no light to sample: the
+// bound T0_SPHERICAL_MAX_SOLID_ANGLE leaves that to area sampling).
 typedef struct SphericalTriangle {
     float3 a;
     float3 b;
@@ -134,15 +136,15 @@ T0_OUT_OF_LINE int sample_spherical_triangle(SphericalTriangle t, float3 p, floa
     const float3 s = p - v0;
     float x = dot(s, s1) / divisor;
     float y = dot(w, cross(s, e1)) / divisor;
+    if (!(x == x) || !(y == y)) {
+        return 0;  // before the clamps, which would turn a NaN into an edge
+    }
     x = fmax(0.0f, fmin(1.0f, x));
     y = fmax(0.0f, fmin(1.0f, y));
     const float sum = x + y;
     if (sum > 1.0f) {
         x /= sum;
         y /= sum;
-    }
-    if (!(x == x) || !(y == y)) {
-        return 0;
     }
     *b1 = x;
     *b2 = y;

@@ -166,8 +166,8 @@ T0_INLINE float3 trace_path_from(const SceneView* scene, Ray ray, Hit first, int
     float3 throughput = float3_splat(1.0f);
     int lights_sampled = 0;    // whether the vertex this ray leaves sampled a light
     float scatter_pdf = 0.0f;  // the density with which that vertex picked this ray
-    // With the light tree: that vertex's position and normal, on which its
-    // pick of a light depended.
+    // That vertex's position (the point a triangle's solid angle was seen
+    // from) and, with the light tree, its normal (its pick depended on both).
     float3 sampled_from = float3_splat(0.0f);
     float3 sampled_normal = float3_splat(0.0f);
     Hit hit = first;
