@@ -106,16 +106,6 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
             }
         }
     }
-    // The full count of rays over pixel i, the first `done` of them traced
-    // already into sum and hits: kernel::pixel_emission's result.
-    const auto continue_split = [&](std::size_t i, int x, int y, int done, glm::vec3 sum,
-                                    int hits) {
-        kernel::pixel_emission_rays(&view, scaled, static_cast<std::uint32_t>(x),
-                                    static_cast<std::uint32_t>(y), done, T0_GUIDE_EMISSION_RAYS,
-                                    &sum, &hits);
-        const glm::vec3 mean = sum / static_cast<float>(T0_GUIDE_EMISSION_RAYS);
-        g.emission[i] = glm::vec4(mean, static_cast<float>(hits) / T0_GUIDE_EMISSION_RAYS);
-    };
 #pragma omp parallel for schedule(dynamic, 4)
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
@@ -125,23 +115,25 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
             }
             const unsigned char centre = g.emitter[i];
             const std::size_t c = y * corner_columns + x;
-            const bool corners_agree =
-                corner_emitter[c] == centre && corner_emitter[c + 1] == centre &&
-                corner_emitter[c + corner_columns] == centre &&
-                corner_emitter[c + corner_columns + 1] == centre;
-            if (!corners_agree) {
-                continue_split(i, x, y, 0, glm::vec3(0.0f), 0);
-                continue;
-            }
-            // The probes: the first rays of the full count, kept for it.
+            const std::uint32_t ux = static_cast<std::uint32_t>(x);
+            const std::uint32_t uy = static_cast<std::uint32_t>(y);
             glm::vec3 sum(0.0f);
             int hits = 0;
-            kernel::pixel_emission_rays(&view, scaled, static_cast<std::uint32_t>(x),
-                                        static_cast<std::uint32_t>(y), 0, T0_GUIDE_PROBE_RAYS, &sum,
-                                        &hits);
-            if (hits != (centre ? T0_GUIDE_PROBE_RAYS : 0)) {
-                continue_split(i, x, y, T0_GUIDE_PROBE_RAYS, sum, hits);
+            int traced = 0;
+            if (corner_emitter[c] == centre && corner_emitter[c + 1] == centre &&
+                corner_emitter[c + corner_columns] == centre &&
+                corner_emitter[c + corner_columns + 1] == centre) {
+                // The probes: the first rays of the full count, kept for it.
+                kernel::pixel_emission_rays(&view, scaled, ux, uy, 0, T0_GUIDE_PROBE_RAYS, &sum,
+                                            &hits);
+                traced = T0_GUIDE_PROBE_RAYS;
+                if (hits == (centre ? T0_GUIDE_PROBE_RAYS : 0)) {
+                    continue;  // no edge crosses it: its centre's value stands
+                }
             }
+            kernel::pixel_emission_rays(&view, scaled, ux, uy, traced, T0_GUIDE_EMISSION_RAYS, &sum,
+                                        &hits);
+            g.emission[i] = kernel::pixel_emission_of(sum, hits, T0_GUIDE_EMISSION_RAYS);
         }
     }
     g.lamp_edges = true;

@@ -130,6 +130,13 @@ T0_INLINE void pixel_emission_rays(const SceneView* scene, CameraRecord camera, 
     }
 }
 
+// pixel_emission's result from pixel_emission_rays' sum and hits over
+// `rays` rays.
+T0_INLINE float4 pixel_emission_of(float3 sum, int hits, int rays) {
+    const float3 mean = sum / (float)rays;
+    return make_float4(mean.x, mean.y, mean.z, (float)hits / (float)rays);
+}
+
 // Over pixel (x, y), as its samples see it (a box filter): xyz the mean
 // radiance of the pure emitters that its rays meet first, w the share of
 // the pixel that meets one; from its first `rays` rays.
@@ -138,8 +145,7 @@ T0_INLINE float4 pixel_emission(const SceneView* scene, CameraRecord camera, t0_
     float3 sum = float3_splat(0.0f);
     int hits = 0;
     pixel_emission_rays(scene, camera, x, y, 0, rays, &sum, &hits);
-    const float3 mean = sum / (float)rays;
-    return make_float4(mean.x, mean.y, mean.z, (float)hits / (float)rays);
+    return pixel_emission_of(sum, hits, rays);
 }
 
 T0_NAMESPACE_END
