@@ -219,18 +219,25 @@ def register_emitter_surface(mi, dr):
     mi.register_bsdf("trac0r_emitter_surface", lambda props: EmitterSurface(props))
 
 
-def camera_to_world(camera):
-    """trac0r's camera (trac0r/camera.cpp) as Mitsuba's to_world: columns
-    -right, up, forward, position (local +x is Mitsuba's image left)."""
+def camera_basis(camera):
+    """trac0r's camera (trac0r/camera.cpp): unit right, up and forward, and
+    the position, from the scene file's camera block."""
     d = np.array(camera.get("direction", [0, 0, -1]), dtype=np.float64)
     w = np.array(camera.get("world_up", [0, 1, 0]), dtype=np.float64)
     forward = d / np.linalg.norm(d)
     right = np.cross(forward, w)
     right /= np.linalg.norm(right)
     up = np.cross(right, forward)
+    return right, up, forward, camera.get("position", [0, 0.31, 1.2])
+
+
+def camera_to_world(camera):
+    """trac0r's camera as Mitsuba's to_world: columns -right, up, forward,
+    position (local +x is Mitsuba's image left)."""
+    right, up, forward, position = camera_basis(camera)
     m = np.eye(4)
     m[:3, 0], m[:3, 1], m[:3, 2] = -right, up, forward
-    m[:3, 3] = camera.get("position", [0, 0.31, 1.2])
+    m[:3, 3] = position
     return m
 
 

@@ -77,31 +77,30 @@ def parse_args():
     return p.parse_args(argv)
 
 
-def diffuse_material(name, color):
+def node_material(name, shader, output, inputs):
+    """A Cycles material of one shader node (its `output` socket into the
+    surface), its inputs set from `inputs`."""
     mat = bpy.data.materials.new(name)
     mat.use_nodes = True
     nodes = mat.node_tree.nodes
     nodes.clear()
-    bsdf = nodes.new("ShaderNodeBsdfDiffuse")
-    bsdf.inputs["Color"].default_value = (*[float(c) for c in color], 1.0)
-    bsdf.inputs["Roughness"].default_value = 0.0
+    node = nodes.new(shader)
+    for socket, value in inputs.items():
+        node.inputs[socket].default_value = value
     out = nodes.new("ShaderNodeOutputMaterial")
     out.target = "CYCLES"
-    mat.node_tree.links.new(bsdf.outputs["BSDF"], out.inputs["Surface"])
+    mat.node_tree.links.new(node.outputs[output], out.inputs["Surface"])
     return mat
 
 
+def diffuse_material(name, color):
+    return node_material(name, "ShaderNodeBsdfDiffuse", "BSDF",
+                         {"Color": (*[float(c) for c in color], 1.0), "Roughness": 0.0})
+
+
 def emission_material(name, color, strength):
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    nodes = mat.node_tree.nodes
-    nodes.clear()
-    emission = nodes.new("ShaderNodeEmission")
-    emission.inputs["Color"].default_value = (*[float(c) for c in color], 1.0)
-    emission.inputs["Strength"].default_value = float(strength)
-    out = nodes.new("ShaderNodeOutputMaterial")
-    out.target = "CYCLES"
-    mat.node_tree.links.new(emission.outputs["Emission"], out.inputs["Surface"])
+    mat = node_material(name, "ShaderNodeEmission", "Emission",
+                        {"Color": (*[float(c) for c in color], 1.0), "Strength": float(strength)})
     mat.cycles.sample_as_light = True
     return mat
 
@@ -109,15 +108,10 @@ def emission_material(name, color, strength):
 def camera_matrix(camera):
     """trac0r's camera as Blender's matrix_world: columns right, up,
     -forward, position."""
-    d = np.array(camera.get("direction", [0, 0, -1]), dtype=np.float64)
-    w = np.array(camera.get("world_up", [0, 1, 0]), dtype=np.float64)
-    forward = d / np.linalg.norm(d)
-    right = np.cross(forward, w)
-    right /= np.linalg.norm(right)
-    up = np.cross(right, forward)
+    right, up, forward, position = mts.camera_basis(camera)
     m = np.eye(4)
     m[:3, 0], m[:3, 1], m[:3, 2] = right, up, -forward
-    m[:3, 3] = camera.get("position", [0, 0.31, 1.2])
+    m[:3, 3] = position
     return m
 
 
