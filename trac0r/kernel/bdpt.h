@@ -136,12 +136,7 @@ T0_INLINE float3 connect_light_sample(const SceneView* scene, CameraRecord cam,
         arriving = ls.radiance;
         pdf = record->cdf.y;
     } else {
-        LightSample ls;
-        if (T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT) && kind == T0_LIGHT_ENVIRONMENT) {
-            ls = sample_environment_light(scene, record, u);
-        } else {
-            ls = sample_sun(record, u);
-        }
+        const LightSample ls = sample_distant_light(scene, record, u);
         if (kind == T0_LIGHT_ENVIRONMENT && !(ls.pdf > 0.0f)) {
             return float3_splat(0.0f);
         }

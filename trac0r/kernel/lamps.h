@@ -99,6 +99,18 @@ T0_INLINE LightSample sample_environment_light(const SceneView* scene,
     return s;
 }
 
+// A distant light's sample (the environment or a sun): the direction
+// towards it, its radiance, and the density per solid angle (zero for a
+// delta sun). Next-event estimation, BDPT's light samples and its light
+// subpaths all take their distant lights' directions from here.
+T0_INLINE LightSample sample_distant_light(const SceneView* scene,
+                                           T0_GLOBAL const LightRecord* light, float2 u) {
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT) && light->ids.y == T0_LIGHT_ENVIRONMENT) {
+        return sample_environment_light(scene, light, u);
+    }
+    return sample_sun(light, u);
+}
+
 // The radiance that a ray leaving the scene along unit `direction` finds
 // in the distant lights (the environment, and suns with a disc), each
 // weighted by MIS against next-event estimation when `weighted` (the

@@ -218,12 +218,7 @@ T0_INLINE EmissionSample sample_emission(const SceneView* scene, float u_pick, f
         }
         e.beta = intensity / (pick * e.pdf_direction);
     } else {
-        LightSample ls;
-        if (T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT) && kind == T0_LIGHT_ENVIRONMENT) {
-            ls = sample_environment_light(scene, light, u_direction);
-        } else {
-            ls = sample_sun(light, u_direction);
-        }
+        const LightSample ls = sample_distant_light(scene, light, u_direction);
         const float pdf = ls.pdf > 0.0f ? ls.pdf : 1.0f;  // a delta sun: its direction
         if (kind == T0_LIGHT_ENVIRONMENT && !(ls.pdf > 0.0f)) {
             return e;

@@ -163,19 +163,15 @@ T0_INLINE int shadow_ray_clear(const SceneView* scene, const ShadowedLight* s) {
 // its MIS weight where the light has an area (the sun's disc, the
 // environment), in full for a delta light. pick is the light's
 // probability.
-T0_INLINE ShadowedLight sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord* light, float pick,
-                             T0_GLOBAL const MaterialRecord* m, float3 texture, float2 rm,
-                             int front, float3 incoming, float3 facing_normal, float3 facing_geometric,
-                             float3 position, float magnitude, float2 u) {
-    LightSample ls;
+T0_INLINE ShadowedLight sample_lamp(const SceneView* scene, T0_GLOBAL const LightRecord* light,
+                                    float pick, T0_GLOBAL const MaterialRecord* m, float3 texture,
+                                    float2 rm, int front, float3 incoming, float3 facing_normal,
+                                    float3 facing_geometric, float3 position, float magnitude,
+                                    float2 u) {
     const t0_u32 kind = light->ids.y;
-    if (T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT) && kind == T0_LIGHT_ENVIRONMENT) {
-        ls = sample_environment_light(scene, light, u);
-    } else if (kind == T0_LIGHT_SUN) {
-        ls = sample_sun(light, u);
-    } else {
-        ls = sample_point_lamp(light, position);
-    }
+    const LightSample ls = kind == T0_LIGHT_ENVIRONMENT || kind == T0_LIGHT_SUN
+                               ? sample_distant_light(scene, light, u)
+                               : sample_point_lamp(light, position);
     if (!(ls.radiance.x > 0.0f || ls.radiance.y > 0.0f || ls.radiance.z > 0.0f)) {
         return no_light_sample();
     }
@@ -188,8 +184,8 @@ T0_INLINE ShadowedLight sample_lamp(const SceneView* scene, T0_GLOBAL const Ligh
         on_other_side(ls.direction, facing_normal, facing_geometric)) {
         return no_light_sample();
     }
-    const float3 origin = offset_ray_origin(
-        position, leaving_side(scene, ls.direction, facing_geometric), magnitude);
+    const float3 origin =
+        offset_ray_origin(position, leaving_side(scene, ls.direction, facing_geometric), magnitude);
     float3 shadow_direction = ls.direction;
     float shadow_length = T0_NO_HIT;
     if (ls.distance < T0_NO_HIT) {
