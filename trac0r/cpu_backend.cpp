@@ -56,13 +56,9 @@ void CpuBackend::set_scene(const PackedScene& scene) { state_->scene = scene; }
 void CpuBackend::reset(int width, int height) {
     const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
     state_->accum.assign(pixels, kernel::AccumPixel{});
-    if ((state_->scene.features & T0_FEATURE_BDPT) != 0u) {
-        state_->frame_radiance.assign(pixels, glm::vec4(0.0f));
-        state_->splats.assign(4 * pixels, 0);
-    } else {
-        state_->frame_radiance.clear();
-        state_->splats.clear();
-    }
+    // BDPT's buffers: sized by its first frame (render_bdpt_frame).
+    state_->frame_radiance.clear();
+    state_->splats.clear();
 }
 
 void CpuBackend::render_frame(const kernel::CameraRecord& camera, std::uint64_t seed,

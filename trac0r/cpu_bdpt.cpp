@@ -53,7 +53,11 @@ bool render_bdpt_frame(const kernel::SceneView& view, const kernel::CameraRecord
             }
         }
     }
-    return !cancelled.load();
+    if (cancelled.load()) {
+        splat_sums.clear();
+        return false;
+    }
+    return true;
 }
 
 }  // namespace trac0r
