@@ -25,22 +25,6 @@ using namespace trac0r;
 
 namespace {
 
-PackOptions with_integrator(Integrator integrator) {
-    PackOptions options;
-    options.integrator = integrator;
-    return options;
-}
-
-std::vector<kernel::AccumPixel> render(const Scene& scene, Integrator integrator,
-                                       std::uint64_t seed, int frames) {
-    Renderer r(scene, std::make_unique<CpuBackend>(), seed, with_integrator(integrator));
-    for (int i = 0; i < frames; ++i) {
-        r.render_frame();
-    }
-    REQUIRE(r.stats().samples_dropped == 0);
-    return r.accumulator();
-}
-
 // NEE and BDPT renders of scenes/NAME at 32 x 24 with independent seeds,
 // compared per 8 x 8 block and over the whole image, whose tolerance
 // (relative to its mean) must be under `teeth`. Paths of at most 64
@@ -53,8 +37,10 @@ void require_same_image(const std::string& name, int frames, double teeth,
         change(scene);
     }
     scene.render.max_depth = std::min(scene.render.max_depth, T0_BDPT_MAX_DEPTH);
-    const std::vector<kernel::AccumPixel> nee = render(scene, Integrator::nee, 101, frames);
-    const std::vector<kernel::AccumPixel> bdpt = render(scene, Integrator::bdpt, 202, frames);
+    const std::vector<kernel::AccumPixel> nee =
+        render_accumulation(scene, Integrator::nee, 101, frames);
+    const std::vector<kernel::AccumPixel> bdpt =
+        render_accumulation(scene, Integrator::bdpt, 202, frames);
     CAPTURE(name);
     REQUIRE(require_same_block_means(nee, bdpt, width, height, 8) < teeth);
 }
@@ -89,8 +75,8 @@ TEST_CASE("BDPT lights a room through glass where NEE leaves pixels dark", "[bdp
         return std::count_if(accum.begin(), accum.end(),
                              [](const kernel::AccumPixel& p) { return p.moments.x > 0.0f; });
     };
-    const long nee = lit(render(scene, Integrator::nee, 5, 64));
-    const long bdpt = lit(render(scene, Integrator::bdpt, 5, 64));
+    const long nee = lit(render_accumulation(scene, Integrator::nee, 5, 64));
+    const long bdpt = lit(render_accumulation(scene, Integrator::bdpt, 5, 64));
     CAPTURE(nee, bdpt);
     REQUIRE(bdpt == 32 * 24);
     REQUIRE(nee <= 0.8 * 32 * 24);
@@ -99,7 +85,7 @@ TEST_CASE("BDPT lights a room through glass where NEE leaves pixels dark", "[bdp
 TEST_CASE("BDPT in the furnace: surfaces that emit, scatter and block light", "[bdpt][furnace]") {
     const Scene scene = load_test_scene("furnace.json", 32, 24);
     const double expected = furnace_expected_mean(scene);
-    require_furnace_mean(render(scene, Integrator::bdpt, 3, 24), expected);
+    require_furnace_mean(render_accumulation(scene, Integrator::bdpt, 3, 24), expected);
 }
 
 TEST_CASE("BDPT and NEE agree through a thin lens and from an orthographic camera",

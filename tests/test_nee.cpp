@@ -26,25 +26,6 @@ using namespace trac0r;
 
 namespace {
 
-PackOptions with_integrator(Integrator integrator) {
-    PackOptions options;
-    options.integrator = integrator;
-    return options;
-}
-
-std::vector<kernel::AccumPixel> render(const Scene& scene, Integrator integrator,
-                                       std::uint64_t seed, int frames,
-                                       LightSampler light_sampler = LightSampler::automatic) {
-    PackOptions options = with_integrator(integrator);
-    options.light_sampler = light_sampler;
-    Renderer r(scene, std::make_unique<CpuBackend>(), seed, options);
-    for (int i = 0; i < frames; ++i) {
-        r.render_frame();
-    }
-    REQUIRE(r.stats().samples_dropped == 0);
-    return r.accumulator();
-}
-
 // Naive and NEE renders of a scene with independent seeds, compared per
 // 4x4-pixel block and over the whole image (which catches a bias too small
 // for one block to show): require_same_block_means.
@@ -56,9 +37,9 @@ void require_same_image(const std::string& name, int frames, int max_depth = 0, 
         scene.render.max_depth = max_depth;
     }
     const std::vector<kernel::AccumPixel> naive_accum =
-        render(scene, Integrator::naive, 101, frames);
+        render_accumulation(scene, Integrator::naive, 101, frames);
     const std::vector<kernel::AccumPixel> nee_accum =
-        render(scene, Integrator::nee, 202, frames, light_sampler);
+        render_accumulation(scene, Integrator::nee, 202, frames, light_sampler);
     CAPTURE(name);
     // The test must have teeth: over the whole image, a bias of a few
     // percent (an MIS error that drops or doubles direct light is tens of
@@ -107,8 +88,10 @@ TEST_CASE("NEE is less noisy than naive at equal samples per pixel", "[nee]") {
     // margin for a seed's luck and still fails an NEE that does not help.
     const Scene scene = load_test_scene("cornell_diffuse.json", 32, 24);
     const int frames = 64;
-    const std::vector<kernel::AccumPixel> naive = render(scene, Integrator::naive, 5, frames);
-    const std::vector<kernel::AccumPixel> nee = render(scene, Integrator::nee, 5, frames);
+    const std::vector<kernel::AccumPixel> naive =
+        render_accumulation(scene, Integrator::naive, 5, frames);
+    const std::vector<kernel::AccumPixel> nee =
+        render_accumulation(scene, Integrator::nee, 5, frames);
     std::vector<double> ratios;
     for (std::size_t i = 0; i < naive.size(); ++i) {
         if (naive[i].moments.y > 0.0f) {
@@ -147,8 +130,10 @@ TEST_CASE("a scene without a light list renders the same with both integrators",
         const PackedScene packed = pack_scene(scene, with_integrator(Integrator::nee));
         REQUIRE(packed.lights.empty());
         REQUIRE((packed.features & T0_FEATURE_NEE) == 0u);
-        const std::vector<kernel::AccumPixel> naive = render(scene, Integrator::naive, 9, 4);
-        const std::vector<kernel::AccumPixel> nee = render(scene, Integrator::nee, 9, 4);
+        const std::vector<kernel::AccumPixel> naive =
+            render_accumulation(scene, Integrator::naive, 9, 4);
+        const std::vector<kernel::AccumPixel> nee =
+            render_accumulation(scene, Integrator::nee, 9, 4);
         int different_pixels = 0;
         for (std::size_t i = 0; i < naive.size(); ++i) {
             if (naive[i].sum != nee[i].sum || naive[i].moments != nee[i].moments) {
@@ -165,7 +150,8 @@ TEST_CASE("NEE in the furnace: surfaces that emit, scatter and block light", "[n
     // occludes the others; the image mean is Le (1 - rho^D) / (1 - rho).
     const Scene scene = load_test_scene("furnace.json", 32, 24);
     const double expected = furnace_expected_mean(scene);
-    const std::vector<kernel::AccumPixel> accum = render(scene, Integrator::nee, 3, 24);
+    const std::vector<kernel::AccumPixel> accum =
+        render_accumulation(scene, Integrator::nee, 3, 24);
     require_furnace_mean(accum, expected);
 }
 
@@ -235,9 +221,8 @@ TEST_CASE("eval_material agrees with scatter_material's directions, weights and 
                 continue;
             }
             ++succeeded;
-            const kernel::MaterialEval e =
-                kernel::eval_material(&scene, &m, float3(1.0f), kernel::float2(1.0f), 1, incoming,
-                                      normal, s.direction);
+            const kernel::MaterialEval e = kernel::eval_material(
+                &scene, &m, float3(1.0f), kernel::float2(1.0f), 1, incoming, normal, s.direction);
             worst_pdf_error = std::fmax(worst_pdf_error, std::fabs(e.pdf / s.pdf - 1.0));
             for (int channel = 0; channel < 3; ++channel) {
                 const double expected = s.weight[channel] * s.pdf;
@@ -267,11 +252,10 @@ TEST_CASE("eval_material agrees with scatter_material's directions, weights and 
                 make_float3(static_cast<float>(sin_t * std::cos(phi)),
                             static_cast<float>(sin_t * std::sin(phi)), static_cast<float>(cos_t));
             const float3 d = glm::normalize(kernel::frame_to_world(frame, local));
-            const double value =
-                kernel::eval_material(&scene, &m, float3(1.0f), kernel::float2(1.0f), 1, incoming,
-                                      normal, d)
-                    .pdf *
-                solid_angle;
+            const double value = kernel::eval_material(&scene, &m, float3(1.0f),
+                                                       kernel::float2(1.0f), 1, incoming, normal, d)
+                                     .pdf *
+                                 solid_angle;
             sum += value;
             sum2 += value * value;
         }

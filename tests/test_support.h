@@ -29,6 +29,29 @@
 
 namespace trac0r {
 
+// PackOptions with the given integrator (and how NEE picks lights).
+inline PackOptions with_integrator(Integrator integrator,
+                                   LightSampler light_sampler = LightSampler::automatic) {
+    PackOptions options;
+    options.integrator = integrator;
+    options.light_sampler = light_sampler;
+    return options;
+}
+
+// `frames` frames of `scene` on the CPU backend with the given integrator:
+// the accumulator, no sample dropped as non-finite.
+inline std::vector<kernel::AccumPixel> render_accumulation(
+    const Scene& scene, Integrator integrator, std::uint64_t seed, int frames,
+    LightSampler light_sampler = LightSampler::automatic) {
+    Renderer r(scene, std::make_unique<CpuBackend>(), seed,
+               with_integrator(integrator, light_sampler));
+    for (int i = 0; i < frames; ++i) {
+        r.render_frame();
+    }
+    REQUIRE(r.stats().samples_dropped == 0);
+    return r.accumulator();
+}
+
 // A float's bits: equal floats compared bit for bit (0 and -0 apart).
 inline std::uint32_t bits_of(float f) {
     std::uint32_t b;
