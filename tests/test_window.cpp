@@ -347,6 +347,37 @@ key Escape
     CHECK(stopped.width == 640);
 }
 
+TEST_CASE("while the right button drags the view the window shows previews, between motions too",
+          "[window]") {
+    // Before, a full-resolution frame started in every gap between the
+    // drag's motion events, and was shown until the next one: at this size
+    // within 120 ms of a motion. The drag holds for 250 ms (drag_hold_ms).
+    const std::string dir = empty_directory("window_drag");
+    write_file(dir + "/script.txt", R"(wait_spp 1
+mouse_move 160 120
+mouse_down right
+mouse_move 170 120
+wait 60
+mouse_move 180 120
+wait 60
+mouse_move 190 120
+wait 120
+key P            # a gap in the drag, shorter than its hold: still moving
+wait 1000
+key P            # the pointer has stopped, the button still held: full size
+mouse_up right
+key Escape
+)");
+    const ViewerRun r = run_viewer_process(
+        cornell + " --width 320 --height 240 --replay script.txt", "cd " + dir + " &&");
+    INFO(r.err);
+    REQUIRE(r.exit_code == 0);
+    const std::vector<Screenshot> shots = screenshots_said(r.err);
+    REQUIRE(shots.size() == 2);
+    CHECK(trac0r::read_pfm(shots[0].pfm).width == 80);  // the preview: a quarter of 320
+    CHECK(trac0r::read_pfm(shots[1].pfm).width == 320);
+}
+
 TEST_CASE("a resized window renders at its new size, from a fresh accumulation", "[window]") {
     // Before, the render kept its size and was scaled to the window.
     const std::string dir = empty_directory("window_resize");
@@ -413,8 +444,8 @@ key Escape
     CHECK(png[0].bytes != png[1].bytes);
     CHECK(png[0].bytes == png[2].bytes);
     // What is shown is the batch render's filtered image.
-    const ViewerRun batch = run_viewer_process(view + " --headless --filter --output batch.png",
-                                               "cd " + dir + " &&");
+    const ViewerRun batch =
+        run_viewer_process(view + " --headless --filter --output batch.png", "cd " + dir + " &&");
     REQUIRE(batch.exit_code == 0);
     CHECK(trac0r::read_png(dir + "/batch.png").bytes == png[1].bytes);
 

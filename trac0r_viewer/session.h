@@ -26,6 +26,10 @@
 
 namespace trac0r_viewer {
 
+// How long after a drag's last motion the view still counts as moving
+// (Session::move): longer than the gaps between a moving mouse's events.
+constexpr std::uint32_t drag_hold_ms = 250;
+
 class Session {
   public:
     Session(const Options& options, Window& window, const Font& font,
@@ -39,7 +43,10 @@ class Session {
     bool held(SDL_Keycode key) const { return held_.count(key) != 0; }
     // The held movement keys' direction: x right, y up, z forward; 0: none.
     glm::vec3 move_direction() const;
-    void move(float seconds);
+    // Moves the camera by the held keys over `seconds`, and tells the
+    // render thread whether the view is moving (keys, or a drag whose
+    // last motion is under drag_hold_ms before now_ms).
+    void move(float seconds, std::uint32_t now_ms);
     void change_camera(const trac0r::Camera& camera);
     // The camera keys: C prints the camera block, Home returns to the
     // starting camera, [ and ] close and open the aperture, G (or the
@@ -94,9 +101,10 @@ class Session {
     bool screenshot_requested_ = false;
     bool quit_ = false;
     bool dirty_ = true;
-    std::set<SDL_Keycode> held_;  // from events, so replayed keys count too
-    bool moving_ = false;         // what move() last told the worker
-    bool looking_ = false;        // right button held
+    std::set<SDL_Keycode> held_;   // from events, so replayed keys count too
+    bool moving_ = false;          // what move() last told the worker
+    bool looking_ = false;         // right button held
+    std::uint32_t looked_ms_ = 0;  // SDL_GetTicks() of its last motion that turned the view
     int mouse_x_ = -1;
     int mouse_y_ = -1;
     MessageList messages_;

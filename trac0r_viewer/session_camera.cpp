@@ -76,15 +76,18 @@ glm::vec3 Session::move_direction() const {
     return direction;
 }
 
-void Session::move(float seconds) {
+void Session::move(float seconds, std::uint32_t now_ms) {
     const glm::vec3 direction = move_direction();
-    const bool moving = direction != glm::vec3(0.0f);
+    const bool keys_move = direction != glm::vec3(0.0f);
+    // A drag's motion events come a few milliseconds apart; a pause as long
+    // as drag_hold_ms ends the move, though the button is still held.
+    const bool moving = keys_move || (looking_ && now_ms - looked_ms_ < drag_hold_ms);
     if (moving != moving_) {
-        // While keys move the view, the thread renders previews only.
+        // While the view moves, the thread renders previews only.
         moving_ = moving;
         requested_generation_ = worker_->set_moving(moving);
     }
-    if (!moving || seconds <= 0.0f) {
+    if (!keys_move || seconds <= 0.0f) {
         return;
     }
     // A quarter of the scene's diagonal per second; Shift five times that,

@@ -96,8 +96,9 @@ int Session::run() {
     std::uint32_t last_ms = SDL_GetTicks();
     while (!quit_) {
         // Block until input or a frame arrives; tick often only while keys
-        // move the camera or a replay waits for its time.
-        const bool busy = replaying_ || !held_.empty() || !messages_.empty() || resize_pending_;
+        // or a drag move the camera or a replay waits for its time.
+        const bool busy =
+            replaying_ || !held_.empty() || looking_ || !messages_.empty() || resize_pending_;
         SDL_Event e;
         if (SDL_WaitEventTimeout(&e, busy ? 10 : 250)) {
             handle(e);
@@ -109,7 +110,7 @@ int Session::run() {
         }
         const std::uint32_t now = SDL_GetTicks();
         // A stall (a window drag, a slow draw) must not throw the camera far.
-        move(std::min(0.1f, (now - last_ms) / 1000.0f));
+        move(std::min(0.1f, (now - last_ms) / 1000.0f), now);
         last_ms = now;
         follow_window_size(now);
         take_from_worker();
@@ -189,6 +190,8 @@ void Session::handle(const SDL_Event& e) {
             // by one pixel's share of the field of view.
             const float radians_per_pixel =
                 glm::radians(camera_.vertical_fov) / std::max(1, window_.image_rect().h);
+            looked_ms_ = SDL_GetTicks();
+            move(0.0f, looked_ms_);  // previews from this motion on
             change_camera(trac0r::turn_camera(camera_, e.motion.xrel * radians_per_pixel,
                                               -e.motion.yrel * radians_per_pixel));
         }
