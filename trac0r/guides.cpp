@@ -69,6 +69,7 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
     std::vector<unsigned char> edge(pixels, 0);
     const std::size_t corner_columns = static_cast<std::size_t>(width) + 1;
     std::vector<unsigned char> corner_needed(corner_columns * (height + 1), 0);
+    int candidates = 0;
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             int emitters = 0;
@@ -80,6 +81,7 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
             }
             if (emitters > 0 && others > 0) {
                 edge[static_cast<std::size_t>(y) * width + x] = 1;
+                ++candidates;
                 for (int c = 0; c < 4; ++c) {
                     corner_needed[(y + c / 2) * corner_columns + x + c % 2] = 1;
                 }
@@ -106,7 +108,8 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
             }
         }
     }
-#pragma omp parallel for schedule(dynamic, 4)
+    int split = 0;
+#pragma omp parallel for schedule(dynamic, 4) reduction(+ : split)
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * width + x;
@@ -134,8 +137,11 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
             kernel::pixel_emission_rays(&view, scaled, ux, uy, traced, T0_GUIDE_EMISSION_RAYS, &sum,
                                         &hits);
             g.emission[i] = kernel::pixel_emission_of(sum, hits, T0_GUIDE_EMISSION_RAYS);
+            ++split;
         }
     }
+    g.lamp_edge_pixels = candidates;
+    g.lamp_edge_traced = split;
     g.lamp_edges = true;
 }
 

@@ -33,6 +33,11 @@ struct GuideImages {
     // lamp_edges, from the centre ray.
     std::vector<glm::vec4> emission;
     bool lamp_edges = false;  // add_lamp_edges has made emission's split
+    // Of the split: the pixels by a lamp's edge that it tested, and those
+    // it traced T0_GUIDE_EMISSION_RAYS rays over (the rest kept their
+    // centre's value: no edge crosses them).
+    int lamp_edge_pixels = 0;
+    int lamp_edge_traced = 0;
 };
 
 // One ray through each pixel's centre of `camera` (as the Renderer holds it:
