@@ -106,10 +106,46 @@ void check_backend_cancels(const std::function<std::unique_ptr<Backend>()>& make
     CHECK(pixels_sampled(got) == 0);
 }
 
+// A BDPT frame stopped part way adds nothing, and leaves none of its light
+// subpaths' splats for the next frame, even without a reset between.
+void check_bdpt_cancel_drops_splats(const std::function<std::unique_ptr<Backend>()>& make) {
+    const Scene scene = small_scene();
+    PackOptions options;
+    options.integrator = Integrator::bdpt;
+    const PackedScene packed = pack_scene(scene, options);
+    REQUIRE((packed.features & T0_FEATURE_BDPT) != 0u);
+    const kernel::CameraRecord camera =
+        make_camera_record(scene.camera, scene.render.width, scene.render.height);
+
+    std::unique_ptr<Backend> plain = make();
+    plain->set_scene(packed);
+    plain->reset(scene.render.width, scene.render.height);
+    plain->render_frame(camera, 1, 0, 5);
+    std::vector<kernel::AccumPixel> expected;
+    plain->read_accumulator(expected);
+
+    std::unique_ptr<Backend> backend = make();
+    backend->set_scene(packed);
+    backend->reset(scene.render.width, scene.render.height);
+    StopAfter second(2);
+    CHECK_FALSE(backend->render_frame_cancellable(camera, 1, 0, 5, second.check()));
+    std::vector<kernel::AccumPixel> got;
+    backend->read_accumulator(got);
+    CHECK(pixels_sampled(got) == 0);  // merged only once the whole frame is in
+    // The same frame again, whole, with no reset: as if the first never ran.
+    backend->render_frame(camera, 1, 0, 5);
+    backend->read_accumulator(got);
+    CHECK(same_accumulators(got, expected));
+}
+
 }  // namespace
 
 TEST_CASE("a CPU frame stops between tiles when cancelled", "[cancel]") {
     check_backend_cancels([] { return std::make_unique<CpuBackend>(2); });
+}
+
+TEST_CASE("a stopped CPU BDPT frame leaves no splats for the next", "[cancel][bdpt]") {
+    check_bdpt_cancel_drops_splats([] { return std::make_unique<CpuBackend>(2); });
 }
 
 #ifdef TRAC0R_HAVE_OPENCL
@@ -118,6 +154,10 @@ TEST_CASE(
     "frame",
     "[cancel]") {
     check_backend_cancels([] { return std::make_unique<OpenClBackend>(0); });
+}
+
+TEST_CASE("a stopped OpenCL BDPT frame leaves no splats for the next", "[cancel][bdpt]") {
+    check_bdpt_cancel_drops_splats([] { return std::make_unique<OpenClBackend>(0); });
 }
 #endif
 

@@ -436,6 +436,9 @@ bool OpenClBackend::render_frame_cancellable(const kernel::CameraRecord& camera,
                                      nullptr),
               "clEnqueueNDRangeKernel(bdpt_merge_frame)");
     }
+    if (!finished && state_->bdpt) {
+        clear_splats();  // the stopped frame's splats: none of them may reach the next
+    }
     // A frame is done when render_frame returns, so timings are honest and
     // the queue never runs far ahead of the viewer.
     check(clFinish(queue), "clFinish");
