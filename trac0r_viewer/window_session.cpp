@@ -96,9 +96,10 @@ int Session::run() {
     std::uint32_t last_ms = SDL_GetTicks();
     while (!quit_) {
         // Block until input or a frame arrives; tick often only while keys
-        // or a drag move the camera or a replay waits for its time.
-        const bool busy =
-            replaying_ || !held_.empty() || looking_ || !messages_.empty() || resize_pending_;
+        // move the camera, a drag's hold runs, or a replay waits for its
+        // time.
+        const bool busy = replaying_ || !held_.empty() || (looking_ && moving_) ||
+                          !messages_.empty() || resize_pending_;
         SDL_Event e;
         if (SDL_WaitEventTimeout(&e, busy ? 10 : 250)) {
             handle(e);
