@@ -58,6 +58,8 @@ def main():
     p.add_argument("--reference", required=True)
     p.add_argument("--seconds", type=float, nargs="+", default=[5, 10, 20])
     p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--first-seed", type=int, default=100,
+                   help="repeat r renders with seed FIRST_SEED + r (another run: other seeds)")
     p.add_argument("--out", default="/tmp/envmap_runs")
     p.add_argument("--viewer", default=os.path.join(ROOT, "build", "trac0r_viewer"))
     p.add_argument("--python", default=sys.executable, help="the Python with Mitsuba")
@@ -78,7 +80,7 @@ def main():
     results = {}  # (renderer, T) -> list of (spp, seconds, rmse)
     for rep in range(args.repeats):
         for seconds in args.seconds:
-            seed = 100 + rep
+            seed = args.first_seed + rep
             for name in ("trac0r", "mitsuba"):
                 path = os.path.join(args.out, "%s_%gs_%d.pfm" % (name, seconds, rep))
                 if name == "trac0r":
