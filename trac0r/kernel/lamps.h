@@ -99,6 +99,11 @@ T0_INLINE LightSample sample_environment_light(const SceneView* scene,
     return s;
 }
 
+// Whether the light is at infinity (the environment, a sun).
+T0_INLINE int light_is_distant(T0_GLOBAL const LightRecord* light) {
+    return light->ids.y == T0_LIGHT_SUN || light->ids.y == T0_LIGHT_ENVIRONMENT;
+}
+
 // A distant light's sample (the environment or a sun): the direction
 // towards it, its radiance, and the density per solid angle (zero for a
 // delta sun). Next-event estimation, BDPT's light samples and its light

@@ -22,11 +22,6 @@
 
 T0_NAMESPACE_BEGIN
 
-// Whether the light is at infinity (the environment, a sun).
-T0_INLINE int light_is_distant(T0_GLOBAL const LightRecord* light) {
-    return light->ids.y == T0_LIGHT_SUN || light->ids.y == T0_LIGHT_ENVIRONMENT;
-}
-
 // Whether the light is a delta: a point or spot lamp, or a sun of angle 0.
 T0_INLINE int light_is_delta(T0_GLOBAL const LightRecord* light) {
     const t0_u32 kind = light->ids.y;

@@ -168,10 +168,8 @@ T0_INLINE ShadowedLight sample_lamp(const SceneView* scene, T0_GLOBAL const Ligh
                                     float2 rm, int front, float3 incoming, float3 facing_normal,
                                     float3 facing_geometric, float3 position, float magnitude,
                                     float2 u) {
-    const t0_u32 kind = light->ids.y;
-    const LightSample ls = kind == T0_LIGHT_ENVIRONMENT || kind == T0_LIGHT_SUN
-                               ? sample_distant_light(scene, light, u)
-                               : sample_point_lamp(light, position);
+    const LightSample ls = light_is_distant(light) ? sample_distant_light(scene, light, u)
+                                                   : sample_point_lamp(light, position);
     if (!(ls.radiance.x > 0.0f || ls.radiance.y > 0.0f || ls.radiance.z > 0.0f)) {
         return no_light_sample();
     }
