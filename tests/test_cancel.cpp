@@ -63,6 +63,28 @@ bool same_accumulators(const std::vector<kernel::AccumPixel>& a,
     return true;
 }
 
+// A backend from `make` holding `packed`, with an empty accumulation of
+// the scene's size.
+std::unique_ptr<Backend> ready_backend(const std::function<std::unique_ptr<Backend>()>& make,
+                                       const PackedScene& packed, const Scene& scene) {
+    std::unique_ptr<Backend> backend = make();
+    backend->set_scene(packed);
+    backend->reset(scene.render.width, scene.render.height);
+    return backend;
+}
+
+// Frame 0 (seed 1, paths of 5) rendered whole on a fresh backend: the
+// accumulator a cancelled or split render is held to.
+std::vector<kernel::AccumPixel> whole_frame(const std::function<std::unique_ptr<Backend>()>& make,
+                                            const PackedScene& packed, const Scene& scene,
+                                            const kernel::CameraRecord& camera) {
+    std::unique_ptr<Backend> plain = ready_backend(make, packed, scene);
+    plain->render_frame(camera, 1, 0, 5);
+    std::vector<kernel::AccumPixel> accum;
+    plain->read_accumulator(accum);
+    return accum;
+}
+
 // The backend's behaviour under a cancel check, whichever backend it is.
 void check_backend_cancels(const std::function<std::unique_ptr<Backend>()>& make) {
     const Scene scene = small_scene();
@@ -72,17 +94,10 @@ void check_backend_cancels(const std::function<std::unique_ptr<Backend>()>& make
     const long pixels = static_cast<long>(scene.render.width) * scene.render.height;
 
     // Never cancelled: the same frame as render_frame's, every pixel.
-    std::unique_ptr<Backend> plain = make();
-    plain->set_scene(packed);
-    plain->reset(scene.render.width, scene.render.height);
-    plain->render_frame(camera, 1, 0, 5);
-    std::vector<kernel::AccumPixel> expected;
-    plain->read_accumulator(expected);
+    const std::vector<kernel::AccumPixel> expected = whole_frame(make, packed, scene, camera);
     REQUIRE(pixels_sampled(expected) == pixels);
 
-    std::unique_ptr<Backend> backend = make();
-    backend->set_scene(packed);
-    backend->reset(scene.render.width, scene.render.height);
+    std::unique_ptr<Backend> backend = ready_backend(make, packed, scene);
     StopAfter never(1 << 30);
     CHECK(backend->render_frame_cancellable(camera, 1, 0, 5, never.check()));
     CHECK(never.asked > 1);  // asked between pieces, not once
@@ -117,16 +132,9 @@ void check_bdpt_cancel_drops_splats(const std::function<std::unique_ptr<Backend>
     const kernel::CameraRecord camera =
         make_camera_record(scene.camera, scene.render.width, scene.render.height);
 
-    std::unique_ptr<Backend> plain = make();
-    plain->set_scene(packed);
-    plain->reset(scene.render.width, scene.render.height);
-    plain->render_frame(camera, 1, 0, 5);
-    std::vector<kernel::AccumPixel> expected;
-    plain->read_accumulator(expected);
+    const std::vector<kernel::AccumPixel> expected = whole_frame(make, packed, scene, camera);
 
-    std::unique_ptr<Backend> backend = make();
-    backend->set_scene(packed);
-    backend->reset(scene.render.width, scene.render.height);
+    std::unique_ptr<Backend> backend = ready_backend(make, packed, scene);
     StopAfter second(2);
     CHECK_FALSE(backend->render_frame_cancellable(camera, 1, 0, 5, second.check()));
     std::vector<kernel::AccumPixel> got;
