@@ -81,26 +81,52 @@ T0_INLINE float3 lamp_part(FilterGuide g) {
     return g.normal.w > 0.0f ? float3_splat(0.0f) : xyz(g.emission);
 }
 
+// What the first pass's input and the filtered pixel take of a pixel's
+// guides (filter_scale): the divisors of its surface's lighting (the
+// albedo's, demodulation, times the surface's share), that of its
+// luminance, and the lamps' part. They stay while the view does.
+typedef struct FilterScale {
+    float3 divisor;
+    float luminance_divisor;
+    float3 lamp;
+} FilterScale;
+
+T0_INLINE FilterScale filter_scale(FilterGuide g) {
+    const float share = surface_share(g);
+    FilterScale out;
+    out.divisor = demodulation(g) * share;
+    out.luminance_divisor = demodulation_divisor(luminance(demodulation(g))) * share;
+    out.lamp = lamp_part(g);
+    return out;
+}
+
 // The first pass's input for one pixel: the lighting of its surface, i.e.
 // its accumulated mean less the lamps' part over the albedo times the
 // surface's share, and the variance of that lighting's luminance (the
 // per-sample variance over the samples, likewise scaled).
-T0_INLINE FilterPixel filter_input(AccumPixel px, FilterGuide g) {
-    const float3 colour = accumulated_mean(px) - lamp_part(g);
-    const float share = surface_share(g);
-    const float3 d = demodulation(g) * share;
+T0_INLINE FilterPixel filter_input_scaled(AccumPixel px, FilterScale s) {
+    const float3 colour = accumulated_mean(px) - s.lamp;
+    const float3 d = s.divisor;
     const float n = px.moments.z;
-    const float dl = demodulation_divisor(luminance(demodulation(g))) * share;
+    const float dl = s.luminance_divisor;
     const float variance = n > 1.0f ? px.moments.y / (n - 1.0f) / n / (dl * dl) : 1e30f;
     FilterPixel out;
     out.value = make_float4(colour.x / d.x, colour.y / d.y, colour.z / d.z, variance);
     return out;
 }
 
+T0_INLINE FilterPixel filter_input(AccumPixel px, FilterGuide g) {
+    return filter_input_scaled(px, filter_scale(g));
+}
+
 // The filtered pixel's colour: its lighting times the albedo and the
 // surface's share again, plus the lamps' part.
+T0_INLINE float3 filter_output_scaled(FilterPixel p, FilterScale s) {
+    return xyz(p.value) * s.divisor + s.lamp;
+}
+
 T0_INLINE float3 filter_output(FilterPixel p, FilterGuide g) {
-    return xyz(p.value) * (demodulation(g) * surface_share(g)) + lamp_part(g);
+    return filter_output_scaled(p, filter_scale(g));
 }
 
 // The depth's change per pixel at (x, y): on each axis the smaller of the
