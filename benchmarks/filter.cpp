@@ -3,9 +3,10 @@
 // 1-spp frames and filter runs over a --spp accumulation alternate (frame,
 // filter, frame, filter, ...), so that the machine's load falls on both
 // alike; prints the medians and their ratio (issue 31's target: at most
-// 0.15), for the filter in new buffers and in buffers kept between calls. With --reference, also
-// the errors of the filtered --spp image, the raw one and the raw --compare-spp one, over --seeds
-// renders.
+// 0.15), for the filter in new buffers and in a workspace kept between
+// calls with its guides (FilterWorkspace::set_guides). With --reference,
+// also the errors of the filtered --spp image, the raw one and the raw
+// --compare-spp one, over --seeds renders.
 //
 //   build/benchmarks/bench_filter [SCENE.json] [options]
 //
@@ -83,10 +84,11 @@ void timing(const Scene& scene, const Options& o) {
     const std::vector<kernel::AccumPixel> accum = r->accumulator();
     filter_image(accum, o.width, o.height, guides, o.passes);  // warm-up
     FilterWorkspace workspace;
-    filter_image(accum, o.width, o.height, guides, o.passes, workspace);
+    workspace.set_guides(guides, o.width, o.height);
+    filter_image(accum, o.passes, workspace);
     // Per round: a frame, the filter in new buffers (as --filter runs it
-    // once), the filter in buffers kept from the last round (as a display
-    // filtering every frame would).
+    // once), the filter in a workspace kept from the last round, with its
+    // guides (as the window filters a view again and again).
     std::vector<double> wall[3], cpu[3];
     for (int i = 0; i < o.rounds; ++i) {
         for (int k = 0; k < 3; ++k) {
@@ -97,7 +99,7 @@ void timing(const Scene& scene, const Options& o) {
             } else if (k == 1) {
                 filter_image(accum, o.width, o.height, guides, o.passes);
             } else {
-                filter_image(accum, o.width, o.height, guides, o.passes, workspace);
+                filter_image(accum, o.passes, workspace);
             }
             wall[k].push_back(seconds_since(start));
             cpu[k].push_back(trac0r_bench::process_cpu_seconds() - cpu_start);
@@ -107,7 +109,7 @@ void timing(const Scene& scene, const Options& o) {
     std::printf("%d x %d, CPU backend, %d threads; medians of %d alternated rounds\n\n", o.width,
                 o.height, omp_get_max_threads(), o.rounds);
     std::printf(
-        "| | 1-spp frame | filter (%d passes), new buffers | filter, buffers kept | new / frame "
+        "| | 1-spp frame | filter (%d passes), new buffers | filter, workspace kept | new / frame "
         "| kept / frame |\n",
         o.passes);
     std::printf("| --- | ---: | ---: | ---: | ---: | ---: |\n");

@@ -170,6 +170,41 @@ TEST_CASE("the filter smooths noise and keeps a shadow's edge", "[filter]") {
     CHECK(none.pixels == raw.pixels);
 }
 
+TEST_CASE("a workspace keeps a view's guides for the filter calls that take none", "[filter]") {
+    // A plane sloping away from the camera.
+    const auto sloping = [](int x) {
+        return guide_of(glm::vec3(0.5f), 3.0f + 0.01f * x, glm::vec3(0, 0, -1));
+    };
+    std::vector<kernel::AccumPixel> accum;
+    std::vector<kernel::FilterGuide> guides;
+    noisy_halves(1.0f, 0.1f, sloping, &accum, &guides);
+    FilterWorkspace workspace;
+    CHECK_THROWS_WITH(filter_image(accum, T0_FILTER_PASSES, workspace),
+                      Catch::Contains("no guides"));
+    workspace.set_guides(guides, width, height);
+    // The same image as the calls given the guides, for each accumulation
+    // filtered with them.
+    const Image full = filter_image(accum, width, height, guides, T0_FILTER_PASSES);
+    for (int i = 0; i < 2; ++i) {
+        CHECK(filter_image(accum, T0_FILTER_PASSES, workspace).pixels == full.pixels);
+    }
+    std::vector<kernel::AccumPixel> brighter;
+    std::vector<kernel::FilterGuide> same;
+    noisy_halves(2.0f, 0.5f, sloping, &brighter, &same);
+    const Image other = filter_image(brighter, T0_FILTER_PASSES, workspace);
+    CHECK(other.pixels == filter_image(brighter, width, height, guides, T0_FILTER_PASSES).pixels);
+    CHECK(other.pixels != full.pixels);
+    // Guides of another size are refused, and the workspace keeps its own.
+    CHECK_THROWS_WITH(workspace.set_guides(guides, width + 1, height),
+                      Catch::Contains("2048 guides for an image of 65 x 32"));
+    CHECK(filter_image(accum, T0_FILTER_PASSES, workspace).pixels == full.pixels);
+    // So is an accumulation of another size.
+    const std::vector<kernel::AccumPixel> small(10, pixel_of(glm::vec3(1.0f), 0.1f, 4.0f));
+    CHECK_THROWS_WITH(
+        filter_image(small, T0_FILTER_PASSES, workspace),
+        Catch::Contains("the accumulator has 10 pixels, the workspace's guides 2048"));
+}
+
 TEST_CASE("the filter keeps a corner: normals and depths stop it", "[filter]") {
     for (const int which : {0, 1}) {
         CAPTURE(which);

@@ -34,6 +34,33 @@ struct TapPlanes {
     std::vector<float> nx, ny, nz, nw, depth, by_depth, share, kept;
 };
 
+// What the first pass's input and the filtered pixel take of the guides
+// (kernel::FilterScale), one plane per component.
+struct ScalePlanes {
+    void resize(std::size_t n) {
+        for (std::vector<float>* v : {&dr, &dg, &db, &dl, &lr, &lg, &lb}) {
+            v->resize(n);
+        }
+    }
+    void set(std::size_t i, const kernel::FilterScale& s) {
+        dr[i] = s.divisor.x;
+        dg[i] = s.divisor.y;
+        db[i] = s.divisor.z;
+        dl[i] = s.luminance_divisor;
+        lr[i] = s.lamp.x;
+        lg[i] = s.lamp.y;
+        lb[i] = s.lamp.z;
+    }
+    kernel::FilterScale get(std::size_t i) const {
+        kernel::FilterScale s;
+        s.divisor = glm::vec3(dr[i], dg[i], db[i]);
+        s.luminance_divisor = dl[i];
+        s.lamp = glm::vec3(lr[i], lg[i], lb[i]);
+        return s;
+    }
+    std::vector<float> dr, dg, db, dl, lr, lg, lb;
+};
+
 struct PixelPlanes {
     void resize(std::size_t n) {
         for (std::vector<float>* v : {&r, &g, &b, &variance, &l, &by_noise}) {
@@ -194,13 +221,51 @@ std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides) {
 }
 
 struct FilterWorkspace::Buffers {
+    int width = 0;
+    int height = 0;
+    bool has_guides = false;
     TapPlanes taps;
+    ScalePlanes scale;
     PixelPlanes a;
     PixelPlanes b;
 };
 
 FilterWorkspace::FilterWorkspace() : buffers_(new Buffers()) {}
 FilterWorkspace::~FilterWorkspace() = default;
+
+void FilterWorkspace::set_guides(const std::vector<kernel::FilterGuide>& guides, int width,
+                                 int height) {
+    const std::size_t pixels = static_cast<std::size_t>(std::max(width, 0)) *
+                               static_cast<std::size_t>(std::max(height, 0));
+    if (width <= 0 || height <= 0 || guides.size() != pixels) {
+        throw std::invalid_argument(
+            "FilterWorkspace::set_guides: " + std::to_string(guides.size()) +
+            " guides for an image of " + std::to_string(width) + " x " + std::to_string(height));
+    }
+    Buffers& b = *buffers_;
+    b.has_guides = false;
+    b.taps.resize(pixels);
+    b.scale.resize(pixels);
+#pragma omp parallel for schedule(dynamic, 16)
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const kernel::FilterTap t = kernel::filter_tap(guides.data(), width, height, x, y);
+            const std::size_t i = static_cast<std::size_t>(y) * width + x;
+            b.taps.nx[i] = t.normal.x;
+            b.taps.ny[i] = t.normal.y;
+            b.taps.nz[i] = t.normal.z;
+            b.taps.nw[i] = t.normal.w;
+            b.taps.depth[i] = t.params.x;
+            b.taps.by_depth[i] = t.params.y;
+            b.taps.share[i] = t.params.z;
+            b.taps.kept[i] = t.params.w;
+            b.scale.set(i, kernel::filter_scale(guides[i]));
+        }
+    }
+    b.width = width;
+    b.height = height;
+    b.has_guides = true;
+}
 
 Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height,
                    const std::vector<kernel::FilterGuide>& guides, int passes) {
@@ -216,16 +281,33 @@ Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width
         throw std::invalid_argument("filter_image: the accumulator and the guides must have " +
                                     std::to_string(pixels) + " pixels");
     }
+    workspace.set_guides(guides, width, height);
+    return filter_image(accumulator, passes, workspace);
+}
+
+Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int passes,
+                   FilterWorkspace& workspace) {
     FilterWorkspace::Buffers& buffers = workspace.buffers();
+    const int width = buffers.width;
+    const int height = buffers.height;
+    const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+    if (!buffers.has_guides) {
+        throw std::invalid_argument("filter_image: the workspace has no guides (set_guides)");
+    }
+    if (accumulator.size() != pixels) {
+        throw std::invalid_argument("filter_image: the accumulator has " +
+                                    std::to_string(accumulator.size()) +
+                                    " pixels, the workspace's guides " + std::to_string(pixels));
+    }
     PixelPlanes& a = buffers.a;
     PixelPlanes& b = buffers.b;
-    TapPlanes& taps = buffers.taps;
+    const TapPlanes& taps = buffers.taps;
+    const ScalePlanes& scale = buffers.scale;
     a.resize(pixels);
     b.resize(pixels);
-    taps.resize(pixels);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < pixels; ++i) {
-        const kernel::FilterPixel p = kernel::filter_input(accumulator[i], guides[i]);
+        const kernel::FilterPixel p = kernel::filter_input_scaled(accumulator[i], scale.get(i));
         const kernel::FilterNoise n = kernel::filter_noise(p);
         a.r[i] = p.value.x;
         a.g[i] = p.value.y;
@@ -233,21 +315,6 @@ Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width
         a.variance[i] = p.value.w;
         a.l[i] = n.value.x;
         a.by_noise[i] = n.value.y;
-    }
-#pragma omp parallel for schedule(dynamic, 16)
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const kernel::FilterTap t = kernel::filter_tap(guides.data(), width, height, x, y);
-            const std::size_t i = static_cast<std::size_t>(y) * width + x;
-            taps.nx[i] = t.normal.x;
-            taps.ny[i] = t.normal.y;
-            taps.nz[i] = t.normal.z;
-            taps.nw[i] = t.normal.w;
-            taps.depth[i] = t.params.x;
-            taps.by_depth[i] = t.params.y;
-            taps.share[i] = t.params.z;
-            taps.kept[i] = t.params.w;
-        }
     }
     for (int pass = 0; pass < passes; ++pass) {
 #pragma omp parallel for schedule(dynamic, 16)
@@ -262,7 +329,7 @@ Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width
     out.pixels.resize(pixels);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < pixels; ++i) {
-        out.pixels[i] = kernel::filter_output(a.pixel(i), guides[i]);
+        out.pixels[i] = kernel::filter_output_scaled(a.pixel(i), scale.get(i));
     }
     return out;
 }

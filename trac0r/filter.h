@@ -20,14 +20,20 @@ namespace trac0r {
 std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides);
 
 // The CPU filter's working buffers (some 80 bytes a pixel), kept between
-// the filter_image calls that are given it: a caller that filters every
-// frame (a window) then allocates, and the system zeroes, no memory a call.
+// the filter_image calls that are given it, and what it makes of the
+// guides, which stay while the view does: a caller that filters every
+// frame (a window) then allocates, and the system zeroes, no memory a
+// call, and reads the guides once a view.
 class FilterWorkspace {
   public:
     FilterWorkspace();
     ~FilterWorkspace();
     FilterWorkspace(const FilterWorkspace&) = delete;
     FilterWorkspace& operator=(const FilterWorkspace&) = delete;
+    // The guides of a width x height image, for the filter_image calls
+    // that take none. Throws std::invalid_argument for guides of another
+    // size.
+    void set_guides(const std::vector<kernel::FilterGuide>& guides, int width, int height);
     struct Buffers;
     Buffers& buffers() { return *buffers_; }
 
@@ -44,6 +50,12 @@ Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width
                    FilterWorkspace& workspace);
 Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height,
                    const std::vector<kernel::FilterGuide>& guides, int passes);
+
+// The same with the guides the workspace was last given (set_guides), the
+// same image as the forms above with them. Throws std::invalid_argument
+// for a workspace without guides or an accumulator of another size.
+Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int passes,
+                   FilterWorkspace& workspace);
 
 #ifdef TRAC0R_HAVE_OPENCL
 // filter_image on OpenCL device `device_index` (list_opencl_devices): the

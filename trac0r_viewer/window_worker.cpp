@@ -386,9 +386,9 @@ trac0r::Image RenderWorker::filtered_image() {
             guides_of(full_->camera_record());
             trac0r::add_lamp_edges(full_->packed(), full_->camera_record(), &guide_images_);
             guides_ = trac0r::filter_guides(guide_images_);
+            filter_workspace_.set_guides(guides_, full_->width(), full_->height());
         }
-        return trac0r::filter_image(full_->accumulator(), full_->width(), full_->height(), guides_,
-                                    T0_FILTER_PASSES, filter_workspace_);
+        return trac0r::filter_image(full_->accumulator(), T0_FILTER_PASSES, filter_workspace_);
     });
 }
 

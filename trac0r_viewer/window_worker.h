@@ -202,7 +202,7 @@ class RenderWorker {
     bool filter_ = false;
     std::vector<trac0r::kernel::FilterGuide> guides_;  // of full_'s view; empty: to be made
     Refreshed<trac0r::Image> filtered_{filter_interval, filter_cost_factor};
-    trac0r::FilterWorkspace filter_workspace_;  // its buffers, kept between refreshes
+    trac0r::FilterWorkspace filter_workspace_;  // its buffers and guides_, kept between refreshes
     // The guides of one view (render_surface_guides; add_lamp_edges when
     // the filter wants them), for the filter and temporal
     // reuse: made again only for another view, size or backend.
