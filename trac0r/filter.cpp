@@ -25,14 +25,28 @@ namespace {
 // pixel each, which the compiler loads for neighbouring pixels at once: the
 // guides as the passes read them (kernel::FilterTap), and a pass's image
 // and its noise (kernel::FilterPixel, kernel::FilterNoise).
+// `centre` is the centre tap's weight where the pixel's values are finite
+// (centre_weight): of the guides alone.
 struct TapPlanes {
     void resize(std::size_t n) {
-        for (std::vector<float>* v : {&nx, &ny, &nz, &nw, &depth, &by_depth, &share, &kept}) {
+        for (std::vector<float>* v :
+             {&nx, &ny, &nz, &nw, &depth, &by_depth, &share, &kept, &centre}) {
             v->resize(n);
         }
     }
-    std::vector<float> nx, ny, nz, nw, depth, by_depth, share, kept;
+    std::vector<float> nx, ny, nz, nw, depth, by_depth, share, kept, centre;
 };
+
+// A pixel's weight as its own centre tap (kernel::tap_weight with the tap
+// the pixel itself), where its values are finite. Then the tap's distance
+// is zero whatever they are: its depths and luminances are the same. So
+// it is of the guides alone, the same every pass.
+float centre_weight(const kernel::FilterTap& t) {
+    return kernel::tap_weight(t.normal.x, t.normal.y, t.normal.z, t.normal.w, t.params.x, 0.0f,
+                              1.0f, 1.0f, t.normal.x, t.normal.y, t.normal.z, t.normal.w,
+                              t.params.x, t.params.z, 0.0f, 1.0f, 0.0f,
+                              kernel::wavelet_weight(0, 0), kernel::tap_reach(0, 0));
+}
 
 // What the first pass's input and the filtered pixel take of the guides
 // (kernel::FilterScale), one plane per component.
@@ -51,14 +65,34 @@ struct ScalePlanes {
         lg[i] = s.lamp.y;
         lb[i] = s.lamp.z;
     }
-    kernel::FilterScale get(std::size_t i) const {
+    std::vector<float> dr, dg, db, dl, lr, lg, lb;
+};
+
+// ScalePlanes read through their pointers, taken before a loop (so that no
+// store in it may change them, and the compiler vectorizes it).
+struct ScaleRows {
+    explicit ScaleRows(const ScalePlanes& s)
+        : dr(s.dr.data()),
+          dg(s.dg.data()),
+          db(s.db.data()),
+          dl(s.dl.data()),
+          lr(s.lr.data()),
+          lg(s.lg.data()),
+          lb(s.lb.data()) {}
+    kernel::FilterScale at(std::size_t i) const {
         kernel::FilterScale s;
         s.divisor = glm::vec3(dr[i], dg[i], db[i]);
         s.luminance_divisor = dl[i];
         s.lamp = glm::vec3(lr[i], lg[i], lb[i]);
         return s;
     }
-    std::vector<float> dr, dg, db, dl, lr, lg, lb;
+    const float* dr;
+    const float* dg;
+    const float* db;
+    const float* dl;
+    const float* lr;
+    const float* lg;
+    const float* lb;
 };
 
 struct PixelPlanes {
@@ -68,11 +102,6 @@ struct PixelPlanes {
         }
     }
     std::vector<float> r, g, b, variance, l, by_noise;
-    kernel::FilterPixel pixel(std::size_t i) const {
-        kernel::FilterPixel p;
-        p.value = glm::vec4(r[i], g[i], b[i], variance[i]);
-        return p;
-    }
 };
 
 // Where a pixel's taps are: per row of taps (above, on, below) the offset
@@ -102,19 +131,23 @@ inline void atrous_at(const TapPlanes& t, const PixelPlanes& in, std::ptrdiff_t 
     const float cdepth = t.depth[i];
     const float cl = l[i];
     const float cby_noise = by_noise[i];
+    const float centre = t.centre[i];
     float sr = 0.0f, sg = 0.0f, sb = 0.0f, sv = 0.0f, total = 0.0f;
 #pragma GCC unroll 3
     for (int k = 0; k < 3; ++k) {
 #pragma GCC unroll 3
         for (int j = 0; j < 3; ++j) {
             const std::ptrdiff_t q = i + at.row[k] + at.column[j];
-            const float w =
-                at.row_inside[k] * at.column_inside[j] *
-                kernel::tap_weight(cnx, cny, cnz, cnw, cdepth, cl, cby_noise, by_depth, t.nx[q],
-                                   t.ny[q], t.nz[q], t.nw[q], t.depth[q], t.share[q], l[q],
-                                   by_noise[q], r[q] + g[q] + b[q] + variance[q],
-                                   kernel::wavelet_weight(j - 1, k - 1),
-                                   kernel::tap_reach(j - 1, k - 1));
+            const float p_sum = r[q] + g[q] + b[q] + variance[q];
+            // The centre's weight is of the guides alone (centre_weight).
+            float w = kernel::is_finite_f(p_sum) ? centre : 0.0f;
+            if (k != 1 || j != 1) {
+                w = at.row_inside[k] * at.column_inside[j] *
+                    kernel::tap_weight(cnx, cny, cnz, cnw, cdepth, cl, cby_noise, by_depth, t.nx[q],
+                                       t.ny[q], t.nz[q], t.nw[q], t.depth[q], t.share[q], l[q],
+                                       by_noise[q], p_sum, kernel::wavelet_weight(j - 1, k - 1),
+                                       kernel::tap_reach(j - 1, k - 1));
+            }
             const bool use = w > 0.0f;
             sr += use ? r[q] * w : 0.0f;
             sg += use ? g[q] * w : 0.0f;
@@ -143,6 +176,15 @@ inline void atrous_at(const TapPlanes& t, const PixelPlanes& in, std::ptrdiff_t 
 #define T0_ROW_CLONES __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define T0_ROW_CLONES
+#endif
+
+// Before a loop whose iterations are independent (no store in it changes
+// what another reads), which the compiler could not prove: GCC's ivdep,
+// Clang's assume_safety.
+#if defined(__clang__)
+#define T0_INDEPENDENT _Pragma("clang loop vectorize(assume_safety)")
+#else
+#define T0_INDEPENDENT _Pragma("GCC ivdep")
 #endif
 
 // Row y of pass `pass`: its inner pixels (all their taps in the image's
@@ -176,6 +218,72 @@ T0_ROW_CLONES void atrous_row(const TapPlanes& t, const PixelPlanes& in, int wid
             edge.column[j] = qx >= 0 && qx < width ? (j - 1) * step : 0;
         }
         atrous_at(t, in, start + x, edge, by_depth[start + x] / steps, out);
+    }
+}
+
+// The first pass's input for the `count` pixels from `start`
+// (kernel::filter_input_scaled and filter_noise). In chunks: the
+// accumulator's fields that it reads are first copied into arrays, so that
+// the arithmetic (ten divisions a pixel) runs in a loop the compiler
+// vectorizes (a 48-byte AccumPixel is no access group it can load as
+// vectors).
+T0_ROW_CLONES void input_row(const kernel::AccumPixel* accumulator, const ScalePlanes& scale,
+                             std::size_t start, int count, PixelPlanes* out) {
+    const ScaleRows sc(scale);
+    float* const r = out->r.data();
+    float* const g = out->g.data();
+    float* const b = out->b.data();
+    float* const variance = out->variance.data();
+    float* const l = out->l.data();
+    float* const by_noise = out->by_noise.data();
+    constexpr int chunk = 256;
+    float sum[3][chunk], compensation[3][chunk], squares[chunk], samples[chunk];
+    for (int x0 = 0; x0 < count; x0 += chunk) {
+        const int n = std::min(chunk, count - x0);
+        const kernel::AccumPixel* const px = accumulator + start + x0;
+        for (int k = 0; k < n; ++k) {
+            for (int c = 0; c < 3; ++c) {
+                sum[c][k] = px[k].sum[c];
+                compensation[c][k] = px[k].compensation[c];
+            }
+            squares[k] = px[k].moments.y;
+            samples[k] = px[k].moments.z;
+        }
+        const std::size_t first = start + static_cast<std::size_t>(x0);
+T0_INDEPENDENT
+        for (int k = 0; k < n; ++k) {
+            const std::size_t i = first + static_cast<std::size_t>(k);
+            kernel::AccumPixel a;
+            a.sum = glm::vec4(sum[0][k], sum[1][k], sum[2][k], 0.0f);
+            a.compensation =
+                glm::vec4(compensation[0][k], compensation[1][k], compensation[2][k], 0.0f);
+            a.moments = glm::vec4(0.0f, squares[k], samples[k], 0.0f);
+            const kernel::FilterPixel p = kernel::filter_input_scaled(a, sc.at(i));
+            const kernel::FilterNoise noise = kernel::filter_noise(p);
+            r[i] = p.value.x;
+            g[i] = p.value.y;
+            b[i] = p.value.z;
+            variance[i] = p.value.w;
+            l[i] = noise.value.x;
+            by_noise[i] = noise.value.y;
+        }
+    }
+}
+
+// The filtered pixels of the `count` from `start`
+// (kernel::filter_output_scaled).
+T0_ROW_CLONES void output_row(const PixelPlanes& in, const ScalePlanes& scale, std::size_t start,
+                              int count, glm::vec3* out) {
+    const ScaleRows sc(scale);
+    const float* const r = in.r.data();
+    const float* const g = in.g.data();
+    const float* const b = in.b.data();
+T0_INDEPENDENT
+    for (int x = 0; x < count; ++x) {
+        const std::size_t i = start + static_cast<std::size_t>(x);
+        kernel::FilterPixel p;
+        p.value = glm::vec4(r[i], g[i], b[i], 0.0f);
+        out[i] = kernel::filter_output_scaled(p, sc.at(i));
     }
 }
 
@@ -259,6 +367,7 @@ void FilterWorkspace::set_guides(const std::vector<kernel::FilterGuide>& guides,
             b.taps.by_depth[i] = t.params.y;
             b.taps.share[i] = t.params.z;
             b.taps.kept[i] = t.params.w;
+            b.taps.centre[i] = centre_weight(t);
             b.scale.set(i, kernel::filter_scale(guides[i]));
         }
     }
@@ -306,15 +415,8 @@ Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int passe
     a.resize(pixels);
     b.resize(pixels);
 #pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < pixels; ++i) {
-        const kernel::FilterPixel p = kernel::filter_input_scaled(accumulator[i], scale.get(i));
-        const kernel::FilterNoise n = kernel::filter_noise(p);
-        a.r[i] = p.value.x;
-        a.g[i] = p.value.y;
-        a.b[i] = p.value.z;
-        a.variance[i] = p.value.w;
-        a.l[i] = n.value.x;
-        a.by_noise[i] = n.value.y;
+    for (int y = 0; y < height; ++y) {
+        input_row(accumulator.data(), scale, static_cast<std::size_t>(y) * width, width, &a);
     }
     for (int pass = 0; pass < passes; ++pass) {
 #pragma omp parallel for schedule(dynamic, 16)
@@ -328,8 +430,8 @@ Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int passe
     out.height = height;
     out.pixels.resize(pixels);
 #pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < pixels; ++i) {
-        out.pixels[i] = kernel::filter_output_scaled(a.pixel(i), scale.get(i));
+    for (int y = 0; y < height; ++y) {
+        output_row(a, scale, static_cast<std::size_t>(y) * width, width, out.pixels.data());
     }
     return out;
 }
