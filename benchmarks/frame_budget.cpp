@@ -4,7 +4,8 @@
 //
 //   raw       floor(B / t_spp) samples a pixel, the accumulated mean;
 //   filtered  floor((B - t_filter) / t_spp), then the edge-preserving filter
-//             (render_guides, filter_guides, filter_image);
+//             (render_guides, filter_guides, filter_image), its buffers kept
+//             from frame to frame (a FilterWorkspace) as the window keeps them;
 //   temporal  while the camera moves, each frame floor((B - t_temporal) /
 //             t_spp) samples blended with the previous frame reprojected
 //             (render_surface_guides, temporal_blend), as trac0r_viewer's window
@@ -221,6 +222,7 @@ Costs measure_costs(const Scene& scene, const Options& o) {
     TemporalSettings settings;
     settings.max_history = static_cast<float>(o.max_history);
     TemporalFrame history;
+    FilterWorkspace workspace;
     std::vector<Seconds> spp;
     std::vector<Seconds> filter;
     std::vector<Seconds> temporal;
@@ -229,7 +231,7 @@ Costs measure_costs(const Scene& scene, const Options& o) {
         const Seconds b = timed([&] {
             const GuideImages guides = render_guides(r->packed(), r->camera_record());
             filter_image(r->accumulator(), r->width(), r->height(), filter_guides(guides),
-                         T0_FILTER_PASSES);
+                         T0_FILTER_PASSES, workspace);
         });
         const Seconds c = timed([&] {
             const GuideImages guides = render_surface_guides(r->packed(), r->camera_record());
