@@ -19,7 +19,7 @@ namespace trac0r {
 // (render_surface_guides without add_lamp_edges).
 std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides);
 
-// The CPU filter's working buffers (some 80 bytes a pixel), kept between
+// The CPU filter's working buffers (some 110 bytes a pixel), kept between
 // the filter_image calls that are given it, and what it makes of the
 // guides, which stay while the view does: a caller that filters every
 // frame (a window) then allocates, and the system zeroes, no memory a
