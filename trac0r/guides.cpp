@@ -1,9 +1,12 @@
 #include "trac0r/guides.h"
 
+#include "trac0r/kernel/bundle.h"
 #include "trac0r/kernel/guides.h"
+#include "trac0r/kernel/tile_grid.h"
 #include "trac0r/packed_scene.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -30,20 +33,52 @@ GuideImages render_surface_guides(const PackedScene& packed, const kernel::Camer
     const kernel::CameraRecord scaled = scaled_camera(camera, packed.scale);
     const int height = g.height;
     const int width = g.width;
+    // By tiles, as the frame's camera rays: a tile's centre rays share
+    // the camera's position, so with the BVH they are bounded together and
+    // each finds its first hit among the few leaves the bundle meets
+    // (kernel/bundle.h), the same hits as through the tree.
+    const bool bundled =
+        T0_HAS_FEATURE(&view, T0_FEATURE_BVH) && !kernel::camera_is_orthographic(scaled);
+    const std::uint32_t w = static_cast<std::uint32_t>(width);
+    const std::uint32_t h = static_cast<std::uint32_t>(height);
+    const int tiles = static_cast<int>(kernel::tile_count(w, h));
 #pragma omp parallel for schedule(dynamic, 4)
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            glm::vec3 emitted;
-            const kernel::GuidePixel p =
-                kernel::guide_ray(&view, scaled, static_cast<std::uint32_t>(x),
-                                  static_cast<std::uint32_t>(y), 0.5f, 0.5f, &emitted);
-            const std::size_t i = static_cast<std::size_t>(y) * width + x;
-            g.emission[i] = glm::vec4(emitted, p.normal.w > 0.0f ? 1.0f : 0.0f);
-            g.albedo[i] = glm::vec3(p.albedo);
-            g.normal[i] = glm::vec3(p.normal);
-            g.emitter[i] = p.normal.w > 0.0f ? 1 : 0;
-            g.depth[i] = p.albedo.w >= T0_NO_HIT ? std::numeric_limits<float>::infinity()
-                                                 : p.albedo.w / packed.scale;
+    for (int tile = 0; tile < tiles; ++tile) {
+        const kernel::TileRect r = kernel::tile_rect(static_cast<std::uint32_t>(tile), w, h);
+        const int x0 = static_cast<int>(r.x0);
+        const int y0 = static_cast<int>(r.y0);
+        const int x1 = static_cast<int>(r.x1);
+        const int y1 = static_cast<int>(r.y1);
+        kernel::Ray rays[T0_TILE * T0_TILE];
+        kernel::RayBundle bundle;
+        kernel::bundle_start(&bundle, glm::vec3(scaled.position));
+        int n = 0;
+        for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1; ++x, ++n) {
+                rays[n] = kernel::camera_ray(scaled, static_cast<float>(x), static_cast<float>(y),
+                                             0.5f, 0.5f);
+                if (bundled && !rays[n].any_parallel) {
+                    kernel::bundle_add(&bundle, rays[n].inv_direction);
+                }
+            }
+        }
+        kernel::LeafCandidate leaves[T0_BUNDLE_LEAVES];
+        const int count = bundled ? kernel::bundle_finish_leaves(&view, &bundle, leaves) : -1;
+        n = 0;
+        for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1; ++x, ++n) {
+                glm::vec3 emitted;
+                const kernel::GuidePixel p = kernel::guide_ray_from(
+                    &view, scaled, rays[n], kernel::camera_hit(&view, &rays[n], leaves, count),
+                    &emitted);
+                const std::size_t i = static_cast<std::size_t>(y) * width + x;
+                g.emission[i] = glm::vec4(emitted, p.normal.w > 0.0f ? 1.0f : 0.0f);
+                g.albedo[i] = glm::vec3(p.albedo);
+                g.normal[i] = glm::vec3(p.normal);
+                g.emitter[i] = p.normal.w > 0.0f ? 1 : 0;
+                g.depth[i] = p.albedo.w >= T0_NO_HIT ? std::numeric_limits<float>::infinity()
+                                                     : p.albedo.w / packed.scale;
+            }
         }
     }
     return g;

@@ -23,19 +23,18 @@ typedef struct T0_ALIGN16 GuidePixel {
                     // w: 1 where the surface is a pure emitter
 } GuidePixel;
 
-// The guides of the ray through (x + jx, y + jy); *emitted: the radiance it
-// meets where it ends on a pure emitter (times the tint of the glass on the
-// way), else zero.
-T0_INLINE GuidePixel guide_ray(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y,
-                               float jx, float jy, float3* emitted) {
+// The guides of camera ray `ray`, whose nearest hit is `first`; *emitted:
+// the radiance it meets where it ends on a pure emitter (times the tint of
+// the glass on the way), else zero.
+T0_INLINE GuidePixel guide_ray_from(const SceneView* scene, CameraRecord camera, Ray ray, Hit first,
+                                    float3* emitted) {
     GuidePixel g;
     g.albedo = make_float4(0.0f, 0.0f, 0.0f, T0_NO_HIT);
     g.normal = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
     *emitted = float3_splat(0.0f);
-    Ray ray = camera_ray(camera, (float)x, (float)y, jx, jy);
     float3 tint = float3_splat(1.0f);
     for (int bounce = 0; bounce <= T0_GUIDE_MAX_BOUNCES; ++bounce) {
-        const Hit hit = intersect_scene(scene, &ray);
+        const Hit hit = bounce == 0 ? first : intersect_scene(scene, &ray);
         if (hit.triangle < 0) {
             return g;
         }
@@ -88,6 +87,13 @@ T0_INLINE GuidePixel guide_ray(const SceneView* scene, CameraRecord camera, t0_u
             make_ray(offset_ray_origin(position, side, hit_magnitude(tri, position)), s.direction);
     }
     return g;
+}
+
+// The guides of the ray through (x + jx, y + jy) (guide_ray_from).
+T0_INLINE GuidePixel guide_ray(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y,
+                               float jx, float jy, float3* emitted) {
+    const Ray ray = camera_ray(camera, (float)x, (float)y, jx, jy);
+    return guide_ray_from(scene, camera, ray, intersect_scene(scene, &ray), emitted);
 }
 
 // The guides of the ray through pixel (x, y)'s centre.
