@@ -172,6 +172,19 @@ TEST_CASE("a camera step keeps the wall seen before and drops what the box hid",
     CHECK(kept > w * h / 2);
     CHECK(stats.reused + stats.dropped == w * h);
     CHECK(stats.background == 0);
+    // The frame keeps each pixel's depth slope for the next frame's taps;
+    // beside the box's edges they are not zero.
+    REQUIRE(next.depth_slopes.size() == static_cast<std::size_t>(w) * h);
+    int sloped = 0;
+    for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+            const float slope = next.depth_slopes[static_cast<std::size_t>(y) * w + x];
+            CAPTURE(x, y);
+            REQUIRE(slope == kernel::temporal_depth_slope(next.guides.data(), w, h, x, y));
+            sloped += slope > 0.0f ? 1 : 0;
+        }
+    }
+    CHECK(sloped > 0);
 }
 
 TEST_CASE("an orthographic view keeps its history across a sideways step", "[temporal]") {
@@ -278,4 +291,10 @@ TEST_CASE("temporal_blend refuses an image of another size", "[temporal]") {
     CHECK_THROWS_AS(
         temporal_blend(TemporalFrame(), flat_image(10, 15, red), 1.0f, v.camera, v.guides),
         std::invalid_argument);
+    // So does a history whose depth slopes are missing.
+    TemporalFrame history =
+        temporal_blend(TemporalFrame(), flat_image(20, 15, red), 1.0f, v.camera, v.guides);
+    history.depth_slopes.clear();
+    CHECK_THROWS_WITH(temporal_blend(history, flat_image(20, 15, red), 1.0f, v.camera, v.guides),
+                      Catch::Contains("depth slopes"));
 }

@@ -29,19 +29,31 @@ TemporalFrame temporal_blend(const TemporalFrame& history, const Image& current,
                                     std::to_string(width) + " x " + std::to_string(height) +
                                     ", the camera's size");
     }
+    const std::size_t history_count =
+        static_cast<std::size_t>(history.width()) * static_cast<std::size_t>(history.height());
     if (!history.empty() &&
-        history.pixels.size() != static_cast<std::size_t>(history.width()) *
-                                     static_cast<std::size_t>(history.height())) {
-        throw std::invalid_argument("temporal_blend: the history's pixels and camera disagree");
+        (history.pixels.size() != history_count || history.guides.size() != history_count ||
+         history.depth_slopes.size() != history_count)) {
+        throw std::invalid_argument(
+            "temporal_blend: the history's pixels, guides, depth slopes and camera disagree");
     }
     TemporalFrame out;
     out.camera = camera;
     out.pixels.resize(count);
     out.guides.resize(count);
+    out.depth_slopes.resize(count);
+#pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < count; ++i) {
         const float depth = guides.depth[i];
         out.guides[i].normal_depth =
             glm::vec4(guides.normal[i], std::isfinite(depth) ? depth : T0_NO_HIT);
+    }
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            out.depth_slopes[static_cast<std::size_t>(y) * width + x] =
+                kernel::temporal_depth_slope(out.guides.data(), width, height, x, y);
+        }
     }
     // Taken once: every pixel's point is then relative to the previous
     // camera without subtracting two large positions of its own.
@@ -54,11 +66,12 @@ TemporalFrame temporal_blend(const TemporalFrame& history, const Image& current,
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * width + x;
-            const glm::vec4 h = history.empty()
-                                    ? glm::vec4(0.0f)
-                                    : kernel::reproject_history(
-                                          camera, history.camera, offset, history.pixels.data(),
-                                          history.guides.data(), out.guides[i], x, y);
+            const glm::vec4 h =
+                history.empty()
+                    ? glm::vec4(0.0f)
+                    : kernel::reproject_history(camera, history.camera, offset,
+                                                history.pixels.data(), history.guides.data(),
+                                                history.depth_slopes.data(), out.guides[i], x, y);
             reused += h.w > 0.0f ? 1 : 0;
             background += out.guides[i].normal_depth.w < T0_NO_HIT ? 0 : 1;
             out.pixels[i] =

@@ -17,12 +17,15 @@ namespace trac0r {
 
 // A displayed frame and what its reprojection into another view needs:
 // its camera (as the Renderer holds it, in the scene's coordinates) and
-// per pixel its colour, the samples behind it, and its first hit's depth
-// and normal (from render_guides).
+// per pixel its colour, the samples behind it, its first hit's depth and
+// normal (from render_guides), and how much that depth changes to a
+// neighbour (kernel::temporal_depth_slope, made once here rather than for
+// each of the four taps that read a pixel).
 struct TemporalFrame {
     kernel::CameraRecord camera{};
     std::vector<kernel::TemporalPixel> pixels;  // row-major, row 0 at the top
     std::vector<kernel::TemporalGuide> guides;
+    std::vector<float> depth_slopes;
     int width() const { return static_cast<int>(camera.size.x); }
     int height() const { return static_cast<int>(camera.size.y); }
     bool empty() const { return pixels.empty(); }

@@ -59,18 +59,19 @@ T0_INLINE float temporal_depth_slope(T0_GLOBAL const TemporalGuide* guides, int 
     return fmax(axis_slope(z, left, right), axis_slope(z, up, down));
 }
 
-// Whether history pixel (x, y) saw the surface that pixel `here` sees at
-// depth `depth` along the previous camera's axis: a hit there too, within
-// the tolerance and within what the depth changes over the at most two
-// pixels between the tap and the point, with a normal that agrees.
+// Whether history pixel q saw the surface that pixel `here` sees at depth
+// `depth` along the previous camera's axis: a hit there too, within the
+// tolerance and within what the depth changes over the at most two pixels
+// between the tap and the point (`slopes`: each history pixel's
+// temporal_depth_slope, made once with its frame), with a normal that
+// agrees.
 T0_INLINE int temporal_tap_matches(TemporalGuide here, T0_GLOBAL const TemporalGuide* guides,
-                                   int width, int height, int x, int y, float depth) {
-    const TemporalGuide tap = guides[y * width + x];
+                                   T0_GLOBAL const float* slopes, int q, float depth) {
+    const TemporalGuide tap = guides[q];
     if (!(tap.normal_depth.w < T0_NO_HIT)) {
         return 0;
     }
-    const float tolerance = T0_TEMPORAL_DEPTH_TOLERANCE * depth +
-                            2.0f * temporal_depth_slope(guides, width, height, x, y);
+    const float tolerance = T0_TEMPORAL_DEPTH_TOLERANCE * depth + 2.0f * slopes[q];
     if (!(fabs(tap.normal_depth.w - depth) <= tolerance)) {
         return 0;
     }
@@ -82,16 +83,17 @@ T0_INLINE int temporal_tap_matches(TemporalGuide here, T0_GLOBAL const TemporalG
 }
 
 // The history at pixel (x, y) of the view `camera` (whose guide is `here`):
-// the previous frame (`previous`, its pixels and guides) bilinearly at the
-// place where this pixel's first hit was, over the taps that saw the same
-// surface. `offset` is camera.position - previous.position (taken by the
+// the previous frame (`previous`, its pixels, guides and depth slopes)
+// bilinearly at the place where this pixel's first hit was, over the taps
+// that saw the same surface. `offset` is camera.position - previous.position (taken by the
 // caller once: every point is then relative to the previous camera). w is
 // 0 where there is no history: a disocclusion, a point outside or behind
 // the previous view.
 T0_INLINE float4 reproject_history(CameraRecord camera, CameraRecord previous, float3 offset,
                                    T0_GLOBAL const TemporalPixel* history,
                                    T0_GLOBAL const TemporalGuide* history_guides,
-                                   TemporalGuide here, int x, int y) {
+                                   T0_GLOBAL const float* history_slopes, TemporalGuide here, int x,
+                                   int y) {
     const float4 none = make_float4(0.0f, 0.0f, 0.0f, 0.0f);
     // A ray that met nothing sees the black background: nothing to carry
     // over (its only light is a sample that caught a silhouette's edge, and
@@ -144,8 +146,7 @@ T0_INLINE float4 reproject_history(CameraRecord camera, CameraRecord previous, f
             // A tap that is not finite is left out: it would spread to its
             // neighbours every frame.
             if (!(h.value.w > 0.0f) || !is_finite_f(h.value.x + h.value.y + h.value.z) ||
-                !temporal_tap_matches(here, history_guides, (int)previous.size.x,
-                                      (int)previous.size.y, tx, ty, depth)) {
+                !temporal_tap_matches(here, history_guides, history_slopes, q, depth)) {
                 continue;
             }
             const float w = (i ? fx : 1.0f - fx) * (j ? fy : 1.0f - fy);
