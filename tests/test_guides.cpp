@@ -11,9 +11,12 @@
 
 #include <glm/glm.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
+#include <vector>
 
 using namespace trac0r;
 
@@ -89,6 +92,27 @@ Scene planes_and_lamp_material(const glm::vec3& lamp_colour) {
     lamp.color = lamp_colour;
     lamp.emittance = 8.0f;
     scene.materials.push_back(lamp);
+    return scene;
+}
+
+// A lamp turned 20 degrees about the view axis, one of its corners in the
+// middle of the view: slanted edges, and a corner; 48 x 36.
+Scene slanted_lamp() {
+    Scene scene = planes_and_lamp_material(glm::vec3(1.0f));
+    // The plane's quad is local xz (normal +y): -pi/2 about x faces it to
+    // -z, and -20 degrees about y then turns it 20 degrees about the view
+    // axis (rotations apply z, y, x, in the shape's frame). Its centre is
+    // half its diagonal off the axis, so a corner is near the view's
+    // centre; 0.6 m across, it lies inside the view (1.9 tan 30 = 1.1 m
+    // up, 1.46 m across from the axis).
+    const float turn = glm::radians(20.0f);
+    const float side = 0.6f;
+    scene.shapes.push_back(
+        make_plane(glm::vec3(0.1f + 0.5f * side * (std::cos(turn) - std::sin(turn)),
+                             0.05f + 0.5f * side * (std::sin(turn) + std::cos(turn)), 1.9f),
+                   glm::vec3(-half_pi, -turn, 0.0f), glm::vec2(side), 2));
+    scene.render.width = 48;
+    scene.render.height = 36;
     return scene;
 }
 
@@ -220,15 +244,21 @@ TEST_CASE("surface guides are the centre rays' alone; the lamp-edge split comes 
                       Catch::Contains("add_lamp_edges") && Catch::Contains("size"));
 }
 
-TEST_CASE("surface guides made by tiles are each centre ray's, bit for bit", "[guides][bundle]") {
+TEST_CASE("guides made by tiles are each ray's traced alone, bit for bit", "[guides][bundle]") {
     // render_surface_guides finds a tile's first hits among the BVH leaves
-    // its centre rays share (kernel/bundle.h); each pixel's guides must be
-    // those of its centre ray traced alone (guide_ray, through the tree).
+    // its centre rays share (kernel/bundle.h), and add_lamp_edges a pixel's
+    // among those its rays share; each pixel's guides must be those of its
+    // rays traced alone (guide_ray, through the tree).
     // Odd sizes: tiles cut off at the right and bottom; the glass and
     // mirror of cornell.json, the mesh of mesh_demo.json.
+    std::vector<std::pair<const char*, Scene>> scenes;
     for (const char* name : {"cornell.json", "cornell_diffuse.json", "mesh_demo.json"}) {
-        CAPTURE(name);
-        const Scene scene = load_test_scene(name, 1, 1);
+        scenes.push_back({name, load_test_scene(name, 1, 1)});
+    }
+    scenes.push_back({"a slanted lamp", slanted_lamp()});
+    for (const auto& named : scenes) {
+        CAPTURE(named.first);
+        const Scene& scene = named.second;
         PackOptions options;
         options.accel = Accel::bvh;
         const PackedScene packed = pack_scene(scene, options);
@@ -257,27 +287,45 @@ TEST_CASE("surface guides made by tiles are each centre ray's, bit for bit", "[g
         // A third of the pixels or more show a surface (cornell_diffuse.json's
         // box fills 38 % of the view), so the comparison means something.
         CHECK(surfaces > 157 * 121 / 3);
+        // The lamp-edge split traces its rays over a pixel likewise: each
+        // pixel it traced holds pixel_emission's value, bit for bit.
+        GuideImages split = g;
+        add_lamp_edges(packed, camera, &split);
+        REQUIRE(split.lamp_edge_traced > 0);
+        // The pixels it tested: those whose centre rays and their eight
+        // neighbours' do not all agree on lamp or not.
+        int candidates = 0;
+        for (int y = 0; y < 121; ++y) {
+            for (int x = 0; x < 157; ++x) {
+                int lamps = 0;
+                int others = 0;
+                for (int qy = std::max(y - 1, 0); qy <= std::min(y + 1, 120); ++qy) {
+                    for (int qx = std::max(x - 1, 0); qx <= std::min(x + 1, 156); ++qx) {
+                        (g.emitter[static_cast<std::size_t>(qy) * 157 + qx] ? lamps : others)++;
+                    }
+                }
+                candidates += lamps > 0 && others > 0 ? 1 : 0;
+            }
+        }
+        CHECK(split.lamp_edge_pixels == candidates);
+        int changed = 0;
+        for (std::uint32_t y = 0; y < 121; ++y) {
+            for (std::uint32_t x = 0; x < 157; ++x) {
+                const std::size_t i = y * 157u + x;
+                if (split.emission[i] != g.emission[i]) {
+                    CAPTURE(x, y);
+                    REQUIRE(split.emission[i] ==
+                            kernel::pixel_emission(&view, scaled, x, y, T0_GUIDE_EMISSION_RAYS));
+                    ++changed;
+                }
+            }
+        }
+        CHECK(changed > split.lamp_edge_traced / 2);
     }
 }
 
 TEST_CASE("the lamp-edge split skips only pixels that no edge crosses", "[guides]") {
-    // A lamp turned 20 degrees about the view axis, one of its corners in
-    // the middle of the view: slanted edges, and a corner.
-    Scene scene = planes_and_lamp_material(glm::vec3(1.0f));
-    // The plane's quad is local xz (normal +y): -pi/2 about x faces it to
-    // -z, and -20 degrees about y then turns it 20 degrees about the view
-    // axis (rotations apply z, y, x, in the shape's frame). Its centre is
-    // half its diagonal off the axis, so a corner is near the view's
-    // centre; 0.6 m across, it lies inside the view (1.9 tan 30 = 1.1 m
-    // up, 1.46 m across from the axis).
-    const float turn = glm::radians(20.0f);
-    const float side = 0.6f;
-    scene.shapes.push_back(
-        make_plane(glm::vec3(0.1f + 0.5f * side * (std::cos(turn) - std::sin(turn)),
-                             0.05f + 0.5f * side * (std::sin(turn) + std::cos(turn)), 1.9f),
-                   glm::vec3(-half_pi, -turn, 0.0f), glm::vec2(side), 2));
-    scene.render.width = 48;
-    scene.render.height = 36;
+    const Scene scene = slanted_lamp();
     const PackedScene packed = pack_scene(scene);
     const kernel::CameraRecord camera = make_camera_record(scene.camera, 48, 36);
     const GuideImages g = render_guides(packed, camera);

@@ -13,6 +13,66 @@
 
 namespace trac0r {
 
+namespace {
+
+// The first hits of camera rays rays[0, n), which all start at the
+// camera's position: with `bundled` (the BVH, a pinhole or thin-lens
+// camera's centre), bounded together and found among the few leaves they
+// share (kernel/bundle.h), the same hits as through the tree; else each
+// through the scene.
+void first_hits(const kernel::SceneView& view, bool bundled, const glm::vec3& origin,
+                const kernel::Ray* rays, int n, kernel::Hit* hits) {
+    int count = -1;
+    kernel::LeafCandidate leaves[T0_BUNDLE_LEAVES];
+    if (bundled) {
+        kernel::RayBundle bundle;
+        kernel::bundle_start(&bundle, origin);
+        for (int k = 0; k < n; ++k) {
+            if (!rays[k].any_parallel) {
+                kernel::bundle_add(&bundle, rays[k].inv_direction);
+            }
+        }
+        count = kernel::bundle_finish_leaves(&view, &bundle, leaves);
+    }
+    for (int k = 0; k < n; ++k) {
+        hits[k] = kernel::camera_hit(&view, &rays[k], leaves, count);
+    }
+}
+
+// Whether a view's camera rays may be bundled (first_hits).
+bool bundles_camera_rays(const kernel::SceneView& view, const kernel::CameraRecord& camera) {
+    return T0_HAS_FEATURE(&view, T0_FEATURE_BVH) && !kernel::camera_is_orthographic(camera);
+}
+
+// Rays first to last - 1 of pixel (x, y)'s r2_point sequence, as
+// kernel::pixel_emission_rays traces them, their first hits found
+// together (first_hits): adds to *sum the radiance of the pure emitters
+// they meet first and to *hits how many meet one.
+void pixel_emission_rays(const kernel::SceneView& view, const kernel::CameraRecord& camera,
+                         bool bundled, std::uint32_t x, std::uint32_t y, int first, int last,
+                         glm::vec3* sum, int* hits) {
+    kernel::Ray rays[T0_GUIDE_EMISSION_RAYS] = {};
+    kernel::Hit found[T0_GUIDE_EMISSION_RAYS] = {};
+    const int n = last - first;
+    for (int k = 0; k < n; ++k) {
+        const glm::vec2 j = kernel::r2_point(first + k);
+        rays[k] =
+            kernel::camera_ray(camera, static_cast<float>(x), static_cast<float>(y), j.x, j.y);
+    }
+    first_hits(view, bundled, glm::vec3(camera.position), rays, n, found);
+    for (int k = 0; k < n; ++k) {
+        glm::vec3 emitted;
+        const kernel::GuidePixel g =
+            kernel::guide_ray_from(&view, camera, rays[k], found[k], &emitted);
+        if (g.normal.w > 0.0f) {
+            *sum += emitted;
+            ++*hits;
+        }
+    }
+}
+
+}  // namespace
+
 GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord& camera) {
     GuideImages g = render_surface_guides(packed, camera);
     add_lamp_edges(packed, camera, &g);
@@ -33,44 +93,31 @@ GuideImages render_surface_guides(const PackedScene& packed, const kernel::Camer
     const kernel::CameraRecord scaled = scaled_camera(camera, packed.scale);
     const int height = g.height;
     const int width = g.width;
-    // By tiles, as the frame's camera rays: a tile's centre rays share
-    // the camera's position, so with the BVH they are bounded together and
-    // each finds its first hit among the few leaves the bundle meets
-    // (kernel/bundle.h), the same hits as through the tree.
-    const bool bundled =
-        T0_HAS_FEATURE(&view, T0_FEATURE_BVH) && !kernel::camera_is_orthographic(scaled);
+    // By tiles, as the frame's camera rays: a tile's centre rays find
+    // their first hits together (first_hits).
+    const bool bundled = bundles_camera_rays(view, scaled);
     const std::uint32_t w = static_cast<std::uint32_t>(width);
     const std::uint32_t h = static_cast<std::uint32_t>(height);
     const int tiles = static_cast<int>(kernel::tile_count(w, h));
 #pragma omp parallel for schedule(dynamic, 4)
     for (int tile = 0; tile < tiles; ++tile) {
         const kernel::TileRect r = kernel::tile_rect(static_cast<std::uint32_t>(tile), w, h);
-        const int x0 = static_cast<int>(r.x0);
-        const int y0 = static_cast<int>(r.y0);
-        const int x1 = static_cast<int>(r.x1);
-        const int y1 = static_cast<int>(r.y1);
         kernel::Ray rays[T0_TILE * T0_TILE];
-        kernel::RayBundle bundle;
-        kernel::bundle_start(&bundle, glm::vec3(scaled.position));
+        kernel::Hit found[T0_TILE * T0_TILE];
         int n = 0;
-        for (int y = y0; y < y1; ++y) {
-            for (int x = x0; x < x1; ++x, ++n) {
+        for (std::uint32_t y = r.y0; y < r.y1; ++y) {
+            for (std::uint32_t x = r.x0; x < r.x1; ++x, ++n) {
                 rays[n] = kernel::camera_ray(scaled, static_cast<float>(x), static_cast<float>(y),
                                              0.5f, 0.5f);
-                if (bundled && !rays[n].any_parallel) {
-                    kernel::bundle_add(&bundle, rays[n].inv_direction);
-                }
             }
         }
-        kernel::LeafCandidate leaves[T0_BUNDLE_LEAVES];
-        const int count = bundled ? kernel::bundle_finish_leaves(&view, &bundle, leaves) : -1;
+        first_hits(view, bundled, glm::vec3(scaled.position), rays, n, found);
         n = 0;
-        for (int y = y0; y < y1; ++y) {
-            for (int x = x0; x < x1; ++x, ++n) {
+        for (std::uint32_t y = r.y0; y < r.y1; ++y) {
+            for (std::uint32_t x = r.x0; x < r.x1; ++x, ++n) {
                 glm::vec3 emitted;
-                const kernel::GuidePixel p = kernel::guide_ray_from(
-                    &view, scaled, rays[n], kernel::camera_hit(&view, &rays[n], leaves, count),
-                    &emitted);
+                const kernel::GuidePixel p =
+                    kernel::guide_ray_from(&view, scaled, rays[n], found[n], &emitted);
                 const std::size_t i = static_cast<std::size_t>(y) * width + x;
                 g.emission[i] = glm::vec4(emitted, p.normal.w > 0.0f ? 1.0f : 0.0f);
                 g.albedo[i] = glm::vec3(p.albedo);
@@ -98,6 +145,7 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
     const std::size_t pixels = static_cast<std::size_t>(width) * height;
     const kernel::SceneView view = packed.view();
     const kernel::CameraRecord scaled = scaled_camera(camera, packed.scale);
+    const bool bundled = bundles_camera_rays(view, scaled);
     // Along a lamp's edge, the share of each pixel that sees it: where the
     // centre rays of the pixel and its eight neighbours disagree (emitter
     // or not), a lamp's edge may run through the pixel.
@@ -162,15 +210,15 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
                 corner_emitter[c + corner_columns] == centre &&
                 corner_emitter[c + corner_columns + 1] == centre) {
                 // The probes: the first rays of the full count, kept for it.
-                kernel::pixel_emission_rays(&view, scaled, ux, uy, 0, T0_GUIDE_PROBE_RAYS, &sum,
-                                            &hits);
+                pixel_emission_rays(view, scaled, bundled, ux, uy, 0, T0_GUIDE_PROBE_RAYS, &sum,
+                                    &hits);
                 traced = T0_GUIDE_PROBE_RAYS;
                 if (hits == (centre ? T0_GUIDE_PROBE_RAYS : 0)) {
                     continue;  // no edge crosses it: its centre's value stands
                 }
             }
-            kernel::pixel_emission_rays(&view, scaled, ux, uy, traced, T0_GUIDE_EMISSION_RAYS, &sum,
-                                        &hits);
+            pixel_emission_rays(view, scaled, bundled, ux, uy, traced, T0_GUIDE_EMISSION_RAYS, &sum,
+                                &hits);
             g.emission[i] = kernel::pixel_emission_of(sum, hits, T0_GUIDE_EMISSION_RAYS);
             ++split;
         }
