@@ -150,25 +150,50 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
     // centre rays of the pixel and its eight neighbours disagree (emitter
     // or not), a lamp's edge may run through the pixel.
     std::vector<unsigned char> edge(pixels, 0);
+    int candidates = 0;
+#pragma omp parallel reduction(+ : candidates)
+    {
+        // Per row: the emitters in each column of the rows around it, then
+        // over the columns around each pixel.
+        std::vector<unsigned char> column(static_cast<std::size_t>(width));
+#pragma omp for schedule(static)
+        for (int y = 0; y < height; ++y) {
+            const int y0 = std::max(y - 1, 0);
+            const int y1 = std::min(y + 1, height - 1);
+            std::fill(column.begin(), column.end(), static_cast<unsigned char>(0));
+            for (int qy = y0; qy <= y1; ++qy) {
+                const unsigned char* row = &g.emitter[static_cast<std::size_t>(qy) * width];
+                for (int x = 0; x < width; ++x) {
+                    column[x] = static_cast<unsigned char>(column[x] + row[x]);
+                }
+            }
+            const int rows = y1 - y0 + 1;
+            for (int x = 0; x < width; ++x) {
+                const int x0 = std::max(x - 1, 0);
+                const int x1 = std::min(x + 1, width - 1);
+                const int emitters =
+                    column[x0] + (x1 > x0 ? column[x0 + 1] : 0) + (x1 > x0 + 1 ? column[x1] : 0);
+                if (emitters > 0 && emitters < rows * (x1 - x0 + 1)) {
+                    edge[static_cast<std::size_t>(y) * width + x] = 1;
+                    ++candidates;
+                }
+            }
+        }
+    }
+    // The corners of those pixels: corner (x, y) is the top left one of
+    // pixel (x, y).
     const std::size_t corner_columns = static_cast<std::size_t>(width) + 1;
     std::vector<unsigned char> corner_needed(corner_columns * (height + 1), 0);
-    int candidates = 0;
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            int emitters = 0;
-            int others = 0;
-            for (int qy = std::max(y - 1, 0); qy <= std::min(y + 1, height - 1); ++qy) {
-                for (int qx = std::max(x - 1, 0); qx <= std::min(x + 1, width - 1); ++qx) {
-                    (g.emitter[static_cast<std::size_t>(qy) * width + qx] ? emitters : others)++;
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y <= height; ++y) {
+        for (int x = 0; x <= width; ++x) {
+            unsigned char needed = 0;
+            for (int py = std::max(y - 1, 0); py <= std::min(y, height - 1); ++py) {
+                for (int px = std::max(x - 1, 0); px <= std::min(x, width - 1); ++px) {
+                    needed |= edge[static_cast<std::size_t>(py) * width + px];
                 }
             }
-            if (emitters > 0 && others > 0) {
-                edge[static_cast<std::size_t>(y) * width + x] = 1;
-                ++candidates;
-                for (int c = 0; c < 4; ++c) {
-                    corner_needed[(y + c / 2) * corner_columns + x + c % 2] = 1;
-                }
-            }
+            corner_needed[y * corner_columns + x] = needed;
         }
     }
     // Most of those pixels it does not cross: a straight edge that crosses
