@@ -136,6 +136,25 @@ Image scalar_filter(const std::vector<kernel::AccumPixel>& accum, int w, int h,
     return out;
 }
 
+// Requires `fast` (the CPU's filter_image of accum with guides, 83 x 47,
+// `passes` passes) to be scalar_filter's image bit for bit (NaNs too:
+// summed in the same order, without contraction); returns how many of its
+// pixels differ from `raw`.
+int pixels_the_same_as_the_kernels(const std::vector<kernel::AccumPixel>& accum,
+                                   const std::vector<kernel::FilterGuide>& guides,
+                                   const Image& fast, const Image& raw,
+                                   int passes = T0_FILTER_PASSES) {
+    const Image slow = scalar_filter(accum, 83, 47, guides, passes);
+    REQUIRE(fast.pixels.size() == slow.pixels.size());
+    int differ = 0;
+    for (std::size_t i = 0; i < fast.pixels.size(); ++i) {
+        CAPTURE(i, fast.pixels[i].x, slow.pixels[i].x);
+        REQUIRE(std::memcmp(&fast.pixels[i], &slow.pixels[i], sizeof(glm::vec3)) == 0);
+        differ += fast.pixels[i] != raw.pixels[i] ? 1 : 0;
+    }
+    return differ;
+}
+
 }  // namespace
 
 TEST_CASE("the filter smooths noise and keeps a shadow's edge", "[filter]") {
@@ -346,24 +365,40 @@ TEST_CASE("the CPU's vectorized passes equal the kernel's per-pixel filter", "[f
     accum[bad[0]].sum.x = std::nanf("");
     accum[bad[1]].sum = glm::vec4(std::numeric_limits<float>::infinity());
     const Image fast = filter_image(accum, 83, 47, guides, T0_FILTER_PASSES);
-    const Image slow = scalar_filter(accum, 83, 47, guides, T0_FILTER_PASSES);
-    const Image raw = r.image();
-    REQUIRE(fast.pixels.size() == slow.pixels.size());
-    int differ = 0;
-    for (std::size_t i = 0; i < fast.pixels.size(); ++i) {
-        CAPTURE(i, fast.pixels[i].x, slow.pixels[i].x);
-        // Summed in the same order, without contraction: bit for bit
-        // (NaNs too).
-        REQUIRE(std::memcmp(&fast.pixels[i], &slow.pixels[i], sizeof(glm::vec3)) == 0);
-        differ += fast.pixels[i] != raw.pixels[i] ? 1 : 0;
-    }
     // The filter did something, so the comparison means something.
-    CHECK(differ > static_cast<int>(fast.pixels.size()) / 2);
+    CHECK(pixels_the_same_as_the_kernels(accum, guides, fast, r.image()) > 83 * 47 / 2);
     // The bad pixels spoil no neighbour.
     for (const std::size_t i : bad) {
         for (const std::size_t q : {i - 1, i + 1, i - 83, i + 83}) {
             CAPTURE(i, q);
             CHECK(std::isfinite(fast.pixels[q].x + fast.pixels[q].y + fast.pixels[q].z));
+        }
+    }
+}
+
+TEST_CASE("the CPU's passes copy the pixels beside a row's that the filter keeps", "[filter]") {
+    // Pixels that see nothing are kept as they are; where they begin or end
+    // a row, the CPU copies them instead of filtering. cornell_diffuse.json:
+    // its box against a black background, some rows all background;
+    // sky_demo.json: objects against a sky, whose pixels are not black.
+    for (const char* name : {"cornell_diffuse.json", "sky_demo.json"}) {
+        CAPTURE(name);
+        std::vector<kernel::FilterGuide> guides;
+        const std::unique_ptr<Renderer> rendered = render_4spp(name, 83, 47, &guides);
+        const std::vector<kernel::AccumPixel>& accum = rendered->accumulator();
+        int nothing = 0;
+        for (const kernel::FilterGuide& g : guides) {
+            nothing += g.albedo.w < T0_NO_HIT ? 0 : 1;
+        }
+        CAPTURE(nothing);
+        REQUIRE(nothing > 83 * 47 / 10);
+        // An odd count too: the passes alternate between two buffers, and
+        // each must hold the copied pixels.
+        for (const int passes : {T0_FILTER_PASSES, 3}) {
+            CAPTURE(passes);
+            const Image fast = filter_image(accum, 83, 47, guides, passes);
+            CHECK(pixels_the_same_as_the_kernels(accum, guides, fast, rendered->image(), passes) >
+                  83 * 47 / 4);
         }
     }
 }

@@ -27,14 +27,19 @@ namespace {
 // and its noise (kernel::FilterPixel, kernel::FilterNoise).
 // `centre` is the centre tap's weight where the pixel's values are finite
 // (centre_weight): of the guides alone.
+// span_begin and span_end: per row, from its first pixel that is not kept
+// as it is to one past its last (begin == end: all kept).
 struct TapPlanes {
-    void resize(std::size_t n) {
+    void resize(std::size_t n, int rows) {
         for (std::vector<float>* v :
              {&nx, &ny, &nz, &nw, &depth, &by_depth, &share, &kept, &centre}) {
             v->resize(n);
         }
+        span_begin.resize(static_cast<std::size_t>(rows));
+        span_end.resize(static_cast<std::size_t>(rows));
     }
     std::vector<float> nx, ny, nz, nw, depth, by_depth, share, kept, centre;
+    std::vector<int> span_begin, span_end;
 };
 
 // A pixel's weight as its own centre tap (kernel::tap_weight with the tap
@@ -187,11 +192,27 @@ inline void atrous_at(const TapPlanes& t, const PixelPlanes& in, std::ptrdiff_t 
 #define T0_INDEPENDENT _Pragma("GCC ivdep")
 #endif
 
-// Row y of pass `pass`: its inner pixels (all their taps in the image's
-// columns) in a vectorized loop, AVX2 where the CPU has it, the few at its
-// ends one by one.
+// Row y of pass `pass`: its pixels from the first to the last one that is
+// not kept as it is (TapPlanes' span; those outside it are copied), the
+// inner ones (all their taps in the image's columns) in a vectorized loop,
+// AVX2 where the CPU has it, the few at its ends one by one (the same
+// atrous_at: the same result).
 T0_ROW_CLONES void atrous_row(const TapPlanes& t, const PixelPlanes& in, int width, int height,
                               int y, int pass, PixelPlanes* out) {
+    const std::ptrdiff_t start = static_cast<std::ptrdiff_t>(y) * width;
+    const int begin = t.span_begin[y];
+    const int end = t.span_end[y];
+    for (std::vector<float> PixelPlanes::*plane :
+         {&PixelPlanes::r, &PixelPlanes::g, &PixelPlanes::b, &PixelPlanes::variance,
+          &PixelPlanes::l, &PixelPlanes::by_noise}) {
+        const float* from = (in.*plane).data() + start;
+        float* to = ((*out).*plane).data() + start;
+        std::copy(from, from + begin, to);
+        std::copy(from + end, from + width, to + end);
+    }
+    if (begin >= end) {
+        return;
+    }
     const int step = 1 << pass;
     TapPlaces at;
     for (int k = 0; k < 3; ++k) {
@@ -201,16 +222,17 @@ T0_ROW_CLONES void atrous_row(const TapPlanes& t, const PixelPlanes& in, int wid
         at.column[k] = (k - 1) * step;
         at.column_inside[k] = 1.0f;
     }
-    const std::ptrdiff_t start = static_cast<std::ptrdiff_t>(y) * width;
-    const int x0 = std::min(step, width);
-    const int x1 = std::max(x0, width - step);
+    // The inner pixels of the span, [lo, hi); those before and after it
+    // one by one.
+    const int lo = std::max(begin, std::min(step, width));
+    const int hi = std::max(lo, std::min(end, width - step));
     const float* const by_depth = t.by_depth.data();
     const float steps = static_cast<float>(step);
 #pragma omp simd
-    for (int x = x0; x < x1; ++x) {
+    for (int x = lo; x < hi; ++x) {
         atrous_at(t, in, start + x, at, by_depth[start + x] / steps, out);
     }
-    for (int x = 0; x < width; x = x + 1 == x0 ? x1 : x + 1) {
+    const auto one_by_one = [&](int x) {
         TapPlaces edge = at;
         for (int j = 0; j < 3; ++j) {
             const int qx = x + (j - 1) * step;
@@ -218,6 +240,12 @@ T0_ROW_CLONES void atrous_row(const TapPlanes& t, const PixelPlanes& in, int wid
             edge.column[j] = qx >= 0 && qx < width ? (j - 1) * step : 0;
         }
         atrous_at(t, in, start + x, edge, by_depth[start + x] / steps, out);
+    };
+    for (int x = begin; x < std::min(lo, end); ++x) {
+        one_by_one(x);
+    }
+    for (int x = hi; x < end; ++x) {
+        one_by_one(x);
     }
 }
 
@@ -250,7 +278,7 @@ T0_ROW_CLONES void input_row(const kernel::AccumPixel* accumulator, const ScaleP
             samples[k] = px[k].moments.z;
         }
         const std::size_t first = start + static_cast<std::size_t>(x0);
-T0_INDEPENDENT
+        T0_INDEPENDENT
         for (int k = 0; k < n; ++k) {
             const std::size_t i = first + static_cast<std::size_t>(k);
             kernel::AccumPixel a;
@@ -278,7 +306,7 @@ T0_ROW_CLONES void output_row(const PixelPlanes& in, const ScalePlanes& scale, s
     const float* const r = in.r.data();
     const float* const g = in.g.data();
     const float* const b = in.b.data();
-T0_INDEPENDENT
+    T0_INDEPENDENT
     for (int x = 0; x < count; ++x) {
         const std::size_t i = start + static_cast<std::size_t>(x);
         kernel::FilterPixel p;
@@ -352,7 +380,7 @@ void FilterWorkspace::set_guides(const std::vector<kernel::FilterGuide>& guides,
     }
     Buffers& b = *buffers_;
     b.has_guides = false;
-    b.taps.resize(pixels);
+    b.taps.resize(pixels, height);
     b.scale.resize(pixels);
 #pragma omp parallel for schedule(dynamic, 16)
     for (int y = 0; y < height; ++y) {
@@ -370,6 +398,17 @@ void FilterWorkspace::set_guides(const std::vector<kernel::FilterGuide>& guides,
             b.taps.centre[i] = centre_weight(t);
             b.scale.set(i, kernel::filter_scale(guides[i]));
         }
+        int begin = 0;
+        int end = width;
+        const float* const kept = b.taps.kept.data() + static_cast<std::size_t>(y) * width;
+        while (begin < end && kept[begin] > 0.0f) {
+            ++begin;
+        }
+        while (end > begin && kept[end - 1] > 0.0f) {
+            --end;
+        }
+        b.taps.span_begin[y] = begin;
+        b.taps.span_end[y] = end;
     }
     b.width = width;
     b.height = height;
