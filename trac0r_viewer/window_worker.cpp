@@ -350,7 +350,7 @@ void RenderWorker::render_full() {
         full_started_ = Clock::now();
         full_stale_ = false;
         estimate_.restart();
-        guides_.clear();  // a new view or size: made again when the filter is on
+        filter_has_guides_ = false;  // a new view or size: made again when the filter is on
         filtered_.restart();
         pause_reason_.clear();
     }
@@ -382,11 +382,12 @@ double RenderWorker::noise_estimate() {
 
 trac0r::Image RenderWorker::filtered_image() {
     return filtered_.get(full_->frames(), paused(), [&] {
-        if (guides_.empty()) {
+        if (!filter_has_guides_) {
             guides_of(full_->camera_record());
             trac0r::add_lamp_edges(full_->packed(), full_->camera_record(), &guide_images_);
-            guides_ = trac0r::filter_guides(guide_images_);
-            filter_workspace_.set_guides(guides_, full_->width(), full_->height());
+            filter_workspace_.set_guides(trac0r::filter_guides(guide_images_), full_->width(),
+                                         full_->height());
+            filter_has_guides_ = true;  // only once set_guides has not thrown
         }
         return trac0r::filter_image(full_->accumulator(), T0_FILTER_PASSES, filter_workspace_);
     });

@@ -147,7 +147,7 @@ class RenderWorker {
         int width = 0;  // > 0: a new size
         int height = 0;
         std::string backend;
-        int filter = -1;  // -1: unchanged; 0: off; 1: on
+        int filter = -1;   // -1: unchanged; 0: off; 1: on
         int focus_x = -1;  // >= 0: focus_at this pixel
         int focus_y = -1;
         int moving = -1;  // -1: unchanged; 0: still; 1: moving
@@ -200,9 +200,9 @@ class RenderWorker {
     std::string pause_reason_;           // of the last full frame (pause_reason_now)
     double accumulation_seconds_ = 0.0;  // how long it ran, until a pause
     bool filter_ = false;
-    std::vector<trac0r::kernel::FilterGuide> guides_;  // of full_'s view; empty: to be made
+    bool filter_has_guides_ = false;  // filter_workspace_ holds full_'s view's guides
     Refreshed<trac0r::Image> filtered_{filter_interval, filter_cost_factor};
-    trac0r::FilterWorkspace filter_workspace_;  // its buffers and guides_, kept between refreshes
+    trac0r::FilterWorkspace filter_workspace_;  // its buffers and guides, kept between refreshes
     // The guides of one view (render_surface_guides; add_lamp_edges when
     // the filter wants them), for the filter and temporal
     // reuse: made again only for another view, size or backend.
