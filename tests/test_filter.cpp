@@ -224,6 +224,9 @@ TEST_CASE("a workspace keeps a view's guides for the filter calls that take none
     CHECK_THROWS_WITH(
         filter_image(small, T0_FILTER_PASSES, workspace),
         Catch::Contains("the accumulator has 10 pixels, the workspace's guides 2048"));
+    // An empty image filters to an empty image.
+    const Image none = filter_image({}, 0, 0, {}, T0_FILTER_PASSES);
+    CHECK((none.width == 0 && none.height == 0 && none.pixels.empty()));
 }
 
 TEST_CASE("the filter keeps a corner: normals and depths stop it", "[filter]") {

@@ -373,7 +373,7 @@ void FilterWorkspace::set_guides(const std::vector<kernel::FilterGuide>& guides,
                                  int height) {
     const std::size_t pixels = static_cast<std::size_t>(std::max(width, 0)) *
                                static_cast<std::size_t>(std::max(height, 0));
-    if (width <= 0 || height <= 0 || guides.size() != pixels) {
+    if (width < 0 || height < 0 || guides.size() != pixels) {
         throw std::invalid_argument(
             "FilterWorkspace::set_guides: " + std::to_string(guides.size()) +
             " guides for an image of " + std::to_string(width) + " x " + std::to_string(height));

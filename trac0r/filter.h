@@ -43,8 +43,9 @@ class FilterWorkspace {
 
 // The accumulated image filtered: `passes` a-trous passes (0: the image
 // as it is; default T0_FILTER_PASSES) with the guides, in the buffers of
-// `workspace` (the second form: new ones). Throws std::invalid_argument
-// for guides of another size than the accumulator.
+// `workspace`, whose guides they replace (the second form: new ones).
+// Throws std::invalid_argument for guides of another size than the
+// accumulator.
 Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height,
                    const std::vector<kernel::FilterGuide>& guides, int passes,
                    FilterWorkspace& workspace);
