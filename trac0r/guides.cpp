@@ -18,8 +18,9 @@ namespace {
 // The first hits of camera rays rays[0, n), which all start at the
 // camera's position: with `bundled` (the BVH, a pinhole or thin-lens
 // camera's centre), bounded together and found among the few leaves they
-// share (kernel/bundle.h), the same hits as through the tree; else each
-// through the scene.
+// share (kernel/bundle.h), the same hits as through the tree (but where two
+// triangles of different leaves are hit within rounding, as at a shared
+// edge, which bundle.h explains); else each through the scene.
 void first_hits(const kernel::SceneView& view, bool bundled, const glm::vec3& origin,
                 const kernel::Ray* rays, int n, kernel::Hit* hits) {
     int count = -1;
@@ -48,9 +49,9 @@ bool bundles_camera_rays(const kernel::SceneView& view, const kernel::CameraReco
 // kernel::pixel_emission_rays traces them, their first hits found
 // together (first_hits): adds to *sum the radiance of the pure emitters
 // they meet first and to *hits how many meet one.
-void pixel_emission_rays(const kernel::SceneView& view, const kernel::CameraRecord& camera,
-                         bool bundled, std::uint32_t x, std::uint32_t y, int first, int last,
-                         glm::vec3* sum, int* hits) {
+void bundled_emission_rays(const kernel::SceneView& view, const kernel::CameraRecord& camera,
+                           bool bundled, std::uint32_t x, std::uint32_t y, int first, int last,
+                           glm::vec3* sum, int* hits) {
     kernel::Ray rays[T0_GUIDE_EMISSION_RAYS] = {};
     kernel::Hit found[T0_GUIDE_EMISSION_RAYS] = {};
     const int n = last - first;
@@ -235,15 +236,15 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
                 corner_emitter[c + corner_columns] == centre &&
                 corner_emitter[c + corner_columns + 1] == centre) {
                 // The probes: the first rays of the full count, kept for it.
-                pixel_emission_rays(view, scaled, bundled, ux, uy, 0, T0_GUIDE_PROBE_RAYS, &sum,
-                                    &hits);
+                bundled_emission_rays(view, scaled, bundled, ux, uy, 0, T0_GUIDE_PROBE_RAYS, &sum,
+                                      &hits);
                 traced = T0_GUIDE_PROBE_RAYS;
                 if (hits == (centre ? T0_GUIDE_PROBE_RAYS : 0)) {
                     continue;  // no edge crosses it: its centre's value stands
                 }
             }
-            pixel_emission_rays(view, scaled, bundled, ux, uy, traced, T0_GUIDE_EMISSION_RAYS, &sum,
-                                &hits);
+            bundled_emission_rays(view, scaled, bundled, ux, uy, traced, T0_GUIDE_EMISSION_RAYS,
+                                  &sum, &hits);
             g.emission[i] = kernel::pixel_emission_of(sum, hits, T0_GUIDE_EMISSION_RAYS);
             ++split;
         }
