@@ -325,8 +325,13 @@ TEST_CASE("guides made by tiles are each ray's traced alone, bit for bit", "[gui
 }
 
 TEST_CASE("the lamp-edge split skips only pixels that no edge crosses", "[guides]") {
+    // With the flat list and with the BVH (whose rays over a pixel find
+    // their first hits together).
     const Scene scene = slanted_lamp();
-    const PackedScene packed = pack_scene(scene);
+    PackOptions options;
+    options.accel = GENERATE(Accel::flat, Accel::bvh);
+    CAPTURE(static_cast<int>(options.accel));
+    const PackedScene packed = pack_scene(scene, options);
     const kernel::CameraRecord camera = make_camera_record(scene.camera, 48, 36);
     const GuideImages g = render_guides(packed, camera);
     const kernel::SceneView view = packed.view();

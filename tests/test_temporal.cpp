@@ -185,6 +185,15 @@ TEST_CASE("a camera step keeps the wall seen before and drops what the box hid",
         }
     }
     CHECK(sloped > 0);
+    // And the taps read them: with every slope huge, any depth matches, and
+    // the wall the box hid takes the box's history.
+    TemporalFrame loose = history;
+    std::fill(loose.depth_slopes.begin(), loose.depth_slopes.end(), 1e6f);
+    TemporalStats loose_stats;
+    temporal_blend(loose, flat_image(w, h, green), 1.0f, after.camera, after.guides,
+                   TemporalSettings(), &loose_stats);
+    CAPTURE(stats.reused, loose_stats.reused);
+    CHECK(loose_stats.reused >= stats.reused + dropped / 2);
 }
 
 TEST_CASE("an orthographic view keeps its history across a sideways step", "[temporal]") {
