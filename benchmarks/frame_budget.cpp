@@ -4,8 +4,8 @@
 //
 //   raw       floor(B / t_spp) samples a pixel, the accumulated mean;
 //   filtered  floor((B - t_filter) / t_spp), then the edge-preserving filter
-//             (render_guides, filter_guides, filter_image), its buffers kept
-//             from frame to frame (a FilterWorkspace) as the window keeps them;
+//             (render_guides, FilterWorkspace::set_guides, filter_image), the
+//             workspace kept from frame to frame as the window keeps it;
 //   temporal  while the camera moves, each frame floor((B - t_temporal) /
 //             t_spp) samples blended with the previous frame reprojected
 //             (render_surface_guides, temporal_blend), as trac0r_viewer's window
@@ -229,9 +229,8 @@ Costs measure_costs(const Scene& scene, const Options& o) {
     for (long i = -1; i < o.repeats; ++i) {
         const Seconds a = timed([&] { r->render_frame(); });
         const Seconds b = timed([&] {
-            const GuideImages guides = render_guides(r->packed(), r->camera_record());
-            filter_image(r->accumulator(), r->width(), r->height(), filter_guides(guides),
-                         T0_FILTER_PASSES, workspace);
+            workspace.set_guides(render_guides(r->packed(), r->camera_record()));
+            filter_image(r->accumulator(), T0_FILTER_PASSES, workspace);
         });
         const Seconds c = timed([&] {
             const GuideImages guides = render_surface_guides(r->packed(), r->camera_record());

@@ -229,6 +229,25 @@ TEST_CASE("a workspace keeps a view's guides for the filter calls that take none
     CHECK((none.width == 0 && none.height == 0 && none.pixels.empty()));
 }
 
+TEST_CASE("a workspace takes a view's GuideImages as filter_guides makes them", "[filter]") {
+    std::vector<kernel::FilterGuide> unused;
+    const std::unique_ptr<Renderer> r = render_4spp("cornell.json", 83, 47, &unused);
+    const GuideImages images = render_guides(r->packed(), r->camera_record());
+    FilterWorkspace workspace;
+    workspace.set_guides(images);
+    // Twice: the second time into the buffer the first one made.
+    for (int i = 0; i < 2; ++i) {
+        CHECK(
+            filter_image(r->accumulator(), T0_FILTER_PASSES, workspace).pixels ==
+            filter_image(r->accumulator(), 83, 47, filter_guides(images), T0_FILTER_PASSES).pixels);
+        workspace.set_guides(images);
+    }
+    // Guides without the lamp-edge split are refused, as filter_guides
+    // refuses them.
+    const GuideImages surface = render_surface_guides(r->packed(), r->camera_record());
+    CHECK_THROWS_WITH(workspace.set_guides(surface), Catch::Contains("lamp-edge split"));
+}
+
 TEST_CASE("the filter keeps a corner: normals and depths stop it", "[filter]") {
     for (const int which : {0, 1}) {
         CAPTURE(which);

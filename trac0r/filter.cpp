@@ -318,13 +318,21 @@ T0_ROW_CLONES void output_row(const PixelPlanes& in, const ScalePlanes& scale, s
 }  // namespace
 
 std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides) {
+    std::vector<kernel::FilterGuide> out;
+    filter_guides(guides, &out);
+    return out;
+}
+
+void filter_guides(const GuideImages& guides, std::vector<kernel::FilterGuide>* into) {
     if (!guides.lamp_edges) {
         throw std::invalid_argument(
             "filter_guides: the guides have no lamp-edge split (add_lamp_edges, or render_guides)");
     }
     const int width = guides.width;
     const int height = guides.height;
-    std::vector<kernel::FilterGuide> out(guides.albedo.size());
+    std::vector<kernel::FilterGuide>& out = *into;
+    out.resize(guides.albedo.size());
+#pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < out.size(); ++i) {
         const int x = static_cast<int>(i % static_cast<std::size_t>(width));
         const int y = static_cast<int>(i / static_cast<std::size_t>(width));
@@ -353,13 +361,13 @@ std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides) {
         out[i].normal = glm::vec4(guides.normal[s], kept ? 1.0f : 0.0f);
         out[i].emission = kept ? glm::vec4(0.0f) : e;
     }
-    return out;
 }
 
 struct FilterWorkspace::Buffers {
     int width = 0;
     int height = 0;
     bool has_guides = false;
+    std::vector<kernel::FilterGuide> guides;  // set_guides(GuideImages)'s
     TapPlanes taps;
     ScalePlanes scale;
     PixelPlanes a;
@@ -413,6 +421,11 @@ void FilterWorkspace::set_guides(const std::vector<kernel::FilterGuide>& guides,
     b.width = width;
     b.height = height;
     b.has_guides = true;
+}
+
+void FilterWorkspace::set_guides(const GuideImages& guides) {
+    filter_guides(guides, &buffers_->guides);
+    set_guides(buffers_->guides, guides.width, guides.height);
 }
 
 Image filter_image(const std::vector<kernel::AccumPixel>& accumulator, int width, int height,

@@ -18,6 +18,8 @@ namespace trac0r {
 // Throws std::invalid_argument for guides without their lamp-edge split
 // (render_surface_guides without add_lamp_edges).
 std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides);
+// The same into *into, whose storage it reuses.
+void filter_guides(const GuideImages& guides, std::vector<kernel::FilterGuide>* into);
 
 // The CPU filter's working buffers (some 110 bytes a pixel), kept between
 // the filter_image calls that are given it, and what it makes of the
@@ -34,6 +36,10 @@ class FilterWorkspace {
     // that take none. Throws std::invalid_argument for guides of another
     // size.
     void set_guides(const std::vector<kernel::FilterGuide>& guides, int width, int height);
+    // The same for guides with their lamp-edge split (filter_guides, made
+    // in a buffer the workspace keeps: a view's guides make no new pages).
+    // Throws std::invalid_argument as filter_guides does.
+    void set_guides(const GuideImages& guides);
     struct Buffers;
     Buffers& buffers() { return *buffers_; }
 

@@ -385,8 +385,7 @@ trac0r::Image RenderWorker::filtered_image() {
         if (!filter_has_guides_) {
             guides_of(full_->camera_record());
             trac0r::add_lamp_edges(full_->packed(), full_->camera_record(), &guide_images_);
-            filter_workspace_.set_guides(trac0r::filter_guides(guide_images_), full_->width(),
-                                         full_->height());
+            filter_workspace_.set_guides(guide_images_);
             filter_has_guides_ = true;  // only once set_guides has not thrown
         }
         return trac0r::filter_image(full_->accumulator(), T0_FILTER_PASSES, filter_workspace_);
