@@ -21,11 +21,11 @@ std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides);
 // The same into *into, whose storage it reuses.
 void filter_guides(const GuideImages& guides, std::vector<kernel::FilterGuide>* into);
 
-// The CPU filter's working buffers (some 110 bytes a pixel), kept between
-// the filter_image calls that are given it, and what it makes of the
-// guides, which stay while the view does: a caller that filters every
-// frame (a window) then allocates, and the system zeroes, no memory a
-// call, and reads the guides once a view.
+// The CPU filter's working buffers (some 110 bytes a pixel; 160 given
+// GuideImages), kept between the filter_image calls that are given it,
+// and what it makes of the guides, which stay while the view does: a
+// caller that filters every frame (a window) then allocates, and the
+// system zeroes, no memory a call, and reads the guides once a view.
 class FilterWorkspace {
   public:
     FilterWorkspace();
