@@ -231,21 +231,28 @@ TEST_CASE("a workspace keeps a view's guides for the filter calls that take none
 
 TEST_CASE("a workspace takes a view's GuideImages as filter_guides makes them", "[filter]") {
     std::vector<kernel::FilterGuide> unused;
+    const std::unique_ptr<Renderer> small = render_4spp("cornell_diffuse.json", 40, 30, &unused);
     const std::unique_ptr<Renderer> r = render_4spp("cornell.json", 83, 47, &unused);
     const GuideImages images = render_guides(r->packed(), r->camera_record());
+    const Image expected =
+        filter_image(r->accumulator(), 83, 47, filter_guides(images), T0_FILTER_PASSES);
+    // Given another view's guides first, of another size, then this one's:
+    // its buffer holds nothing of the first.
     FilterWorkspace workspace;
+    workspace.set_guides(render_guides(small->packed(), small->camera_record()));
     workspace.set_guides(images);
-    // Twice: the second time into the buffer the first one made.
-    for (int i = 0; i < 2; ++i) {
-        CHECK(
-            filter_image(r->accumulator(), T0_FILTER_PASSES, workspace).pixels ==
-            filter_image(r->accumulator(), 83, 47, filter_guides(images), T0_FILTER_PASSES).pixels);
-        workspace.set_guides(images);
-    }
+    CHECK(filter_image(r->accumulator(), T0_FILTER_PASSES, workspace).pixels == expected.pixels);
     // Guides without the lamp-edge split are refused, as filter_guides
-    // refuses them.
+    // refuses them, and the workspace keeps the guides it had.
     const GuideImages surface = render_surface_guides(r->packed(), r->camera_record());
     CHECK_THROWS_WITH(workspace.set_guides(surface), Catch::Contains("lamp-edge split"));
+    CHECK(filter_image(r->accumulator(), T0_FILTER_PASSES, workspace).pixels == expected.pixels);
+    // So are guides whose images are not all of their size.
+    GuideImages short_depth = images;
+    short_depth.depth.pop_back();
+    CHECK_THROWS_WITH(filter_guides(short_depth), Catch::Contains("not all 83 x 47"));
+    CHECK_THROWS_WITH(workspace.set_guides(short_depth), Catch::Contains("not all 83 x 47"));
+    CHECK(filter_image(r->accumulator(), T0_FILTER_PASSES, workspace).pixels == expected.pixels);
 }
 
 TEST_CASE("the filter keeps a corner: normals and depths stop it", "[filter]") {

@@ -330,8 +330,17 @@ void filter_guides(const GuideImages& guides, std::vector<kernel::FilterGuide>* 
     }
     const int width = guides.width;
     const int height = guides.height;
+    const std::size_t pixels = static_cast<std::size_t>(std::max(width, 0)) *
+                               static_cast<std::size_t>(std::max(height, 0));
+    if (width < 0 || height < 0 || guides.albedo.size() != pixels ||
+        guides.normal.size() != pixels || guides.depth.size() != pixels ||
+        guides.emitter.size() != pixels ||
+        (!guides.emission.empty() && guides.emission.size() != pixels)) {
+        throw std::invalid_argument("filter_guides: the guides' images are not all " +
+                                    std::to_string(width) + " x " + std::to_string(height));
+    }
     std::vector<kernel::FilterGuide>& out = *into;
-    out.resize(guides.albedo.size());
+    out.resize(pixels);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < out.size(); ++i) {
         const int x = static_cast<int>(i % static_cast<std::size_t>(width));

@@ -18,7 +18,9 @@ namespace trac0r {
 // Throws std::invalid_argument for guides without their lamp-edge split
 // (render_surface_guides without add_lamp_edges).
 std::vector<kernel::FilterGuide> filter_guides(const GuideImages& guides);
-// The same into *into, whose storage it reuses.
+// The same into *into, whose storage it reuses. Both throw
+// std::invalid_argument as said, and for images of another size than the
+// guides' width and height.
 void filter_guides(const GuideImages& guides, std::vector<kernel::FilterGuide>* into);
 
 // The CPU filter's working buffers (some 110 bytes a pixel; 160 given
@@ -38,7 +40,9 @@ class FilterWorkspace {
     void set_guides(const std::vector<kernel::FilterGuide>& guides, int width, int height);
     // The same for guides with their lamp-edge split (filter_guides, made
     // in a buffer the workspace keeps: a view's guides make no new pages).
-    // Throws std::invalid_argument as filter_guides does.
+    // Throws std::invalid_argument as filter_guides does. After it throws
+    // std::invalid_argument (either form), the workspace keeps the guides
+    // it had.
     void set_guides(const GuideImages& guides);
     struct Buffers;
     Buffers& buffers() { return *buffers_; }
