@@ -56,19 +56,14 @@ void bundled_emission_rays(const kernel::SceneView& view, const kernel::CameraRe
     kernel::Hit found[T0_GUIDE_EMISSION_RAYS] = {};
     const int n = last - first;
     for (int k = 0; k < n; ++k) {
-        const glm::vec2 j = kernel::r2_point(first + k);
-        rays[k] =
-            kernel::camera_ray(camera, static_cast<float>(x), static_cast<float>(y), j.x, j.y);
+        rays[k] = kernel::pixel_emission_ray(camera, x, y, first + k);
     }
     first_hits(view, bundled, glm::vec3(camera.position), rays, n, found);
     for (int k = 0; k < n; ++k) {
         glm::vec3 emitted;
         const kernel::GuidePixel g =
             kernel::guide_ray_from(&view, camera, rays[k], found[k], &emitted);
-        if (g.normal.w > 0.0f) {
-            *sum += emitted;
-            ++*hits;
-        }
+        kernel::add_emission_ray(g, emitted, sum, hits);
     }
 }
 

@@ -120,19 +120,35 @@ T0_INLINE float2 r2_point(int i) {
     return make_float2(jx - floor(jx), jy - floor(jy));
 }
 
-// Rays first to last - 1 of pixel (x, y)'s r2_point sequence: adds to *sum
-// the radiance of the pure emitters they meet first (through mirrors and
-// glass) and to *hits how many meet one.
+// Ray i of pixel (x, y)'s r2_point sequence: the camera ray through that
+// point of the pixel.
+T0_INLINE Ray pixel_emission_ray(CameraRecord camera, t0_u32 x, t0_u32 y, int i) {
+    const float2 j = r2_point(i);
+    return camera_ray(camera, (float)x, (float)y, j.x, j.y);
+}
+
+// One ray's part of pixel_emission_rays' sums, from its guides and the
+// radiance it met (guide_ray_from).
+T0_INLINE void add_emission_ray(GuidePixel g, float3 emitted, float3* sum, int* hits) {
+    if (g.normal.w > 0.0f) {
+        *sum += emitted;
+        ++*hits;
+    }
+}
+
+// Rays first to last - 1 of pixel (x, y)'s r2_point sequence, each traced
+// alone: adds to *sum the radiance of the pure emitters they meet first
+// (through mirrors and glass) and to *hits how many meet one. (The CPU's
+// lamp-edge split finds a pixel's first hits together instead:
+// trac0r/guides.cpp.)
 T0_INLINE void pixel_emission_rays(const SceneView* scene, CameraRecord camera, t0_u32 x, t0_u32 y,
                                    int first, int last, float3* sum, int* hits) {
     for (int i = first; i < last; ++i) {
-        const float2 j = r2_point(i);
+        const Ray ray = pixel_emission_ray(camera, x, y, i);
         float3 emitted;
-        const GuidePixel g = guide_ray(scene, camera, x, y, j.x, j.y, &emitted);
-        if (g.normal.w > 0.0f) {
-            *sum += emitted;
-            ++*hits;
-        }
+        const GuidePixel g =
+            guide_ray_from(scene, camera, ray, intersect_scene(scene, &ray), &emitted);
+        add_emission_ray(g, emitted, sum, hits);
     }
 }
 
