@@ -38,6 +38,32 @@ struct TapPlanes {
         span_begin.resize(static_cast<std::size_t>(rows));
         span_end.resize(static_cast<std::size_t>(rows));
     }
+    // Pixel i's tap (kernel::filter_tap) and its centre weight.
+    void set(std::size_t i, const kernel::FilterTap& t, float centre_weight) {
+        nx[i] = t.normal.x;
+        ny[i] = t.normal.y;
+        nz[i] = t.normal.z;
+        nw[i] = t.normal.w;
+        depth[i] = t.params.x;
+        by_depth[i] = t.params.y;
+        share[i] = t.params.z;
+        kept[i] = t.params.w;
+        centre[i] = centre_weight;
+    }
+    // Row y's span, from its pixels' `kept`, once they are set.
+    void set_span(int y, int width) {
+        const float* const row = kept.data() + static_cast<std::size_t>(y) * width;
+        int begin = 0;
+        int end = width;
+        while (begin < end && row[begin] > 0.0f) {
+            ++begin;
+        }
+        while (end > begin && row[end - 1] > 0.0f) {
+            --end;
+        }
+        span_begin[y] = begin;
+        span_end[y] = end;
+    }
     std::vector<float> nx, ny, nz, nw, depth, by_depth, share, kept, centre;
     std::vector<int> span_begin, span_end;
 };
@@ -404,28 +430,10 @@ void FilterWorkspace::set_guides(const std::vector<kernel::FilterGuide>& guides,
         for (int x = 0; x < width; ++x) {
             const kernel::FilterTap t = kernel::filter_tap(guides.data(), width, height, x, y);
             const std::size_t i = static_cast<std::size_t>(y) * width + x;
-            b.taps.nx[i] = t.normal.x;
-            b.taps.ny[i] = t.normal.y;
-            b.taps.nz[i] = t.normal.z;
-            b.taps.nw[i] = t.normal.w;
-            b.taps.depth[i] = t.params.x;
-            b.taps.by_depth[i] = t.params.y;
-            b.taps.share[i] = t.params.z;
-            b.taps.kept[i] = t.params.w;
-            b.taps.centre[i] = centre_weight(t);
+            b.taps.set(i, t, centre_weight(t));
             b.scale.set(i, kernel::filter_scale(guides[i]));
         }
-        int begin = 0;
-        int end = width;
-        const float* const kept = b.taps.kept.data() + static_cast<std::size_t>(y) * width;
-        while (begin < end && kept[begin] > 0.0f) {
-            ++begin;
-        }
-        while (end > begin && kept[end - 1] > 0.0f) {
-            --end;
-        }
-        b.taps.span_begin[y] = begin;
-        b.taps.span_end[y] = end;
+        b.taps.set_span(y, width);
     }
     b.width = width;
     b.height = height;
