@@ -7,6 +7,7 @@
 #include "trac0r/filter.h"
 #include "trac0r/guides.h"
 #include "trac0r/kernel/guides.h"
+#include "trac0r/kernel/lamp_edge.h"
 #include "trac0r/packed_scene.h"
 
 #include <glm/glm.hpp>

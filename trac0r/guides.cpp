@@ -2,6 +2,7 @@
 
 #include "trac0r/kernel/bundle.h"
 #include "trac0r/kernel/guides.h"
+#include "trac0r/kernel/lamp_edge.h"
 #include "trac0r/kernel/tile_grid.h"
 #include "trac0r/packed_scene.h"
 
