@@ -28,16 +28,19 @@ struct GuideImages {
     // pixel and its eight neighbours do not all agree on emitter or not (a
     // lamp's edge runs near) and the rays through its four corners or
     // T0_GUIDE_PROBE_RAYS rays over it disagree with its centre's (the
-    // edge crosses it), from T0_GUIDE_EMISSION_RAYS rays over the pixel
-    // (kernel::pixel_emission); elsewhere, and everywhere without
-    // lamp_edges, from the centre ray.
+    // edge crosses it): where one straight edge of one lamp crosses it,
+    // from the line through the points where the edge crosses its sides
+    // (kernel::straight_edge_emission); else from T0_GUIDE_EMISSION_RAYS
+    // rays over the pixel (kernel::pixel_emission). Elsewhere, and
+    // everywhere without lamp_edges, from the centre ray.
     std::vector<glm::vec4> emission;
     bool lamp_edges = false;  // add_lamp_edges has made emission's split
-    // Of the split: the pixels by a lamp's edge that it tested, and those
-    // it traced T0_GUIDE_EMISSION_RAYS rays over (the rest kept their
-    // centre's value: no edge crosses them).
+    // Of the split: the pixels by a lamp's edge that it tested; those whose
+    // share it measured (the rest kept their centre's value: no edge
+    // crosses them); and of those, the ones a straight edge crosses.
     int lamp_edge_pixels = 0;
     int lamp_edge_traced = 0;
+    int lamp_edge_straight = 0;
 };
 
 // One ray through each pixel's centre of `camera` (as the Renderer holds it:
