@@ -177,20 +177,30 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
             }
         }
     }
-    // The corners of those pixels: corner (x, y) is the top left one of
-    // pixel (x, y).
+    // Those pixels, listed, so that the work on them is shared evenly
+    // between the threads (they lie on a few rows).
+    std::vector<int> listed;
+    listed.reserve(static_cast<std::size_t>(candidates));
+    for (std::size_t i = 0; i < pixels; ++i) {
+        if (edge[i]) {
+            listed.push_back(static_cast<int>(i));
+        }
+    }
+    // Their corners, each once: corner (x, y) is the top left one of pixel
+    // (x, y).
     const std::size_t corner_columns = static_cast<std::size_t>(width) + 1;
-    std::vector<unsigned char> corner_needed(corner_columns * (height + 1), 0);
-#pragma omp parallel for schedule(static)
-    for (int y = 0; y <= height; ++y) {
-        for (int x = 0; x <= width; ++x) {
-            unsigned char needed = 0;
-            for (int py = std::max(y - 1, 0); py <= std::min(y, height - 1); ++py) {
-                for (int px = std::max(x - 1, 0); px <= std::min(x, width - 1); ++px) {
-                    needed |= edge[static_cast<std::size_t>(py) * width + px];
+    std::vector<unsigned char> corner_emitter(corner_columns * (height + 1), 0);
+    std::vector<int> corners_listed;
+    {
+        std::vector<unsigned char> needed(corner_emitter.size(), 0);
+        for (const int i : listed) {
+            const std::size_t c = static_cast<std::size_t>(i / width) * corner_columns + i % width;
+            for (const std::size_t k : {c, c + 1, c + corner_columns, c + corner_columns + 1}) {
+                if (!needed[k]) {
+                    needed[k] = 1;
+                    corners_listed.push_back(static_cast<int>(k));
                 }
             }
-            corner_needed[y * corner_columns + x] = needed;
         }
     }
     // Most of those pixels it does not cross: a straight edge that crosses
@@ -202,62 +212,56 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
     // edge crosses the pixel its share is the area beside the edge's line
     // (kernel::straight_edge_emission: about 40 rays, and exact to about
     // 5e-4); the rest get the full count.
-    std::vector<unsigned char> corner_emitter(corner_needed.size(), 0);
-#pragma omp parallel for schedule(dynamic, 4)
-    for (int y = 0; y <= height; ++y) {
-        for (int x = 0; x <= width; ++x) {
-            const std::size_t c = y * corner_columns + x;
-            if (corner_needed[c]) {
-                glm::vec3 emitted;
-                const kernel::GuidePixel p =
-                    kernel::guide_ray(&view, scaled, static_cast<std::uint32_t>(x),
-                                      static_cast<std::uint32_t>(y), 0.0f, 0.0f, &emitted);
-                corner_emitter[c] = p.normal.w > 0.0f ? 1 : 0;
-            }
-        }
+    const int corner_count = static_cast<int>(corners_listed.size());
+#pragma omp parallel for schedule(dynamic, 16)
+    for (int k = 0; k < corner_count; ++k) {
+        const std::size_t c = static_cast<std::size_t>(corners_listed[k]);
+        glm::vec3 emitted;
+        const kernel::GuidePixel p =
+            kernel::guide_ray(&view, scaled, static_cast<std::uint32_t>(c % corner_columns),
+                              static_cast<std::uint32_t>(c / corner_columns), 0.0f, 0.0f, &emitted);
+        corner_emitter[c] = p.normal.w > 0.0f ? 1 : 0;
     }
     int split = 0;
     int straight = 0;
-#pragma omp parallel for schedule(dynamic, 4) reduction(+ : split, straight)
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const std::size_t i = static_cast<std::size_t>(y) * width + x;
-            if (!edge[i]) {
+    const int listed_count = static_cast<int>(listed.size());
+#pragma omp parallel for schedule(dynamic, 1) reduction(+ : split, straight)
+    for (int k = 0; k < listed_count; ++k) {
+        const std::size_t i = static_cast<std::size_t>(listed[k]);
+        const int x = static_cast<int>(i % static_cast<std::size_t>(width));
+        const int y = static_cast<int>(i / static_cast<std::size_t>(width));
+        const unsigned char centre = g.emitter[i];
+        const std::size_t c = y * corner_columns + x;
+        const std::uint32_t ux = static_cast<std::uint32_t>(x);
+        const std::uint32_t uy = static_cast<std::uint32_t>(y);
+        glm::vec3 sum(0.0f);
+        int hits = 0;
+        int traced = 0;
+        // The corners in pixel_corner's order, round the pixel.
+        const int corners = corner_emitter[c] | corner_emitter[c + 1] << 1 |
+                            corner_emitter[c + corner_columns + 1] << 2 |
+                            corner_emitter[c + corner_columns] << 3;
+        if (corners == (centre ? 15 : 0)) {
+            // The probes: the first rays of the full count, kept for it.
+            bundled_emission_rays(view, scaled, bundled, ux, uy, 0, T0_GUIDE_PROBE_RAYS, &sum,
+                                  &hits);
+            traced = T0_GUIDE_PROBE_RAYS;
+            if (hits == (centre ? T0_GUIDE_PROBE_RAYS : 0)) {
+                continue;  // no edge crosses it: its centre's value stands
+            }
+        } else {
+            glm::vec4 e;
+            if (kernel::straight_edge_emission(&view, scaled, ux, uy, corners, centre, &e)) {
+                g.emission[i] = e;  // one straight edge crosses it
+                ++split;
+                ++straight;
                 continue;
             }
-            const unsigned char centre = g.emitter[i];
-            const std::size_t c = y * corner_columns + x;
-            const std::uint32_t ux = static_cast<std::uint32_t>(x);
-            const std::uint32_t uy = static_cast<std::uint32_t>(y);
-            glm::vec3 sum(0.0f);
-            int hits = 0;
-            int traced = 0;
-            // The corners in pixel_corner's order, round the pixel.
-            const int corners = corner_emitter[c] | corner_emitter[c + 1] << 1 |
-                                corner_emitter[c + corner_columns + 1] << 2 |
-                                corner_emitter[c + corner_columns] << 3;
-            if (corners == (centre ? 15 : 0)) {
-                // The probes: the first rays of the full count, kept for it.
-                bundled_emission_rays(view, scaled, bundled, ux, uy, 0, T0_GUIDE_PROBE_RAYS, &sum,
-                                      &hits);
-                traced = T0_GUIDE_PROBE_RAYS;
-                if (hits == (centre ? T0_GUIDE_PROBE_RAYS : 0)) {
-                    continue;  // no edge crosses it: its centre's value stands
-                }
-            } else {
-                glm::vec4 e;
-                if (kernel::straight_edge_emission(&view, scaled, ux, uy, corners, centre, &e)) {
-                    g.emission[i] = e;  // one straight edge crosses it
-                    ++split;
-                    ++straight;
-                    continue;
-                }
-            }
-            bundled_emission_rays(view, scaled, bundled, ux, uy, traced, T0_GUIDE_EMISSION_RAYS,
-                                  &sum, &hits);
-            g.emission[i] = kernel::pixel_emission_of(sum, hits, T0_GUIDE_EMISSION_RAYS);
-            ++split;
         }
+        bundled_emission_rays(view, scaled, bundled, ux, uy, traced, T0_GUIDE_EMISSION_RAYS, &sum,
+                              &hits);
+        g.emission[i] = kernel::pixel_emission_of(sum, hits, T0_GUIDE_EMISSION_RAYS);
+        ++split;
     }
     g.lamp_edge_pixels = candidates;
     g.lamp_edge_traced = split;
