@@ -288,8 +288,8 @@ TEST_CASE("guides made by tiles are each ray's traced alone, bit for bit", "[gui
         // A third of the pixels or more show a surface (cornell_diffuse.json's
         // box fills 38 % of the view), so the comparison means something.
         CHECK(surfaces > 157 * 121 / 3);
-        // The lamp-edge split traces its rays over a pixel likewise: each
-        // pixel it traced holds pixel_emission's value, bit for bit.
+        // The lamp-edge split traces its rays over a pixel likewise (below:
+        // each pixel it measured holds the value of its rays traced alone).
         GuideImages split = g;
         add_lamp_edges(packed, camera, &split);
         REQUIRE(split.lamp_edge_traced > 0);
@@ -375,9 +375,9 @@ TEST_CASE("the lamp-edge split skips only pixels that no edge crosses", "[guides
     // The scene is as meant: a lamp in view, and edges across pixels.
     CHECK(lamp_pixels > 50);
     CHECK(crossed > 20);
-    // And the skip is taken: every crossed pixel is traced in full, and of
-    // the pixels by an edge about half are not (50 of 98 traced here;
-    // without the skip, all 98).
+    // And the skip is taken: every crossed pixel is measured (by its
+    // straight edge or the full count), and of the pixels by an edge about
+    // half are not (50 of 98 here; without the skip, all 98).
     CAPTURE(g.lamp_edge_pixels, g.lamp_edge_traced, crossed);
     CHECK(g.lamp_edge_traced >= crossed);
     CHECK(4 * g.lamp_edge_traced < 3 * g.lamp_edge_pixels);
@@ -435,6 +435,8 @@ TEST_CASE("where a lamp's straight edge crosses a pixel, its share is the area o
     const PackedScene packed = pack_scene(scene);
     const kernel::CameraRecord camera = make_camera_record(scene.camera, width, height);
     const GuideImages g = render_guides(packed, camera);
+    const Material& lamp = scene.materials[2];
+    const glm::vec3 radiance = lamp.color * lamp.emittance;
     // The quad's corners in image coordinates (pixels, y down), in order
     // round its centre.
     std::vector<glm::vec3> corners;
@@ -471,14 +473,18 @@ TEST_CASE("where a lamp's straight edge crosses a pixel, its share is the area o
         for (int x = 0; x < width; ++x) {
             CAPTURE(x, y);
             const double exact = clipped_area(quad, x, y);
+            // A quad corner within half a pixel: two edges may cross it.
             bool holds_corner = false;
             for (const glm::dvec2& q : quad) {
-                holds_corner = holds_corner || (q.x >= x - 1e-3 && q.x <= x + 1 + 1e-3 &&
-                                                q.y >= y - 1e-3 && q.y <= y + 1 + 1e-3);
+                holds_corner = holds_corner || (q.x >= x - 0.5 && q.x <= x + 1.5 &&
+                                                q.y >= y - 0.5 && q.y <= y + 1.5);
             }
-            const float share = g.emission[static_cast<std::size_t>(y) * width + x].w;
+            const glm::vec4 e = g.emission[static_cast<std::size_t>(y) * width + x];
+            const float share = e.w;
             CAPTURE(exact, share, holds_corner);
             CHECK(std::fabs(share - exact) <= (holds_corner ? 0.02 : 2e-3));
+            // The lamp's light over the pixel: its radiance times the share.
+            CHECK(glm::length(glm::vec3(e) - radiance * share) <= 1e-5f * glm::length(radiance));
             edge_pixels += exact > 0.02 && exact < 0.98 && !holds_corner ? 1 : 0;
         }
     }
@@ -486,4 +492,41 @@ TEST_CASE("where a lamp's straight edge crosses a pixel, its share is the area o
     CAPTURE(edge_pixels, g.lamp_edge_traced, g.lamp_edge_straight);
     CHECK(edge_pixels > 30);
     CHECK(g.lamp_edge_straight >= edge_pixels * 9 / 10);
+}
+
+TEST_CASE("an edge between two lamps' light is not taken for one lamp's edge", "[guides]") {
+    // Two lamps of different colours side by side above the same
+    // horizontal edge, 0.3 of row 6 below its top; the line between them
+    // runs down the middle of column 8. Column 7 sees one lamp's edge: a
+    // straight edge, its share 0.3 and its light 0.3 of that lamp's. In
+    // column 8 the rays above the edge meet two radiances, so its share
+    // is not the line's but the full count's (pixel_emission).
+    Scene scene = planes_and_lamp_material(glm::vec3(1.0f, 0.5f, 0.25f));
+    Material other = scene.materials[2];
+    other.name = "other lamp";
+    other.color = glm::vec3(0.25f, 0.5f, 1.0f);
+    scene.materials.push_back(other);
+    const float pixel = 2.0f * 1.9f * std::tan(glm::radians(30.0f)) * (16.0f / 12.0f) / 16.0f;
+    const float b = -0.5f * pixel;  // the lamps' boundary (image right is -x)
+    const float e = -0.3f * pixel;  // their lower edge (row 6's top is y = 0)
+    scene.shapes.push_back(make_plane(glm::vec3(50.0f + b, 50.0f + e, 1.9f),
+                                      glm::vec3(-half_pi, 0.0f, 0.0f), glm::vec2(100.0f), 2));
+    scene.shapes.push_back(make_plane(glm::vec3(-50.0f + b, 50.0f + e, 1.9f),
+                                      glm::vec3(-half_pi, 0.0f, 0.0f), glm::vec2(100.0f), 3));
+    const PackedScene packed = pack_scene(scene);
+    const kernel::CameraRecord camera = make_camera_record(scene.camera, 16, 12);
+    const GuideImages g = render_guides(packed, camera);
+    const kernel::SceneView view = packed.view();
+    const kernel::CameraRecord scaled = scaled_camera(camera, packed.scale);
+    const glm::vec3 first = scene.materials[2].color * scene.materials[2].emittance;
+    const std::size_t one = 6 * 16 + 7;
+    const std::size_t both = 6 * 16 + 8;
+    CAPTURE(g.emission[one].w, g.emission[both].w, g.lamp_edge_straight);
+    CHECK(std::fabs(g.emission[one].w - 0.3f) < 2e-3f);
+    CHECK(glm::length(glm::vec3(g.emission[one]) - first * g.emission[one].w) <
+          1e-5f * glm::length(first));
+    CHECK(g.emission[both] == kernel::pixel_emission(&view, scaled, 8, 6, T0_GUIDE_EMISSION_RAYS));
+    CHECK(std::fabs(g.emission[both].w - 0.3f) < 0.02f);
+    // The straight path is taken along the rest of the edge.
+    CHECK(g.lamp_edge_straight >= 14);
 }

@@ -210,8 +210,8 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
     // pixel (for a lamp's corner poking in, or a thin lamp), the pixel is
     // taken as its centre ray sees it. Of the others, where one straight
     // edge crosses the pixel its share is the area beside the edge's line
-    // (kernel::straight_edge_emission: about 40 rays, and exact to about
-    // 5e-4); the rest get the full count.
+    // (kernel::straight_edge_emission: about 40 rays, to about 5e-4 of the
+    // pixel); the rest get the full count.
     const int corner_count = static_cast<int>(corners_listed.size());
 #pragma omp parallel for schedule(dynamic, 16)
     for (int k = 0; k < corner_count; ++k) {

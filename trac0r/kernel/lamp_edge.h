@@ -87,9 +87,9 @@ T0_INLINE float4 pixel_emission(const SceneView* scene, CameraRecord camera, t0_
 // sides, a lamp's outline seen directly), its share of the pixel is the
 // area on the lamp's side of the line through the two points where it
 // crosses them, each found by bisection along its side: 2 x
-// T0_GUIDE_EDGE_STEPS rays and the T0_GUIDE_PROBE_RAYS that check the line,
-// where pixel_emission takes T0_GUIDE_EMISSION_RAYS and places the edge
-// to about 1 % of the pixel.
+// T0_GUIDE_EDGE_STEPS rays, and the T0_GUIDE_PROBE_RAYS and 6 rays beside
+// the line that check it, where pixel_emission takes
+// T0_GUIDE_EMISSION_RAYS and places the edge to about 1 % of the pixel.
 
 // Bisection steps along a side: the crossing to 2^-11 of the side, its
 // share to about 5e-4 of the pixel.
@@ -97,7 +97,7 @@ T0_INLINE float4 pixel_emission(const SceneView* scene, CameraRecord camera, t0_
 
 // How far from the line through the crossings (in pixels) the rays that
 // check it is straight lie: an outline that strays less from it errs by at
-// most this times the line's length in the share (under 0.011).
+// most this times the line's length in the share (about 0.011).
 #define T0_GUIDE_EDGE_OFFSET (1.0f / 128.0f)
 
 // Corner k of a pixel, going round it: (0, 0), (1, 0), (1, 1), (0, 1), in
@@ -218,8 +218,9 @@ T0_INLINE int straight_edge_emission(const SceneView* scene, CameraRecord camera
         ++lamp_corner;
     }
     const float lamp_side = line_side(p, q, pixel_corner(lamp_corner));
-    // A ray within this distance of the line (in pixels) may fall either
-    // way: its disagreement is no evidence.
+    // A ray within 1/256 of a pixel of the line may fall either way: its
+    // disagreement is no evidence (line_side is the distance times the
+    // line's length).
     const float band = (1.0f / 256.0f) * length(q - p);
     // The centre and the probes must agree with the line.
     const float centre_side = line_side(p, q, make_float2(0.5f, 0.5f));
@@ -251,11 +252,7 @@ T0_INLINE int straight_edge_emission(const SceneView* scene, CameraRecord camera
             }
         }
     }
-    if (!r.seen) {
-        // No ray but the corners met the lamp: one of them for its radiance.
-        const float2 c = pixel_corner(lamp_corner);
-        edge_ray_lamp(scene, camera, x + (t0_u32)c.x, y + (t0_u32)c.y, make_float2(0.0f, 0.0f), &r);
-    }
+    // (A ray beside the line on the lamp's side met the lamp: r.seen.)
     if (!r.seen || !r.same) {
         return 0;
     }
