@@ -38,17 +38,34 @@ struct TapPlanes {
         span_begin.resize(static_cast<std::size_t>(rows));
         span_end.resize(static_cast<std::size_t>(rows));
     }
-    // Pixel i's tap (kernel::filter_tap) and its centre weight.
-    void set(std::size_t i, const kernel::FilterTap& t, float centre_weight) {
-        nx[i] = t.normal.x;
-        ny[i] = t.normal.y;
-        nz[i] = t.normal.z;
-        nw[i] = t.normal.w;
-        depth[i] = t.params.x;
-        by_depth[i] = t.params.y;
-        share[i] = t.params.z;
-        kept[i] = t.params.w;
-        centre[i] = centre_weight;
+    // Pixels row to row + n - 1 from their taps and centre weights, plane
+    // by plane.
+    void set_row(std::size_t row, const kernel::FilterTap* t, const float* centres, int n) {
+        for (int k = 0; k < n; ++k) {
+            nx[row + k] = t[k].normal.x;
+        }
+        for (int k = 0; k < n; ++k) {
+            ny[row + k] = t[k].normal.y;
+        }
+        for (int k = 0; k < n; ++k) {
+            nz[row + k] = t[k].normal.z;
+        }
+        for (int k = 0; k < n; ++k) {
+            nw[row + k] = t[k].normal.w;
+        }
+        for (int k = 0; k < n; ++k) {
+            depth[row + k] = t[k].params.x;
+        }
+        for (int k = 0; k < n; ++k) {
+            by_depth[row + k] = t[k].params.y;
+        }
+        for (int k = 0; k < n; ++k) {
+            share[row + k] = t[k].params.z;
+        }
+        for (int k = 0; k < n; ++k) {
+            kept[row + k] = t[k].params.w;
+        }
+        std::copy(centres, centres + n, &centre[row]);
     }
     // Row y's span, from its pixels' `kept`, once they are set.
     void set_span(int y, int width) {
@@ -87,14 +104,29 @@ struct ScalePlanes {
             v->resize(n);
         }
     }
-    void set(std::size_t i, const kernel::FilterScale& s) {
-        dr[i] = s.divisor.x;
-        dg[i] = s.divisor.y;
-        db[i] = s.divisor.z;
-        dl[i] = s.luminance_divisor;
-        lr[i] = s.lamp.x;
-        lg[i] = s.lamp.y;
-        lb[i] = s.lamp.z;
+    // Pixels row to row + n - 1, plane by plane.
+    void set_row(std::size_t row, const kernel::FilterScale* s, int n) {
+        for (int k = 0; k < n; ++k) {
+            dr[row + k] = s[k].divisor.x;
+        }
+        for (int k = 0; k < n; ++k) {
+            dg[row + k] = s[k].divisor.y;
+        }
+        for (int k = 0; k < n; ++k) {
+            db[row + k] = s[k].divisor.z;
+        }
+        for (int k = 0; k < n; ++k) {
+            dl[row + k] = s[k].luminance_divisor;
+        }
+        for (int k = 0; k < n; ++k) {
+            lr[row + k] = s[k].lamp.x;
+        }
+        for (int k = 0; k < n; ++k) {
+            lg[row + k] = s[k].lamp.y;
+        }
+        for (int k = 0; k < n; ++k) {
+            lb[row + k] = s[k].lamp.z;
+        }
     }
     std::vector<float> dr, dg, db, dl, lr, lg, lb;
 };
@@ -425,15 +457,27 @@ void FilterWorkspace::set_guides(const std::vector<kernel::FilterGuide>& guides,
     b.has_guides = false;
     b.taps.resize(pixels, height);
     b.scale.resize(pixels);
-#pragma omp parallel for schedule(dynamic, 16)
-    for (int y = 0; y < height; ++y) {
-        for (int x = 0; x < width; ++x) {
-            const kernel::FilterTap t = kernel::filter_tap(guides.data(), width, height, x, y);
-            const std::size_t i = static_cast<std::size_t>(y) * width + x;
-            b.taps.set(i, t, centre_weight(t));
-            b.scale.set(i, kernel::filter_scale(guides[i]));
+#pragma omp parallel
+    {
+        // A row's taps and scales made first, then written plane by plane:
+        // one stream of stores at a time, which the caches take in far
+        // fewer misses than sixteen interleaved (at 800 x 600, where the
+        // planes do not fit them).
+        std::vector<kernel::FilterTap> taps(static_cast<std::size_t>(width));
+        std::vector<float> centres(static_cast<std::size_t>(width));
+        std::vector<kernel::FilterScale> scales(static_cast<std::size_t>(width));
+#pragma omp for schedule(dynamic, 16)
+        for (int y = 0; y < height; ++y) {
+            const std::size_t row = static_cast<std::size_t>(y) * width;
+            for (int x = 0; x < width; ++x) {
+                taps[x] = kernel::filter_tap(guides.data(), width, height, x, y);
+                centres[x] = centre_weight(taps[x]);
+                scales[x] = kernel::filter_scale(guides[row + x]);
+            }
+            b.taps.set_row(row, taps.data(), centres.data(), width);
+            b.scale.set_row(row, scales.data(), width);
+            b.taps.set_span(y, width);
         }
-        b.taps.set_span(y, width);
     }
     b.width = width;
     b.height = height;
