@@ -227,6 +227,11 @@ TEST_CASE("a workspace keeps a view's guides for the filter calls that take none
     // An empty image filters to an empty image.
     const Image none = filter_image({}, 0, 0, {}, T0_FILTER_PASSES);
     CHECK((none.width == 0 && none.height == 0 && none.pixels.empty()));
+    // So does one of no columns but some rows, or the reverse.
+    const Image thin = filter_image({}, 0, 5, {}, T0_FILTER_PASSES);
+    CHECK((thin.width == 0 && thin.height == 5 && thin.pixels.empty()));
+    const Image flat = filter_image({}, 5, 0, {}, T0_FILTER_PASSES);
+    CHECK((flat.width == 5 && flat.height == 0 && flat.pixels.empty()));
 }
 
 TEST_CASE("a workspace takes a view's GuideImages as filter_guides makes them", "[filter]") {

@@ -4,6 +4,8 @@
 
 #include "trac0r/kernel/filter.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -65,7 +67,7 @@ struct TapPlanes {
         for (int k = 0; k < n; ++k) {
             kept[row + k] = t[k].params.w;
         }
-        std::copy(centres, centres + n, &centre[row]);
+        std::copy(centres, centres + n, centre.data() + row);
     }
     // Row y's span, from its pixels' `kept`, once they are set.
     void set_span(int y, int width) {
@@ -435,6 +437,10 @@ struct FilterWorkspace::Buffers {
     int height = 0;
     bool has_guides = false;
     std::vector<kernel::FilterGuide> guides;  // set_guides(GuideImages)'s
+    // set_guides' scratch: a row for each thread.
+    std::vector<kernel::FilterTap> row_taps;
+    std::vector<float> row_centres;
+    std::vector<kernel::FilterScale> row_scales;
     TapPlanes taps;
     ScalePlanes scale;
     PixelPlanes a;
@@ -457,15 +463,22 @@ void FilterWorkspace::set_guides(const std::vector<kernel::FilterGuide>& guides,
     b.has_guides = false;
     b.taps.resize(pixels, height);
     b.scale.resize(pixels);
-#pragma omp parallel
+    // A row's taps and scales made first, into a row of scratch for each
+    // thread (made here: nothing in the parallel region may throw), then
+    // written plane by plane, one stream of stores at a time: at 320 x 240
+    // to 800 x 600 that took half the time of storing each pixel into the
+    // sixteen planes at once (at 160 x 120, 1.4 times as long).
+    const std::size_t row_length = static_cast<std::size_t>(std::max(width, 0));
+    const std::size_t threads = static_cast<std::size_t>(omp_get_max_threads());
+    b.row_taps.resize(threads * row_length);
+    b.row_centres.resize(threads * row_length);
+    b.row_scales.resize(threads * row_length);
+#pragma omp parallel num_threads(static_cast <int>(threads))
     {
-        // A row's taps and scales made first, then written plane by plane:
-        // one stream of stores at a time, which the caches take in far
-        // fewer misses than sixteen interleaved (at 800 x 600, where the
-        // planes do not fit them).
-        std::vector<kernel::FilterTap> taps(static_cast<std::size_t>(width));
-        std::vector<float> centres(static_cast<std::size_t>(width));
-        std::vector<kernel::FilterScale> scales(static_cast<std::size_t>(width));
+        const std::size_t own = static_cast<std::size_t>(omp_get_thread_num()) * row_length;
+        kernel::FilterTap* const taps = b.row_taps.data() + own;
+        float* const centres = b.row_centres.data() + own;
+        kernel::FilterScale* const scales = b.row_scales.data() + own;
 #pragma omp for schedule(dynamic, 16)
         for (int y = 0; y < height; ++y) {
             const std::size_t row = static_cast<std::size_t>(y) * width;
@@ -474,8 +487,8 @@ void FilterWorkspace::set_guides(const std::vector<kernel::FilterGuide>& guides,
                 centres[x] = centre_weight(taps[x]);
                 scales[x] = kernel::filter_scale(guides[row + x]);
             }
-            b.taps.set_row(row, taps.data(), centres.data(), width);
-            b.scale.set_row(row, scales.data(), width);
+            b.taps.set_row(row, taps, centres, width);
+            b.scale.set_row(row, scales, width);
             b.taps.set_span(y, width);
         }
     }
