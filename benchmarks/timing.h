@@ -39,31 +39,35 @@ inline double clock_seconds(clockid_t clock) {
 // thread's time (at its ticks and switches), so over a few milliseconds it
 // may count a busy worker's time twice or not at all (on this repository's
 // machine a 2.8-ms frame of two busy threads read anywhere from 3.0 to
-// 6.8 ms, and each thread's own clock 5.5 to 5.9 ms). A thread's clock,
-// read from any thread of the process, is up to date. A thread that ends
-// between two readings is not counted: OpenMP's and PoCL's workers live as
-// long as the process. Where /proc is missing, the process's clock.
+// 6.8 ms, and the sum of the two threads' own clocks 5.5 to 5.9 ms). A
+// thread's clock, read from any thread of the process, is up to date. A
+// thread that ends between two readings takes all its time out of the
+// difference: the benchmarks keep one OpenMP team size and PoCL's workers,
+// and start timing after a warm-up, so none ends. Where no thread's clock
+// can be read (no /proc), the process's clock.
 inline double process_cpu_seconds() {
     DIR* dir = opendir("/proc/self/task");
     if (dir == nullptr) {
         return clock_seconds(CLOCK_PROCESS_CPUTIME_ID);
     }
     double sum = 0.0;
+    int read = 0;
     while (const dirent* entry = readdir(dir)) {
-        if (entry->d_name[0] == '.') {
-            continue;
-        }
         const unsigned long tid = std::strtoul(entry->d_name, nullptr, 10);
+        if (tid == 0) {
+            continue;  // "." and ".."
+        }
         // The clock of thread `tid` (what glibc's pthread_getcpuclockid
         // makes: CPUCLOCK_PERTHREAD and CPUCLOCK_SCHED).
         const clockid_t clock = static_cast<clockid_t>((~tid << 3) | 6u);
         timespec t;
         if (clock_gettime(clock, &t) == 0) {
             sum += static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+            ++read;
         }
     }
     closedir(dir);
-    return sum;
+    return read > 0 ? sum : clock_seconds(CLOCK_PROCESS_CPUTIME_ID);
 }
 
 // Seconds of CPU time of the calling thread alone: for work timed on one
