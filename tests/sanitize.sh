@@ -24,12 +24,16 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0
 export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1
 ctest --test-dir "$build" --output-on-failure \
-    -E '^(test_opencl|test_window|test_stability_opencl|test_mpi|test_out_of_memory|test_install)$'
+    -E '^(test_opencl|test_window|test_stability_opencl|test_cancel|test_mpi|test_out_of_memory|test_install)$'
 # Memory errors and undefined behaviour as above, but no leak check:
 # - test_window: SDL's X11 and GL modules are loaded and unloaded with
 #   dlopen, and what they keep cannot even be named (no module to match);
-# - test_stability_opencl: its cases pass, but LeakSanitizer's own tracer
-#   crashes (signal 11) at exit while PoCL's worker threads are stopping;
+# - test_stability_opencl and test_cancel (whose cases run OpenCL frames
+#   too): their cases pass, but LeakSanitizer's own tracer crashes
+#   (signal 11) at exit while PoCL's worker threads are stopping, reading
+#   a dynamic TLS block at a bogus address ("DTLS 13 at 0x2dad-..." with
+#   LSAN_OPTIONS=verbosity=1:log_threads=1); whether it does moves with
+#   the test binary's layout;
 # - test_mpi: Open MPI keeps what MPI_Init allocated (opal_argv, its op
 #   tables), much of it in components it has unloaded by exit, whose
 #   frames LeakSanitizer can no longer name or suppress.
@@ -40,4 +44,4 @@ ctest --test-dir "$build" --output-on-failure \
 # window's switch to OpenCL (B) ends such a thread since OpenCL devices are
 # released with their last backend.
 ASAN_OPTIONS=detect_leaks=0:halt_on_error=1:use_sigaltstack=0 ctest --test-dir "$build" --output-on-failure \
-    -R '^(test_window|test_stability_opencl|test_mpi)$'
+    -R '^(test_window|test_stability_opencl|test_cancel|test_mpi)$'
