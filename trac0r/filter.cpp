@@ -23,6 +23,16 @@ namespace trac0r {
 
 namespace {
 
+// Pixels row to row + n - 1 of `plane`: value(k) for the k-th. One plane
+// at a time, one stream of stores (FilterWorkspace::set_guides).
+template <class Value>
+void set_plane_row(std::vector<float>* plane, std::size_t row, int n, Value value) {
+    float* const out = plane->data() + row;
+    for (int k = 0; k < n; ++k) {
+        out[k] = value(k);
+    }
+}
+
 // The CPU's passes keep their per-pixel values in planes, one float a
 // pixel each, which the compiler loads for neighbouring pixels at once: the
 // guides as the passes read them (kernel::FilterTap), and a pass's image
@@ -43,31 +53,15 @@ struct TapPlanes {
     // Pixels row to row + n - 1 from their taps and centre weights, plane
     // by plane.
     void set_row(std::size_t row, const kernel::FilterTap* t, const float* centres, int n) {
-        for (int k = 0; k < n; ++k) {
-            nx[row + k] = t[k].normal.x;
-        }
-        for (int k = 0; k < n; ++k) {
-            ny[row + k] = t[k].normal.y;
-        }
-        for (int k = 0; k < n; ++k) {
-            nz[row + k] = t[k].normal.z;
-        }
-        for (int k = 0; k < n; ++k) {
-            nw[row + k] = t[k].normal.w;
-        }
-        for (int k = 0; k < n; ++k) {
-            depth[row + k] = t[k].params.x;
-        }
-        for (int k = 0; k < n; ++k) {
-            by_depth[row + k] = t[k].params.y;
-        }
-        for (int k = 0; k < n; ++k) {
-            share[row + k] = t[k].params.z;
-        }
-        for (int k = 0; k < n; ++k) {
-            kept[row + k] = t[k].params.w;
-        }
-        std::copy(centres, centres + n, centre.data() + row);
+        set_plane_row(&nx, row, n, [t](int k) { return t[k].normal.x; });
+        set_plane_row(&ny, row, n, [t](int k) { return t[k].normal.y; });
+        set_plane_row(&nz, row, n, [t](int k) { return t[k].normal.z; });
+        set_plane_row(&nw, row, n, [t](int k) { return t[k].normal.w; });
+        set_plane_row(&depth, row, n, [t](int k) { return t[k].params.x; });
+        set_plane_row(&by_depth, row, n, [t](int k) { return t[k].params.y; });
+        set_plane_row(&share, row, n, [t](int k) { return t[k].params.z; });
+        set_plane_row(&kept, row, n, [t](int k) { return t[k].params.w; });
+        set_plane_row(&centre, row, n, [centres](int k) { return centres[k]; });
     }
     // Row y's span, from its pixels' `kept`, once they are set.
     void set_span(int y, int width) {
@@ -108,27 +102,13 @@ struct ScalePlanes {
     }
     // Pixels row to row + n - 1, plane by plane.
     void set_row(std::size_t row, const kernel::FilterScale* s, int n) {
-        for (int k = 0; k < n; ++k) {
-            dr[row + k] = s[k].divisor.x;
-        }
-        for (int k = 0; k < n; ++k) {
-            dg[row + k] = s[k].divisor.y;
-        }
-        for (int k = 0; k < n; ++k) {
-            db[row + k] = s[k].divisor.z;
-        }
-        for (int k = 0; k < n; ++k) {
-            dl[row + k] = s[k].luminance_divisor;
-        }
-        for (int k = 0; k < n; ++k) {
-            lr[row + k] = s[k].lamp.x;
-        }
-        for (int k = 0; k < n; ++k) {
-            lg[row + k] = s[k].lamp.y;
-        }
-        for (int k = 0; k < n; ++k) {
-            lb[row + k] = s[k].lamp.z;
-        }
+        set_plane_row(&dr, row, n, [s](int k) { return s[k].divisor.x; });
+        set_plane_row(&dg, row, n, [s](int k) { return s[k].divisor.y; });
+        set_plane_row(&db, row, n, [s](int k) { return s[k].divisor.z; });
+        set_plane_row(&dl, row, n, [s](int k) { return s[k].luminance_divisor; });
+        set_plane_row(&lr, row, n, [s](int k) { return s[k].lamp.x; });
+        set_plane_row(&lg, row, n, [s](int k) { return s[k].lamp.y; });
+        set_plane_row(&lb, row, n, [s](int k) { return s[k].lamp.z; });
     }
     std::vector<float> dr, dg, db, dl, lr, lg, lb;
 };
