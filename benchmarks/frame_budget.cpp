@@ -49,6 +49,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -222,6 +223,7 @@ Costs measure_costs(const Scene& scene, const Options& o) {
     TemporalSettings settings;
     settings.max_history = static_cast<float>(o.max_history);
     TemporalFrame history;
+    TemporalFrame spare;
     FilterWorkspace workspace;
     std::vector<Seconds> spp;
     std::vector<Seconds> filter;
@@ -234,8 +236,9 @@ Costs measure_costs(const Scene& scene, const Options& o) {
         });
         const Seconds c = timed([&] {
             const GuideImages guides = render_surface_guides(r->packed(), r->camera_record());
-            history =
-                temporal_blend(history, r->image(), 1.0f, r->camera_record(), guides, settings);
+            // Into the frame before, swapped, as the window's ViewHistory.
+            temporal_blend(history, r->image(), 1.0f, r->camera_record(), guides, &spare, settings);
+            std::swap(history, spare);
         });
         if (i >= 0) {
             spp.push_back(a);

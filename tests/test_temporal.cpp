@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 using namespace trac0r;
 
@@ -306,4 +307,61 @@ TEST_CASE("temporal_blend refuses an image of another size", "[temporal]") {
     history.depth_slopes.clear();
     CHECK_THROWS_WITH(temporal_blend(history, flat_image(20, 15, red), 1.0f, v.camera, v.guides),
                       Catch::Contains("depth slopes"));
+}
+
+TEST_CASE("a frame blended into kept storage is the frame made anew", "[temporal]") {
+    // As the window blends: into the frame before last, of this size or of
+    // another (a resized window), whose old values must all be overwritten.
+    const Scene scene = wall_and_box();
+    const PackedScene packed = pack_scene(scene);
+    const View before = view_of(packed, scene.camera, 64, 48);
+    Camera moved = scene.camera;
+    moved.position.x = -0.05f;
+    const View after = view_of(packed, moved, 64, 48);
+    Image previous = flat_image(64, 48, red);
+    for (std::size_t i = 0; i < previous.pixels.size(); ++i) {
+        previous.pixels[i] *= static_cast<float>(i % 7 + 1);
+    }
+    const TemporalFrame history =
+        temporal_blend(TemporalFrame(), previous, 4.0f, before.camera, before.guides);
+    TemporalStats fresh_stats;
+    const TemporalFrame fresh =
+        temporal_blend(history, flat_image(64, 48, green), 1.0f, after.camera, after.guides,
+                       TemporalSettings(), &fresh_stats);
+    // Kept frames of other views, turned: their guides differ from the
+    // new ones everywhere (the wall's depth across the view).
+    const Camera turned = turn_camera(scene.camera, 0.4f, 0.2f);
+    const View other = view_of(packed, turned, 64, 48);
+    const View small = view_of(packed, turned, 20, 15);
+    const TemporalFrame same_size = temporal_blend(
+        TemporalFrame(), flat_image(64, 48, green * 9.0f), 2.0f, other.camera, other.guides);
+    const TemporalFrame other_size =
+        temporal_blend(TemporalFrame(), flat_image(20, 15, red), 2.0f, small.camera, small.guides);
+    for (TemporalFrame kept : {same_size, other_size}) {
+        TemporalStats stats;
+        temporal_blend(history, flat_image(64, 48, green), 1.0f, after.camera, after.guides, &kept,
+                       TemporalSettings(), &stats);
+        CHECK(std::memcmp(&kept.camera, &fresh.camera, sizeof fresh.camera) == 0);
+        REQUIRE(kept.pixels.size() == fresh.pixels.size());
+        REQUIRE(kept.guides.size() == fresh.guides.size());
+        REQUIRE(kept.depth_slopes.size() == fresh.depth_slopes.size());
+        CHECK(std::memcmp(kept.pixels.data(), fresh.pixels.data(),
+                          fresh.pixels.size() * sizeof fresh.pixels[0]) == 0);
+        CHECK(std::memcmp(kept.guides.data(), fresh.guides.data(),
+                          fresh.guides.size() * sizeof fresh.guides[0]) == 0);
+        CHECK(std::memcmp(kept.depth_slopes.data(), fresh.depth_slopes.data(),
+                          fresh.depth_slopes.size() * sizeof fresh.depth_slopes[0]) == 0);
+        CHECK(stats.reused == fresh_stats.reused);
+        CHECK(stats.dropped == fresh_stats.dropped);
+        CHECK(stats.background == fresh_stats.background);
+    }
+    // The history reused and dropped some pixels: the comparison above
+    // covers both kinds.
+    CHECK(fresh_stats.reused > 0);
+    CHECK(fresh_stats.dropped > 0);
+    // The result cannot be written over the history it reads.
+    TemporalFrame self = history;
+    CHECK_THROWS_WITH(
+        temporal_blend(self, flat_image(64, 48, green), 1.0f, after.camera, after.guides, &self),
+        Catch::Contains("cannot be the history"));
 }

@@ -20,6 +20,17 @@ Image TemporalFrame::image() const {
 TemporalFrame temporal_blend(const TemporalFrame& history, const Image& current, float samples,
                              const kernel::CameraRecord& camera, const GuideImages& guides,
                              const TemporalSettings& settings, TemporalStats* stats) {
+    TemporalFrame out;
+    temporal_blend(history, current, samples, camera, guides, &out, settings, stats);
+    return out;
+}
+
+void temporal_blend(const TemporalFrame& history, const Image& current, float samples,
+                    const kernel::CameraRecord& camera, const GuideImages& guides,
+                    TemporalFrame* into, const TemporalSettings& settings, TemporalStats* stats) {
+    if (into == &history) {
+        throw std::invalid_argument("temporal_blend: the result cannot be the history");
+    }
     const int width = static_cast<int>(camera.size.x);
     const int height = static_cast<int>(camera.size.y);
     const std::size_t count = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
@@ -37,7 +48,9 @@ TemporalFrame temporal_blend(const TemporalFrame& history, const Image& current,
         throw std::invalid_argument(
             "temporal_blend: the history's pixels, guides, depth slopes and camera disagree");
     }
-    TemporalFrame out;
+    // Every pixel of the three images is written below: resized, not
+    // cleared, so that storage of the same size is used again as it is.
+    TemporalFrame& out = *into;
     out.camera = camera;
     out.pixels.resize(count);
     out.guides.resize(count);
@@ -83,7 +96,6 @@ TemporalFrame temporal_blend(const TemporalFrame& history, const Image& current,
         stats->background = background;
         stats->dropped = static_cast<long>(count) - reused - background;
     }
-    return out;
 }
 
 }  // namespace trac0r

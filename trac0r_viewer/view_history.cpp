@@ -1,16 +1,19 @@
 #include "view_history.h"
 
+#include <utility>
+
 namespace trac0r_viewer {
 
 void ViewHistory::settle() {
     if (drop_) {
         history_ = trac0r::TemporalFrame();
+        spare_ = trac0r::TemporalFrame();
         history_is_shown_full_ = false;
         drop_ = false;
     } else if (history_is_shown_full_) {
-        history_ = trac0r::temporal_blend(trac0r::TemporalFrame(), shown_full_,
-                                          static_cast<float>(shown_full_spp_), shown_full_camera_,
-                                          guides_of_(shown_full_camera_));
+        trac0r::temporal_blend(trac0r::TemporalFrame(), shown_full_,
+                               static_cast<float>(shown_full_spp_), shown_full_camera_,
+                               guides_of_(shown_full_camera_), &history_);
         history_is_shown_full_ = false;
     }
 }
@@ -19,7 +22,8 @@ trac0r::Image ViewHistory::preview(const trac0r::Image& image, float spp,
                                    const trac0r::kernel::CameraRecord& camera,
                                    const trac0r::GuideImages& guides) {
     settle();
-    history_ = trac0r::temporal_blend(history_, image, spp, camera, guides);
+    trac0r::temporal_blend(history_, image, spp, camera, guides, &spare_);
+    std::swap(history_, spare_);
     return history_.image();
 }
 
@@ -39,8 +43,8 @@ trac0r::Image ViewHistory::full_frame(const trac0r::Image& image, std::uint32_t 
         // then: most full frames are followed by another.
         history_is_shown_full_ = true;
     } else {
-        history_ = trac0r::temporal_blend(carried_, shown, static_cast<float>(spp), camera,
-                                          guides_of_(camera));
+        trac0r::temporal_blend(carried_, shown, static_cast<float>(spp), camera, guides_of_(camera),
+                               &history_);
         history_is_shown_full_ = false;
         shown = history_.image();
     }

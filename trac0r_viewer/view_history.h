@@ -62,6 +62,9 @@ class ViewHistory {
     // The frame on display with its guides (empty: none, or the last full
     // frame shown, made from shown_full_ when needed).
     trac0r::TemporalFrame history_;
+    // The frame before history_, whose storage the next preview's blend
+    // writes into (then the two swap): no new 17 MB each frame at 800 x 600.
+    trac0r::TemporalFrame spare_;
     bool history_is_shown_full_ = false;
     bool drop_ = false;
     // What the moves left, blended into the full frames after a stop.
