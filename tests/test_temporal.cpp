@@ -363,5 +363,8 @@ TEST_CASE("a frame blended into kept storage is the frame made anew", "[temporal
     TemporalFrame self = history;
     CHECK_THROWS_WITH(
         temporal_blend(self, flat_image(64, 48, green), 1.0f, after.camera, after.guides, &self),
-        Catch::Contains("cannot be the history"));
+        Catch::Contains("other than the history"));
+    CHECK_THROWS_WITH(temporal_blend(history, flat_image(64, 48, green), 1.0f, after.camera,
+                                     after.guides, nullptr),
+                      Catch::Contains("other than the history"));
 }

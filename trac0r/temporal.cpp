@@ -28,8 +28,10 @@ TemporalFrame temporal_blend(const TemporalFrame& history, const Image& current,
 void temporal_blend(const TemporalFrame& history, const Image& current, float samples,
                     const kernel::CameraRecord& camera, const GuideImages& guides,
                     TemporalFrame* into, const TemporalSettings& settings, TemporalStats* stats) {
-    if (into == &history) {
-        throw std::invalid_argument("temporal_blend: the result cannot be the history");
+    if (into == nullptr || into == &history) {
+        throw std::invalid_argument(
+            "temporal_blend: the result must be a frame other than the "
+            "history");
     }
     const int width = static_cast<int>(camera.size.x);
     const int height = static_cast<int>(camera.size.y);
@@ -50,11 +52,18 @@ void temporal_blend(const TemporalFrame& history, const Image& current, float sa
     }
     // Every pixel of the three images is written below: resized, not
     // cleared, so that storage of the same size is used again as it is.
+    // Where that fails for memory, the frame is left empty, not with
+    // images of another size than its camera's.
     TemporalFrame& out = *into;
+    try {
+        out.pixels.resize(count);
+        out.guides.resize(count);
+        out.depth_slopes.resize(count);
+    } catch (...) {
+        out = TemporalFrame();
+        throw;
+    }
     out.camera = camera;
-    out.pixels.resize(count);
-    out.guides.resize(count);
-    out.depth_slopes.resize(count);
 #pragma omp parallel for schedule(static)
     for (std::size_t i = 0; i < count; ++i) {
         const float depth = guides.depth[i];

@@ -24,6 +24,9 @@ trac0r::Image ViewHistory::preview(const trac0r::Image& image, float spp,
     settle();
     trac0r::temporal_blend(history_, image, spp, camera, guides, &spare_);
     std::swap(history_, spare_);
+    if (spare_.pixels.size() != history_.pixels.size()) {
+        spare_ = trac0r::TemporalFrame();
+    }
     return history_.image();
 }
 

@@ -63,7 +63,9 @@ class ViewHistory {
     // frame shown, made from shown_full_ when needed).
     trac0r::TemporalFrame history_;
     // The frame before history_, whose storage the next preview's blend
-    // writes into (then the two swap): no new 17 MB each frame at 800 x 600.
+    // writes into (then the two swap), so that previews make no new
+    // pages; let go where it is not of the previews' size (a full frame's,
+    // after a stop), not kept through the move.
     trac0r::TemporalFrame spare_;
     bool history_is_shown_full_ = false;
     bool drop_ = false;
