@@ -30,8 +30,7 @@ void temporal_blend(const TemporalFrame& history, const Image& current, float sa
                     TemporalFrame* into, const TemporalSettings& settings, TemporalStats* stats) {
     if (into == nullptr || into == &history) {
         throw std::invalid_argument(
-            "temporal_blend: the result must be a frame other than the "
-            "history");
+            "temporal_blend: the result must be a frame other than the history");
     }
     const int width = static_cast<int>(camera.size.x);
     const int height = static_cast<int>(camera.size.y);
