@@ -96,6 +96,34 @@ Scene planes_and_lamp_material(const glm::vec3& lamp_colour) {
     return scene;
 }
 
+// The width of a pixel of facing_planes' 16 x 12 view at depth 1.9.
+const float pixel_at_lamp = 2.0f * 1.9f * std::tan(glm::radians(30.0f)) * (16.0f / 12.0f) / 16.0f;
+
+// planes_and_lamp_material with a lamp facing the camera at z = 1.9 over
+// the left of the view, its right edge a quarter into pixel column 8 (the
+// camera looks along +z, so image right is -x; column 8 starts at x = 0).
+Scene planes_and_lamp_edge(const glm::vec3& lamp_colour) {
+    Scene scene = planes_and_lamp_material(lamp_colour);
+    scene.shapes.push_back(make_plane(glm::vec3(50.0f - 0.25f * pixel_at_lamp, 0.0f, 1.9f),
+                                      glm::vec3(-half_pi, 0.0f, 0.0f), glm::vec2(100.0f), 2));
+    return scene;
+}
+
+// Every image and field of two GuideImages equal, bit for bit.
+void check_same_guides(const GuideImages& a, const GuideImages& b) {
+    CHECK(a.width == b.width);
+    CHECK(a.height == b.height);
+    CHECK(a.albedo == b.albedo);
+    CHECK(a.normal == b.normal);
+    CHECK(a.depth == b.depth);
+    CHECK(a.emitter == b.emitter);
+    CHECK(a.emission == b.emission);
+    CHECK(a.lamp_edges == b.lamp_edges);
+    CHECK(a.lamp_edge_pixels == b.lamp_edge_pixels);
+    CHECK(a.lamp_edge_traced == b.lamp_edge_traced);
+    CHECK(a.lamp_edge_straight == b.lamp_edge_straight);
+}
+
 // A lamp turned 20 degrees about the view axis, one of its corners in the
 // middle of the view: slanted edges, and a corner; 48 x 36.
 Scene slanted_lamp() {
@@ -188,15 +216,8 @@ TEST_CASE("a pixel's variance layer is the variance of its mean", "[guides]") {
 }
 
 TEST_CASE("along a lamp's edge, the share of each pixel that sees the lamp", "[guides]") {
-    Scene scene = planes_and_lamp_material(glm::vec3(1.0f, 0.5f, 0.25f));
+    const Scene scene = planes_and_lamp_edge(glm::vec3(1.0f, 0.5f, 0.25f));
     const Material& lamp = scene.materials[2];
-    // A lamp facing the camera at z = 1.9 over the left of the view, its
-    // right edge a quarter into pixel column 8 (the camera looks along +z,
-    // so image right is -x; column 8 starts at x = 0; a pixel is
-    // 2 z tan(30 deg) 16/12 / 16 wide at depth z).
-    const float pixel = 2.0f * 1.9f * std::tan(glm::radians(30.0f)) * (16.0f / 12.0f) / 16.0f;
-    scene.shapes.push_back(make_plane(glm::vec3(50.0f - 0.25f * pixel, 0.0f, 1.9f),
-                                      glm::vec3(-half_pi, 0.0f, 0.0f), glm::vec2(100.0f), 2));
     const GuideImages g = guides_of(scene);
     CHECK(g.lamp_edges);
     const glm::vec3 radiance = lamp.color * lamp.emittance;
@@ -216,11 +237,7 @@ TEST_CASE("along a lamp's edge, the share of each pixel that sees the lamp", "[g
 
 TEST_CASE("surface guides are the centre rays' alone; the lamp-edge split comes after",
           "[guides]") {
-    Scene scene = planes_and_lamp_material(glm::vec3(1.0f));
-    // The lamp's edge a quarter into pixel column 8, as above.
-    const float pixel = 2.0f * 1.9f * std::tan(glm::radians(30.0f)) * (16.0f / 12.0f) / 16.0f;
-    scene.shapes.push_back(make_plane(glm::vec3(50.0f - 0.25f * pixel, 0.0f, 1.9f),
-                                      glm::vec3(-half_pi, 0.0f, 0.0f), glm::vec2(100.0f), 2));
+    const Scene scene = planes_and_lamp_edge(glm::vec3(1.0f));
     const PackedScene packed = pack_scene(scene);
     const kernel::CameraRecord camera = make_camera_record(scene.camera, 16, 12);
     GuideImages surface = render_surface_guides(packed, camera);
@@ -243,6 +260,33 @@ TEST_CASE("surface guides are the centre rays' alone; the lamp-edge split comes 
     GuideImages other = render_surface_guides(packed, make_camera_record(scene.camera, 8, 6));
     CHECK_THROWS_WITH(add_lamp_edges(packed, camera, &other),
                       Catch::Contains("add_lamp_edges") && Catch::Contains("size"));
+}
+
+TEST_CASE("surface guides made into kept guides are a new view's, split and all", "[guides]") {
+    const Scene scene = planes_and_lamp_edge(glm::vec3(1.0f));
+    const PackedScene packed = pack_scene(scene);
+    const kernel::CameraRecord camera = make_camera_record(scene.camera, 16, 12);
+    Camera moved = scene.camera;
+    moved.position.x += 0.3f * pixel_at_lamp;
+    const kernel::CameraRecord other_view = make_camera_record(moved, 16, 12);
+    // Kept guides of one view, split, then made again for another view of
+    // the same size, of a smaller and of a larger size: each time as new
+    // ones are, without the split until it is added again.
+    GuideImages kept = render_guides(packed, camera);
+    REQUIRE(kept.lamp_edge_traced > 0);
+    // Never larger than the first: the same storage throughout.
+    const glm::vec3* const albedo = kept.albedo.data();
+    const glm::vec4* const emission = kept.emission.data();
+    for (const kernel::CameraRecord& view :
+         {other_view, make_camera_record(scene.camera, 8, 6), camera}) {
+        render_surface_guides(packed, view, &kept);
+        CHECK(kept.albedo.data() == albedo);
+        CHECK(kept.emission.data() == emission);
+        check_same_guides(kept, render_surface_guides(packed, view));
+        CHECK_FALSE(kept.lamp_edges);
+        add_lamp_edges(packed, view, &kept);
+        check_same_guides(kept, render_guides(packed, view));
+    }
 }
 
 TEST_CASE("guides made by tiles are each ray's traced alone, bit for bit", "[guides][bundle]") {

@@ -78,14 +78,30 @@ GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord&
 
 GuideImages render_surface_guides(const PackedScene& packed, const kernel::CameraRecord& camera) {
     GuideImages g;
+    render_surface_guides(packed, camera, &g);
+    return g;
+}
+
+void render_surface_guides(const PackedScene& packed, const kernel::CameraRecord& camera,
+                           GuideImages* into) {
+    GuideImages& g = *into;
+    const std::size_t pixels = static_cast<std::size_t>(camera.size.x) * camera.size.y;
+    try {
+        g.albedo.resize(pixels);
+        g.normal.resize(pixels);
+        g.depth.resize(pixels);
+        g.emitter.resize(pixels);
+        g.emission.resize(pixels);
+    } catch (...) {
+        g = GuideImages();  // empty, not another view's images of this size
+        throw;
+    }
     g.width = static_cast<int>(camera.size.x);
     g.height = static_cast<int>(camera.size.y);
-    const std::size_t pixels = static_cast<std::size_t>(g.width) * g.height;
-    g.albedo.resize(pixels);
-    g.normal.resize(pixels);
-    g.depth.resize(pixels);
-    g.emitter.resize(pixels);
-    g.emission.resize(pixels);
+    g.lamp_edges = false;
+    g.lamp_edge_pixels = 0;
+    g.lamp_edge_traced = 0;
+    g.lamp_edge_straight = 0;
     const kernel::SceneView view = packed.view();
     const kernel::CameraRecord scaled = scaled_camera(camera, packed.scale);
     const int height = g.height;
@@ -125,7 +141,6 @@ GuideImages render_surface_guides(const PackedScene& packed, const kernel::Camer
             }
         }
     }
-    return g;
 }
 
 void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camera,

@@ -53,6 +53,14 @@ GuideImages render_guides(const PackedScene& packed, const kernel::CameraRecord&
 // reuse and the EXR layers read (depth, normal, albedo), at a fraction of
 // the cost where lamps' edges cross many pixels.
 GuideImages render_surface_guides(const PackedScene& packed, const kernel::CameraRecord& camera);
+// The same into *into, whatever view or size it held (its lamp-edge split
+// is dropped: add_lamp_edges makes it again), its storage reused: a caller
+// that makes guides every frame (a moving window) then allocates, and the
+// system zeroes, no memory once it has held guides of this size or larger.
+// At 800 x 600 that is 22 MB, which costs about as much as the rays
+// themselves. Where it cannot allocate, *into is left empty.
+void render_surface_guides(const PackedScene& packed, const kernel::CameraRecord& camera,
+                           GuideImages* into);
 
 // The lamp-edge split of guides made by render_surface_guides of the same
 // view (nothing when it is made already).
