@@ -4,8 +4,9 @@
 //
 //   raw       floor(B / t_spp) samples a pixel, the accumulated mean;
 //   filtered  floor((B - t_filter) / t_spp), then the edge-preserving filter
-//             (render_guides, FilterWorkspace::set_guides, filter_image), the
-//             workspace kept from frame to frame as the window keeps it;
+//             (render_surface_guides, add_lamp_edges,
+//             FilterWorkspace::set_guides, filter_image), the guides and
+//             the workspace kept from frame to frame as the window keeps them;
 //   temporal  while the camera moves, each frame floor((B - t_temporal) /
 //             t_spp) samples blended with the previous frame reprojected
 //             (render_surface_guides, temporal_blend), as trac0r_viewer's window
@@ -225,17 +226,20 @@ Costs measure_costs(const Scene& scene, const Options& o) {
     TemporalFrame history;
     TemporalFrame spare;
     FilterWorkspace workspace;
+    GuideImages guides;  // made every round into the same storage, as the window's
     std::vector<Seconds> spp;
     std::vector<Seconds> filter;
     std::vector<Seconds> temporal;
     for (long i = -1; i < o.repeats; ++i) {
         const Seconds a = timed([&] { r->render_frame(); });
         const Seconds b = timed([&] {
-            workspace.set_guides(render_guides(r->packed(), r->camera_record()));
+            render_surface_guides(r->packed(), r->camera_record(), &guides);
+            add_lamp_edges(r->packed(), r->camera_record(), &guides);
+            workspace.set_guides(guides);
             filter_image(r->accumulator(), T0_FILTER_PASSES, workspace);
         });
         const Seconds c = timed([&] {
-            const GuideImages guides = render_surface_guides(r->packed(), r->camera_record());
+            render_surface_guides(r->packed(), r->camera_record(), &guides);
             // Into the frame before, swapped, as the window's ViewHistory.
             temporal_blend(history, r->image(), 1.0f, r->camera_record(), guides, &spare, settings);
             std::swap(history, spare);

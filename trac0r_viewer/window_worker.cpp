@@ -326,15 +326,16 @@ void RenderWorker::render_preview() {
     // and temporal reuse would smear it into streaks.
     preview_->set_frame_sequence(preview_frames_++, 1);
     preview_->render_frame();
-    const trac0r::Image shown = view_history_.preview(
-        preview_->image(), static_cast<float>(preview_->frames()), preview_->camera_record(),
-        trac0r::render_surface_guides(preview_->packed(), preview_->camera_record()));
+    trac0r::render_surface_guides(preview_->packed(), preview_->camera_record(), &preview_guides_);
+    const trac0r::Image shown =
+        view_history_.preview(preview_->image(), static_cast<float>(preview_->frames()),
+                              preview_->camera_record(), preview_guides_);
     publish(*preview_, true, start, shown);
 }
 
 const trac0r::GuideImages& RenderWorker::guides_of(const trac0r::kernel::CameraRecord& camera) {
     if (guide_images_.width == 0 || std::memcmp(&camera, &guide_camera_, sizeof camera) != 0) {
-        guide_images_ = trac0r::render_surface_guides(full_->packed(), camera);
+        trac0r::render_surface_guides(full_->packed(), camera, &guide_images_);
         guide_camera_ = camera;
     }
     return guide_images_;

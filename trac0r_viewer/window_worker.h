@@ -208,6 +208,8 @@ class RenderWorker {
     // reuse: made again only for another view, size or backend.
     trac0r::GuideImages guide_images_;
     trac0r::kernel::CameraRecord guide_camera_{};
+    // The preview's guides, made every moving frame into the same storage.
+    trac0r::GuideImages preview_guides_;
     ViewHistory view_history_;          // temporal reuse while moving and after a stop
     std::uint32_t preview_frames_ = 0;  // previews rendered: each its own samples
 
