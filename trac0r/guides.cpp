@@ -6,8 +6,11 @@
 #include "trac0r/kernel/tile_grid.h"
 #include "trac0r/packed_scene.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cstdint>
+#include <exception>
 #include <limits>
 #include <stdexcept>
 #include <utility>
@@ -154,25 +157,38 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
     }
     const int height = g.height;
     const int width = g.width;
-    const std::size_t pixels = static_cast<std::size_t>(width) * height;
     const kernel::SceneView view = packed.view();
     const kernel::CameraRecord scaled = scaled_camera(camera, packed.scale);
     const bool bundled = bundles_camera_rays(view, scaled);
     // Along a lamp's edge, the share of each pixel that sees it: where the
     // centre rays of the pixel and its eight neighbours disagree (emitter
-    // or not), a lamp's edge may run through the pixel.
-    std::vector<unsigned char> edge(pixels, 0);
-    int candidates = 0;
-#pragma omp parallel reduction(+ : candidates)
+    // or not), a lamp's edge may run through the pixel. Those pixels are
+    // listed, so that the work on them is shared evenly between the threads
+    // (they lie on a few rows): each thread lists those of its rows. (The
+    // order does not matter: each pixel's share is made alone.) Where a
+    // list cannot grow, the failure is rethrown after the parallel region,
+    // out of which nothing may throw.
+    const int threads = omp_get_max_threads();
+    std::vector<std::vector<int>> listed_by_thread(static_cast<std::size_t>(threads));
+    std::vector<std::vector<unsigned char>> columns(static_cast<std::size_t>(threads),
+                                                    std::vector<unsigned char>(width));
+    std::exception_ptr failure;
+#pragma omp parallel num_threads(threads)
     {
+        const std::size_t own = static_cast<std::size_t>(omp_get_thread_num());
+        std::vector<int> mine;
+        bool failed = false;
         // Per row: the emitters in each column of the rows around it, then
         // over the columns around each pixel.
-        std::vector<unsigned char> column(static_cast<std::size_t>(width));
+        unsigned char* const column = columns[own].data();
 #pragma omp for schedule(static)
         for (int y = 0; y < height; ++y) {
+            if (failed) {
+                continue;
+            }
             const int y0 = std::max(y - 1, 0);
             const int y1 = std::min(y + 1, height - 1);
-            std::fill(column.begin(), column.end(), static_cast<unsigned char>(0));
+            std::fill(column, column + width, static_cast<unsigned char>(0));
             for (int qy = y0; qy <= y1; ++qy) {
                 const unsigned char* row = &g.emitter[static_cast<std::size_t>(qy) * width];
                 for (int x = 0; x < width; ++x) {
@@ -180,44 +196,55 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
                 }
             }
             const int rows = y1 - y0 + 1;
-            for (int x = 0; x < width; ++x) {
-                const int x0 = std::max(x - 1, 0);
-                const int x1 = std::min(x + 1, width - 1);
-                const int emitters =
-                    column[x0] + (x1 > x0 ? column[x0 + 1] : 0) + (x1 > x0 + 1 ? column[x1] : 0);
-                if (emitters > 0 && emitters < rows * (x1 - x0 + 1)) {
-                    edge[static_cast<std::size_t>(y) * width + x] = 1;
-                    ++candidates;
+            try {
+                for (int x = 0; x < width; ++x) {
+                    const int x0 = std::max(x - 1, 0);
+                    const int x1 = std::min(x + 1, width - 1);
+                    const int emitters = column[x0] + (x1 > x0 ? column[x0 + 1] : 0) +
+                                         (x1 > x0 + 1 ? column[x1] : 0);
+                    if (emitters > 0 && emitters < rows * (x1 - x0 + 1)) {
+                        mine.push_back(y * width + x);
+                    }
                 }
+            } catch (...) {
+                failed = true;
+#pragma omp critical(t0_lamp_edge_failure)
+                failure = std::current_exception();
             }
         }
+        listed_by_thread[own] = std::move(mine);
     }
-    // Those pixels, listed, so that the work on them is shared evenly
-    // between the threads (they lie on a few rows).
+    if (failure) {
+        std::rethrow_exception(failure);
+    }
+    std::size_t listed_total = 0;
+    for (const std::vector<int>& some : listed_by_thread) {
+        listed_total += some.size();
+    }
     std::vector<int> listed;
-    listed.reserve(static_cast<std::size_t>(candidates));
-    for (std::size_t i = 0; i < pixels; ++i) {
-        if (edge[i]) {
-            listed.push_back(static_cast<int>(i));
+    listed.reserve(listed_total);
+    for (std::vector<int>& some : listed_by_thread) {
+        listed.insert(listed.end(), some.begin(), some.end());
+        std::vector<int>().swap(some);
+    }
+    // Their corners, each once, in order: corner (x, y) is the top left one
+    // of pixel (x, y); a pixel finds its corners' rays by binary search.
+    const int corner_columns = width + 1;
+    std::vector<int> corners;
+    corners.reserve(4 * listed.size());
+    for (const int i : listed) {
+        const int c = i / width * corner_columns + i % width;
+        for (const int k : {c, c + 1, c + corner_columns, c + corner_columns + 1}) {
+            corners.push_back(k);
         }
     }
-    // Their corners, each once: corner (x, y) is the top left one of pixel
-    // (x, y).
-    const std::size_t corner_columns = static_cast<std::size_t>(width) + 1;
-    std::vector<unsigned char> corner_emitter(corner_columns * (height + 1), 0);
-    std::vector<int> corners_listed;
-    {
-        std::vector<unsigned char> needed(corner_emitter.size(), 0);
-        for (const int i : listed) {
-            const std::size_t c = static_cast<std::size_t>(i / width) * corner_columns + i % width;
-            for (const std::size_t k : {c, c + 1, c + corner_columns, c + corner_columns + 1}) {
-                if (!needed[k]) {
-                    needed[k] = 1;
-                    corners_listed.push_back(static_cast<int>(k));
-                }
-            }
-        }
-    }
+    std::sort(corners.begin(), corners.end());
+    corners.erase(std::unique(corners.begin(), corners.end()), corners.end());
+    std::vector<unsigned char> corner_emitter(corners.size());
+    const auto corner_slot = [&](int c) {
+        return static_cast<std::size_t>(std::lower_bound(corners.begin(), corners.end(), c) -
+                                        corners.begin());
+    };
     // Most of those pixels it does not cross: a straight edge that crosses
     // a pixel leaves one of its corners on each side (a half-plane that
     // meets a square holds one of its corners), so where the four corners'
@@ -227,15 +254,15 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
     // edge crosses the pixel its share is the area beside the edge's line
     // (kernel::straight_edge_emission: about 40 rays, to about 5e-4 of the
     // pixel); the rest get the full count.
-    const int corner_count = static_cast<int>(corners_listed.size());
+    const int corner_count = static_cast<int>(corners.size());
 #pragma omp parallel for schedule(dynamic, 16)
     for (int k = 0; k < corner_count; ++k) {
-        const std::size_t c = static_cast<std::size_t>(corners_listed[k]);
+        const int c = corners[static_cast<std::size_t>(k)];
         glm::vec3 emitted;
         const kernel::GuidePixel p =
             kernel::guide_ray(&view, scaled, static_cast<std::uint32_t>(c % corner_columns),
                               static_cast<std::uint32_t>(c / corner_columns), 0.0f, 0.0f, &emitted);
-        corner_emitter[c] = p.normal.w > 0.0f ? 1 : 0;
+        corner_emitter[static_cast<std::size_t>(k)] = p.normal.w > 0.0f ? 1 : 0;
     }
     int split = 0;
     int straight = 0;
@@ -246,17 +273,19 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
         const int x = static_cast<int>(i % static_cast<std::size_t>(width));
         const int y = static_cast<int>(i / static_cast<std::size_t>(width));
         const unsigned char centre = g.emitter[i];
-        const std::size_t c = y * corner_columns + x;
+        const int c = y * corner_columns + x;
         const std::uint32_t ux = static_cast<std::uint32_t>(x);
         const std::uint32_t uy = static_cast<std::uint32_t>(y);
         glm::vec3 sum(0.0f);
         int hits = 0;
         int traced = 0;
-        // The corners in pixel_corner's order, round the pixel.
-        const int corners = corner_emitter[c] | corner_emitter[c + 1] << 1 |
-                            corner_emitter[c + corner_columns + 1] << 2 |
-                            corner_emitter[c + corner_columns] << 3;
-        if (corners == (centre ? 15 : 0)) {
+        // The corners in pixel_corner's order, round the pixel; the one
+        // right of a listed corner is the next listed one.
+        const std::size_t top = corner_slot(c);
+        const std::size_t bottom = corner_slot(c + corner_columns);
+        const int round = corner_emitter[top] | corner_emitter[top + 1] << 1 |
+                          corner_emitter[bottom + 1] << 2 | corner_emitter[bottom] << 3;
+        if (round == (centre ? 15 : 0)) {
             // The probes: the first rays of the full count, kept for it.
             bundled_emission_rays(view, scaled, bundled, ux, uy, 0, T0_GUIDE_PROBE_RAYS, &sum,
                                   &hits);
@@ -266,7 +295,7 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
             }
         } else {
             glm::vec4 e;
-            if (kernel::straight_edge_emission(&view, scaled, ux, uy, corners, centre, &e)) {
+            if (kernel::straight_edge_emission(&view, scaled, ux, uy, round, centre, &e)) {
                 g.emission[i] = e;  // one straight edge crosses it
                 ++split;
                 ++straight;
@@ -278,7 +307,7 @@ void add_lamp_edges(const PackedScene& packed, const kernel::CameraRecord& camer
         g.emission[i] = kernel::pixel_emission_of(sum, hits, T0_GUIDE_EMISSION_RAYS);
         ++split;
     }
-    g.lamp_edge_pixels = candidates;
+    g.lamp_edge_pixels = listed_count;
     g.lamp_edge_traced = split;
     g.lamp_edge_straight = straight;
     g.lamp_edges = true;
