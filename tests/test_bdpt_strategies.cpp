@@ -5,7 +5,9 @@
 // the image's mean luminance over many frames of independent samples
 // (the random sampler), compared with a tolerance of five standard errors
 // of the difference, the standard errors from the spread of the frames'
-// means; the seeds are fixed, so the test is deterministic.
+// means; the seeds are fixed, so the test is deterministic. And the
+// strategies of one path length together, weighted, against one alone:
+// the weights of the strategies that make a path must add up to one.
 #include <catch2/catch.hpp>
 
 #include "trac0r/cpu_backend.h"
@@ -29,19 +31,16 @@ struct Estimate {
     double standard_error = 0.0;
 };
 
-// The image's mean luminance from `frames` frames of strategy (s, t) alone.
-Estimate strategy_estimate(const Renderer& r, int s, int t, int frames) {
+// The image's mean luminance in each of `frames` frames of the
+// strategies `which`.
+std::vector<double> frame_means(const Renderer& r, kernel::BdptStrategies which, int frames) {
     const PackedScene& packed = r.packed();
     const kernel::SceneView view = packed.view();
     const kernel::CameraRecord cam = scaled_camera(r.camera_record(), packed.scale);
     const std::uint32_t pixels = cam.size.x * cam.size.y;
     std::vector<glm::vec4> radiance(pixels);
     std::vector<kernel::t0_i64> splats(4 * pixels);
-    kernel::BdptStrategies which;
-    which.only_s = s;
-    which.only_t = t;
-    double sum = 0.0;
-    double sum2 = 0.0;
+    std::vector<double> means;
     for (int f = 0; f < frames; ++f) {
         std::fill(splats.begin(), splats.end(), 0);
         std::fill(radiance.begin(), radiance.end(), glm::vec4(0.0f));
@@ -54,15 +53,33 @@ Estimate strategy_estimate(const Renderer& r, int s, int t, int frames) {
             frame +=
                 kernel::luminance(glm::vec3(radiance[p]) + kernel::splat_value(splats.data(), p));
         }
-        frame /= pixels;
-        sum += frame;
-        sum2 += frame * frame;
+        means.push_back(frame / pixels);
     }
+    return means;
+}
+
+// The mean of the values and its standard error, from their spread.
+Estimate estimate_of(const std::vector<double>& values) {
+    double sum = 0.0;
+    double sum2 = 0.0;
+    for (double v : values) {
+        sum += v;
+        sum2 += v * v;
+    }
+    const double n = static_cast<double>(values.size());
     Estimate e;
-    e.mean = sum / frames;
-    const double variance = (sum2 / frames - e.mean * e.mean) * frames / (frames - 1);
-    e.standard_error = std::sqrt(std::max(variance, 0.0) / frames);
+    e.mean = sum / n;
+    const double variance = (sum2 / n - e.mean * e.mean) * n / (n - 1.0);
+    e.standard_error = std::sqrt(std::max(variance, 0.0) / n);
     return e;
+}
+
+// The image's mean luminance from `frames` frames of strategy (s, t) alone.
+Estimate strategy_estimate(const Renderer& r, int s, int t, int frames) {
+    kernel::BdptStrategies which = kernel::bdpt_all_strategies();
+    which.only_s = s;
+    which.only_t = t;
+    return estimate_of(frame_means(r, which, frames));
 }
 
 Renderer bdpt_renderer(const std::string& json, const std::string& base_dir = "") {
@@ -93,6 +110,33 @@ void check_strategies_agree(const Renderer& r, const std::vector<std::pair<int, 
         // A tolerance that says something: a bias of 15 % would show.
         CHECK(tolerance < 0.15 * first.mean);
     }
+}
+
+// The strategies of paths of `length` vertices, weighted, against
+// strategy (1, length - 1) alone, which makes all of them where no
+// surface is a mirror or smooth glass: if the weights of a path's
+// strategies add up to anything but one, the two differ. Both runs draw
+// the same numbers for (1, length - 1) (the random sampler, drawn in
+// order, and no other strategy draws before it), so the tolerance is five
+// standard errors of the frames' differences.
+void check_weights_add_up(const Renderer& r, int length, int frames) {
+    kernel::BdptStrategies which = kernel::bdpt_all_strategies();
+    which.length = length;
+    const std::vector<double> weighted = frame_means(r, which, frames);
+    which.only_s = 1;
+    which.only_t = length - 1;
+    const std::vector<double> alone = frame_means(r, which, frames);
+    std::vector<double> differences;
+    for (int f = 0; f < frames; ++f) {
+        differences.push_back(weighted[f] - alone[f]);
+    }
+    const Estimate difference = estimate_of(differences);
+    const double mean = estimate_of(alone).mean;
+    const double tolerance = 5.0 * difference.standard_error;
+    CAPTURE(length, mean, difference.mean, difference.standard_error, tolerance);
+    REQUIRE(mean > 0.0);
+    CHECK(std::fabs(difference.mean) <= tolerance);
+    CHECK(tolerance < 0.05 * mean);
 }
 
 // Paths of three vertices, then of four: every strategy that makes them
@@ -230,4 +274,18 @@ TEST_CASE("each bdpt strategy alone gives the same image under the sky and the s
 TEST_CASE("each bdpt strategy that can reach a delta light gives the same image",
           "[bdpt][bdpt_strategies]") {
     check_three_and_four(bdpt_renderer(lamps), 3000, 3000, false);
+}
+
+TEST_CASE("the weighted strategies of a path length add up to its light",
+          "[bdpt][bdpt_strategies]") {
+    SECTION("in a room of area lights and glossy materials") {
+        const Renderer r = bdpt_renderer(room);
+        check_weights_add_up(r, 3, 3000);
+        check_weights_add_up(r, 4, 6000);
+    }
+    SECTION("under the sky and the sun") {
+        const Renderer r = bdpt_renderer(outdoors);
+        check_weights_add_up(r, 3, 3000);
+        check_weights_add_up(r, 4, 12000);
+    }
 }

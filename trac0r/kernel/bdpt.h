@@ -30,23 +30,30 @@
 
 T0_NAMESPACE_BEGIN
 
-// Which strategies a sample adds: all, weighted by MIS (the renderer's),
-// or one (s, t) alone and unweighted (the tests': each is an unbiased
-// estimator of the paths it can make, pbrt-v4's way of checking them).
+// Which strategies a sample adds: all, weighted by MIS (the renderer's);
+// those of paths of one length, weighted (the tests': their weights add
+// up to one, so they make all the light of those paths); or one (s, t)
+// alone and unweighted (the tests': each is an unbiased estimator of the
+// paths it can make, pbrt-v4's way of checking them).
 typedef struct BdptStrategies {
-    int only_s;  // -1: all
+    int only_s;  // -1: all, weighted
     int only_t;
+    int length;  // with only_s -1 and above 0: only paths of s + t vertices
 } BdptStrategies;
 
 T0_INLINE BdptStrategies bdpt_all_strategies(void) {
     BdptStrategies b;
     b.only_s = -1;
     b.only_t = -1;
+    b.length = 0;
     return b;
 }
 
 T0_INLINE int bdpt_takes(BdptStrategies b, int s, int t) {
-    return b.only_s < 0 || (b.only_s == s && b.only_t == t);
+    if (b.only_s < 0) {
+        return b.length <= 0 || s + t == b.length;
+    }
+    return b.only_s == s && b.only_t == t;
 }
 
 // ---- Strategies -------------------------------------------------------------
