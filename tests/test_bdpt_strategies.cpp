@@ -253,6 +253,25 @@ const char* const lamps = R"({
   ]
 })";
 
+// A room seen from below its ceiling, under most of which a two-sided
+// lamp hangs 5 cm: light samples (s = 1) pick their points on it by solid
+// angle nearly everywhere, and the camera's own hits (s = 0) and light
+// tracing (t = 1) find its light often.
+const char* const under_lamp = R"({
+  "camera": {"position": [0, -0.2, 0.8], "direction": [0, 0.8, -1], "vertical_fov": 60},
+  "render": {"width": 16, "height": 12, "max_depth": 5},
+  "materials": {
+    "lamp": {"type": "emissive", "color": [1, 0.9, 0.8], "emittance": 4},
+    "white": {"type": "diffuse", "color": [0.7, 0.7, 0.7]},
+    "plastic": {"type": "plastic", "color": [0.2, 0.5, 0.8], "roughness": 0.3}
+  },
+  "shapes": [
+    {"type": "box", "material": "white", "position": [0, 0, 0], "size": [2.2, 2, 2.2]},
+    {"type": "plane", "material": "lamp", "position": [0, 0.95, -0.2], "size": [1.6, 1.6]},
+    {"type": "icosphere", "material": "plastic", "position": [0.3, -0.6, -0.4], "radius": 0.3}
+  ]
+})";
+
 }  // namespace
 
 TEST_CASE("each bdpt strategy alone gives the same image in a room of area lights",
@@ -278,6 +297,11 @@ TEST_CASE("each bdpt strategy that can reach a delta light gives the same image"
 
 TEST_CASE("the weighted strategies of a path length add up to its light",
           "[bdpt][bdpt_strategies]") {
+    SECTION("under a large lamp") {
+        const Renderer r = bdpt_renderer(under_lamp);
+        check_weights_add_up(r, 3, 3000);
+        check_weights_add_up(r, 4, 3000);
+    }
     SECTION("in a room of area lights and glossy materials") {
         const Renderer r = bdpt_renderer(room);
         check_weights_add_up(r, 3, 3000);

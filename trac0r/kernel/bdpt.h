@@ -120,9 +120,23 @@ T0_INLINE float3 connect_light_sample(const SceneView* scene, CameraRecord cam,
     float3 arriving;
     float pdf;  // per solid angle at pt, with the pick; 1 x the pick for a delta
     float3 direction;
+    q.nee_ratio = 1.0f;
     if (kind == T0_LIGHT_TRIANGLE) {
+        // By solid angle where the triangle looks large, as next-event
+        // estimation picks it (sample_light), else by area.
         T0_GLOBAL const TriangleRecord* tri = &scene->triangles[record->ids.x];
-        q.p = triangle_light_point(scene, record->ids.x, u, &q.u, &q.v);
+        const SphericalTriangle seen = emitter_seen_from(tri, pt->p);
+        const int by_solid_angle = sample_by_solid_angle(seen.solid_angle);
+        if (by_solid_angle) {
+            const float3 v0 = xyz(tri->v0);
+            if (!sample_spherical_triangle(seen, pt->p, v0, xyz(tri->v1), xyz(tri->v2), u, &q.u,
+                                           &q.v)) {
+                return float3_splat(0.0f);
+            }
+            q.p = v0 + (xyz(tri->v1) - v0) * q.u + (xyz(tri->v2) - v0) * q.v;
+        } else {
+            q.p = triangle_light_point(scene, record->ids.x, u, &q.u, &q.v);
+        }
         q.ng = xyz(tri->normal);
         const float3 d = q.p - pt->p;
         const float d2 = dot(d, d);
@@ -135,7 +149,12 @@ T0_INLINE float3 connect_light_sample(const SceneView* scene, CameraRecord cam,
             return float3_splat(0.0f);
         }
         arriving = triangle_light_radiance(scene, record->ids.x, q.u, q.v);
-        pdf = record->cdf.z * d2 / fabs(c);
+        if (by_solid_angle) {
+            pdf = record->cdf.y / seen.solid_angle;
+            q.nee_ratio = pdf * fabs(c) / (d2 * record->cdf.z);  // light_sample_ratio's
+        } else {
+            pdf = record->cdf.z * d2 / fabs(c);
+        }
     } else if (kind == T0_LIGHT_POINT || kind == T0_LIGHT_SPOT) {
         const LightSample ls = sample_point_lamp(record, pt->p);
         q.p = xyz(record->a);
@@ -162,7 +181,7 @@ T0_INLINE float3 connect_light_sample(const SceneView* scene, CameraRecord cam,
         return float3_splat(0.0f);
     }
     q.beta = arriving / pdf;
-    q.pdf_fwd = vertex_pdf_light_origin(scene, &q);
+    q.pdf_fwd = vertex_pdf_light_origin(scene, &q) * q.nee_ratio;
     const float3 l = pt->beta * e.f_cos * q.beta;
     // The join's own evaluation gives the light vertex's reverse density.
     const float q_rev = convert_density(scene, e.pdf, pt, &q);
@@ -224,6 +243,7 @@ T0_INLINE void connect_camera(const SceneView* scene, CameraRecord cam, const Pa
     c.arrival = c.ng;
     c.pdf_fwd = 1.0f;
     c.pdf_rev = 0.0f;
+    c.nee_ratio = 1.0f;
     c.u = 0.0f;
     c.v = 0.0f;
     c.delta = 0;
@@ -270,7 +290,9 @@ T0_INLINE void bdpt_sample(const SceneView* scene, CameraRecord cam, t0_u32 pixe
     Sampler light_sampler;
     sampler_start(&light_sampler, sobol, seed ^ T0_LIGHT_SUBPATH_SEED, pixel, frame);
     const int nl = scene->light_count > 0u ? light_subpath(scene, depth, &light_sampler, light) : 0;
-    for (int s = 2; s <= nl; ++s) {
+    // Light tracing's direct light (s = 2) takes no share of the weights
+    // (mis_weight): traced only alone, for the tests.
+    for (int s = weighted ? 3 : 2; s <= nl; ++s) {
         if (bdpt_takes(which, s, 1)) {
             connect_camera(scene, cam, light, s, &light_sampler, weighted, splats);
         }

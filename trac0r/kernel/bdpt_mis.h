@@ -6,6 +6,7 @@
 #define TRAC0R_KERNEL_BDPT_MIS_H
 
 #include "bdpt_vertex.h"
+#include "light_sampling.h"
 
 T0_NAMESPACE_BEGIN
 
@@ -22,6 +23,30 @@ T0_INLINE float mis_ratio(float rev, float fwd) {
 // that large means).
 T0_INLINE float mis_product(float ri, float ratio) { return fmin(ri * ratio, 3.0e38f); }
 
+// A light sample (s = 1, connect_light_sample) picks a point on an
+// emitting triangle as next-event estimation does: by solid angle where
+// the triangle looks large from `from` (emitter_seen_from), else by area,
+// as a light subpath starts. Its density per area at light vertex lv,
+// seen from `from`, over the light subpath's (1 for any other light).
+T0_INLINE float light_sample_ratio(const SceneView* scene, const PathVertex* lv, float3 from) {
+    if (lv->distant) {
+        return 1.0f;
+    }
+    T0_GLOBAL const LightRecord* light = vertex_light(scene, lv);
+    if (light == 0 || light->ids.y != T0_LIGHT_TRIANGLE) {
+        return 1.0f;
+    }
+    T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->ids.x];
+    const float omega = emitter_seen_from(tri, from).solid_angle;
+    if (!sample_by_solid_angle(omega)) {
+        return 1.0f;
+    }
+    const float3 d = lv->p - from;
+    const float d2 = dot(d, d);
+    const float cos_light = fabs(dot(d, xyz(tri->normal))) / sqrt(d2);
+    return 0.5f * tri->normal.w * cos_light / (omega * d2);
+}
+
 // The weight of strategy (s, t): its density over the sum of all the
 // strategies' that make the same path, each relative to the next, from
 // the densities the vertices keep, with those of the joined vertices and
@@ -30,6 +55,11 @@ T0_INLINE float mis_product(float ri, float ratio) { return fmin(ri * ratio, 3.0
 // known_qs_rev and known_qs_minus_rev are the reverse densities of the
 // light's joined vertex and the one before it where the caller has them
 // (from the material evaluations of the join itself), else negative.
+// The densities of strategy s = 1 are those of its light sample
+// (light_sample_ratio). Light tracing's direct light (s = 2, t = 1) is
+// left out of the sum: the camera's own hits and the light samples
+// (s = 0 and 1 with t = 3 and 2), weighted as the path tracer weighs
+// them, make that light (docs/bdpt.md, "Direct light").
 T0_INLINE float mis_weight(const SceneView* scene, CameraRecord cam, const PathVertex* camera,
                            const PathVertex* light, int s, int t, const PathVertex* sampled,
                            float known_qs_rev, float known_qs_minus_rev) {
@@ -68,14 +98,28 @@ T0_INLINE float mis_weight(const SceneView* scene, CameraRecord cam, const PathV
         qs_minus_rev = known_qs_minus_rev >= 0.0f ? known_qs_minus_rev
                                                   : vertex_pdf(scene, cam, pt, qs, qs_minus);
     }
+    // Where strategy s = 1 makes the path, the squared ratio of the
+    // densities with which it and a light subpath's start pick the light
+    // vertex (R = nee_ratio): for s = 0 and s >= 2, R^2, on the term of
+    // s = 1 alone; for s = 1 itself, 1 / R^2, on the terms of s >= 2
+    // (its own light vertex's pdf_fwd is already the sample's).
+    float sample_ratio = 1.0f;
+    if (s == 1) {
+        sample_ratio = mis_ratio(1.0f, sampled->nee_ratio);
+    } else if (s == 0 && pt_minus != 0 && !pt_minus->delta &&
+               T0_HAS_FEATURE(scene, T0_FEATURE_EMITTANCE)) {
+        sample_ratio = mis_ratio(light_sample_ratio(scene, pt, pt_minus->p), 1.0f);
+    } else if (s >= 2) {
+        sample_ratio = mis_ratio(light[0].nee_ratio, 1.0f);
+    }
     float sum = 0.0f;
-    float ri = 1.0f;
+    float ri = s == 1 ? sample_ratio : 1.0f;
     for (int i = t - 1; i > 0; --i) {
         const float rev = i == t - 1 ? pt_rev : (i == t - 2 ? pt_minus_rev : camera[i].pdf_rev);
         ri = mis_product(ri, mis_ratio(rev, camera[i].pdf_fwd));
         const int delta = i == t - 1 ? 0 : camera[i].delta;
-        if (!delta && !camera[i - 1].delta) {
-            sum += ri;
+        if (!delta && !camera[i - 1].delta && !(i == 1 && s + t == 3)) {
+            sum += s == 0 && i == t - 1 ? mis_product(ri, sample_ratio) : ri;
         }
     }
     ri = 1.0f;
@@ -87,7 +131,7 @@ T0_INLINE float mis_weight(const SceneView* scene, CameraRecord cam, const PathV
         const int delta_before =
             i > 0 ? light[i - 1].delta : (s == 1 ? sampled : light)->delta_light;
         if (!delta && !delta_before) {
-            sum += ri;
+            sum += i == 1 ? mis_product(ri, sample_ratio) : ri;
         }
     }
     return 1.0f / (1.0f + sum);

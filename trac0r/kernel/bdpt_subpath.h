@@ -16,6 +16,7 @@
 #ifndef TRAC0R_KERNEL_BDPT_SUBPATH_H
 #define TRAC0R_KERNEL_BDPT_SUBPATH_H
 
+#include "bdpt_mis.h"
 #include "bdpt_vertex.h"
 #include "camera_importance.h"
 #include "light_emission.h"
@@ -101,6 +102,7 @@ T0_INLINE int bdpt_walk(const SceneView* scene, Ray ray, float3 beta, float pdf_
         v->beta = beta;
         v->arrival = ray.direction;
         v->pdf_rev = 0.0f;
+        v->nee_ratio = 1.0f;
         v->delta_light = 0;
         v->u = 0.0f;
         v->v = 0.0f;
@@ -232,6 +234,7 @@ T0_INLINE int camera_subpath(const SceneView* scene, CameraRecord cam, Ray ray, 
     c->arrival = ray.direction;
     c->pdf_fwd = 1.0f;
     c->pdf_rev = 0.0f;
+    c->nee_ratio = 1.0f;
     c->u = 0.0f;
     c->v = 0.0f;
     c->delta = camera_is_orthographic(cam);  // a direction no light subpath can meet
@@ -262,6 +265,7 @@ T0_INLINE int light_subpath(const SceneView* scene, int max_depth, Sampler* samp
     l->arrival = e.direction;
     l->pdf_fwd = e.pdf_origin;
     l->pdf_rev = 0.0f;
+    l->nee_ratio = 1.0f;
     l->u = e.u;
     l->v = e.v;
     l->delta = 0;
@@ -273,8 +277,12 @@ T0_INLINE int light_subpath(const SceneView* scene, int max_depth, Sampler* samp
     }
     const float3 from = vertex_ray_point(scene, l, e.direction);
     const float pdf = l->distant ? distant_disc_density(scene) : e.pdf_direction;
-    return bdpt_walk(scene, make_ray(from, e.direction), e.beta, pdf, path, 1, max_depth, 1,
-                     sampler);
+    const int n =
+        bdpt_walk(scene, make_ray(from, e.direction), e.beta, pdf, path, 1, max_depth, 1, sampler);
+    if (n > 1 && !path[1].delta) {  // (no light sample is taken at a delta vertex)
+        l->nee_ratio = light_sample_ratio(scene, l, path[1].p);
+    }
+    return n;
 }
 
 T0_NAMESPACE_END

@@ -38,16 +38,21 @@ T0_NAMESPACE_BEGIN
 #define T0_VERTEX_SURFACE 2
 
 typedef struct PathVertex {
-    float3 p;        // the point (a distant light's: on its disc)
-    float3 ng;       // the triangle's unit normal (its outer side); a distant
-                     // light's: the unit direction towards it
-    float3 ns;       // the shading normal, on the triangle's outer side
-    float3 beta;     // the subpath's throughput at this vertex
-    float3 arrival;  // the unit direction of the ray that reached the vertex
-                     // along its subpath
-    float pdf_fwd;   // the density per area with which its subpath reached it
-    float pdf_rev;   // the same, had the other subpath reached it
-    float u;         // the hit's barycentrics (textures)
+    float3 p;         // the point (a distant light's: on its disc)
+    float3 ng;        // the triangle's unit normal (its outer side); a distant
+                      // light's: the unit direction towards it
+    float3 ns;        // the shading normal, on the triangle's outer side
+    float3 beta;      // the subpath's throughput at this vertex
+    float3 arrival;   // the unit direction of the ray that reached the vertex
+                      // along its subpath
+    float pdf_fwd;    // the density per area with which its subpath reached it
+    float pdf_rev;    // the same, had the other subpath reached it
+    float nee_ratio;  // a light subpath's first vertex, a light sample's: the
+                      // density per area with which a light sample (s = 1)
+                      // from the next vertex picks it, over that of a light
+                      // subpath's start (bdpt_mis.h, light_sample_ratio);
+                      // 1 on any other vertex
+    float u;          // the hit's barycentrics (textures)
     float v;
     int kind;         // T0_VERTEX_*
     int delta;        // a surface's delta lobe (glass, a mirror); the camera: an
