@@ -8,7 +8,8 @@
 #   cornell_diffuse.json at 400 x 300 (what BDPT costs where it does not
 #     help; paths of 64 vertices, as the scene says).
 # The references are BDPT renders of 4096 samples a pixel (another seed),
-# kept in OUT; docs/bdpt.md explains the figures.
+# kept in OUT (cornell_diffuse.json's: bench_convergence's own NEE render
+# of 8192, cached in OUT/cache); docs/bdpt.md explains the figures.
 #
 #   benchmarks/bdpt/run.sh [OUT]      (from the repository's root, after
 #                                      building into build/)
