@@ -290,10 +290,8 @@ T0_INLINE void bdpt_sample(const SceneView* scene, CameraRecord cam, t0_u32 pixe
     Sampler light_sampler;
     sampler_start(&light_sampler, sobol, seed ^ T0_LIGHT_SUBPATH_SEED, pixel, frame);
     const int nl = scene->light_count > 0u ? light_subpath(scene, depth, &light_sampler, light) : 0;
-    // Light tracing's direct light (s = 2) takes no share of the weights
-    // (mis_weight): traced only alone, for the tests.
-    for (int s = weighted ? 3 : 2; s <= nl; ++s) {
-        if (bdpt_takes(which, s, 1)) {
+    for (int s = 2; s <= nl; ++s) {
+        if (bdpt_takes(which, s, 1) && !(weighted && bdpt_left_out(s, 1))) {
             connect_camera(scene, cam, light, s, &light_sampler, weighted, splats);
         }
     }

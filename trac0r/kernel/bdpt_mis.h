@@ -23,6 +23,13 @@ T0_INLINE float mis_ratio(float rev, float fwd) {
 // that large means).
 T0_INLINE float mis_product(float ri, float ratio) { return fmin(ri * ratio, 3.0e38f); }
 
+// Light tracing's direct light (s = 2, t = 1) takes no share of the
+// weights: the camera's own hits and the light samples (s = 0 and 1 with
+// t = 3 and 2), weighted as the path tracer weighs them, make that light
+// (docs/bdpt.md, "Direct light"). mis_weight leaves it out of the sums,
+// bdpt_sample does not trace it.
+T0_INLINE int bdpt_left_out(int s, int t) { return s == 2 && t == 1; }
+
 // A light sample (s = 1, connect_light_sample) picks a point on an
 // emitting triangle as next-event estimation does: by solid angle where
 // the triangle looks large from `from` (emitter_seen_from), else by area,
@@ -56,10 +63,7 @@ T0_INLINE float light_sample_ratio(const SceneView* scene, const PathVertex* lv,
 // light's joined vertex and the one before it where the caller has them
 // (from the material evaluations of the join itself), else negative.
 // The densities of strategy s = 1 are those of its light sample
-// (light_sample_ratio). Light tracing's direct light (s = 2, t = 1) is
-// left out of the sum: the camera's own hits and the light samples
-// (s = 0 and 1 with t = 3 and 2), weighted as the path tracer weighs
-// them, make that light (docs/bdpt.md, "Direct light").
+// (light_sample_ratio); strategies bdpt_left_out are left out of the sum.
 T0_INLINE float mis_weight(const SceneView* scene, CameraRecord cam, const PathVertex* camera,
                            const PathVertex* light, int s, int t, const PathVertex* sampled,
                            float known_qs_rev, float known_qs_minus_rev) {
@@ -118,7 +122,7 @@ T0_INLINE float mis_weight(const SceneView* scene, CameraRecord cam, const PathV
         const float rev = i == t - 1 ? pt_rev : (i == t - 2 ? pt_minus_rev : camera[i].pdf_rev);
         ri = mis_product(ri, mis_ratio(rev, camera[i].pdf_fwd));
         const int delta = i == t - 1 ? 0 : camera[i].delta;
-        if (!delta && !camera[i - 1].delta && !(i == 1 && s + t == 3)) {
+        if (!delta && !camera[i - 1].delta && !bdpt_left_out(s + t - i, i)) {
             sum += s == 0 && i == t - 1 ? mis_product(ri, sample_ratio) : ri;
         }
     }
