@@ -151,7 +151,7 @@ T0_INLINE float3 connect_light_sample(const SceneView* scene, CameraRecord cam,
         arriving = triangle_light_radiance(scene, record->ids.x, q.u, q.v);
         if (by_solid_angle) {
             pdf = record->cdf.y / seen.solid_angle;
-            q.nee_ratio = pdf * fabs(c) / (d2 * record->cdf.z);  // light_sample_ratio's
+            q.nee_ratio = light_sample_area_ratio(tri, fabs(c), d2, seen.solid_angle);
         } else {
             pdf = record->cdf.z * d2 / fabs(c);
         }

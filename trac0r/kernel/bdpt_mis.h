@@ -30,6 +30,15 @@ T0_INLINE float mis_product(float ri, float ratio) { return fmin(ri * ratio, 3.0
 // bdpt_sample does not trace it.
 T0_INLINE int bdpt_left_out(int s, int t) { return s == 2 && t == 1; }
 
+// The density per area with which a light sample picks a point of an
+// emitting triangle by solid angle omega, seen at squared distance d2 and
+// cosine cos_light to the triangle, over that of a light subpath's start
+// (uniform over the triangle's area; the pick of the light cancels).
+T0_INLINE float light_sample_area_ratio(T0_GLOBAL const TriangleRecord* tri, float cos_light,
+                                        float d2, float omega) {
+    return 0.5f * tri->normal.w * cos_light / (omega * d2);
+}
+
 // A light sample (s = 1, connect_light_sample) picks a point on an
 // emitting triangle as next-event estimation does: by solid angle where
 // the triangle looks large from `from` (emitter_seen_from), else by area,
@@ -51,7 +60,7 @@ T0_INLINE float light_sample_ratio(const SceneView* scene, const PathVertex* lv,
     const float3 d = lv->p - from;
     const float d2 = dot(d, d);
     const float cos_light = fabs(dot(d, xyz(tri->normal))) / sqrt(d2);
-    return 0.5f * tri->normal.w * cos_light / (omega * d2);
+    return light_sample_area_ratio(tri, cos_light, d2, omega);
 }
 
 // The weight of strategy (s, t): its density over the sum of all the
