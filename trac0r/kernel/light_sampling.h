@@ -1,5 +1,6 @@
-// Next-event estimation's light sampling: a light picked by power (an
-// emitting triangle, a lamp, the sun or the environment), a point or
+// Next-event estimation's light sampling: a light picked by power or by
+// the light tree (choose_light: an emitting triangle, a lamp, the sun or
+// the environment), a point or
 // direction on it, its radiance through the material with its MIS weight
 // (sample_light), and the density of picking a given point on a triangle
 // (light_pdf_solid_angle).
@@ -47,6 +48,45 @@ T0_INLINE float tree_light_pmf(const SceneView* scene, T0_GLOBAL const LightReco
     return (1.0f - distant_share(scene)) * light_tree_pmf(scene, p, n, light->ids.z);
 }
 
+// The light next-event estimation picks at `position` (normal `normal`,
+// either side): with the light tree, a distant light by power (u_pick)
+// or one of the tree's (u_tree, the way down it); else one by power.
+typedef struct LightChoice {
+    t0_u32 light;         // an index into the light list
+    float pick;           // its probability; 0: nothing to pick
+    float pick_per_area;  // for a triangle, over its area
+} LightChoice;
+
+T0_INLINE LightChoice choose_light(const SceneView* scene, float3 position, float3 normal,
+                                   float u_pick, float u_tree) {
+    LightChoice c;
+    const float distant =
+        T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE) ? distant_share(scene) : 1.0f;
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE) && u_pick >= distant) {
+        const LightPick tree = light_tree_pick(scene, position, normal, u_tree);
+        T0_GLOBAL const LightRecord* light = &scene->lights[tree.light];
+        c.light = tree.light;
+        c.pick = (1.0f - distant) * tree.pmf;
+        c.pick_per_area = light->ids.y == T0_LIGHT_TRIANGLE
+                              ? c.pick / (0.5f * scene->triangles[light->ids.x].normal.w)
+                              : 0.0f;
+    } else {
+        c.light = pick_light(scene, u_pick);
+        c.pick = scene->lights[c.light].cdf.y;
+        c.pick_per_area = scene->lights[c.light].cdf.z;
+    }
+    return c;
+}
+
+// The probability that choose_light at p, with normal n, picks `light`.
+T0_INLINE float light_pick_pmf(const SceneView* scene, T0_GLOBAL const LightRecord* light, float3 p,
+                               float3 n) {
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE) && !light_is_distant(light)) {
+        return tree_light_pmf(scene, light, p, n);
+    }
+    return light->cdf.y;
+}
+
 // A density per area on a light turned into one per solid angle, seen from
 // squared distance distance2 at cosine cos_light to the light's surface.
 T0_INLINE float area_to_solid_angle(float pdf_area, float distance2, float cos_light) {
@@ -79,7 +119,7 @@ T0_INLINE float light_pdf_solid_angle(const SceneView* scene, T0_GLOBAL const Tr
     float pick = light->cdf.y;
     float pdf_area = light->cdf.z;
     if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)) {
-        pick = tree_light_pmf(scene, light, from, from_normal);
+        pick = light_pick_pmf(scene, light, from, from_normal);
         pdf_area = pick / (0.5f * tri->normal.w);
     }
     const float omega = emitter_seen_from(tri, from).solid_angle;
@@ -226,26 +266,13 @@ T0_FORCE_INLINE ShadowedLight sample_light(const SceneView* scene,
                                            float3 facing_normal, float3 facing_geometric,
                                            float3 position, float magnitude, float u_pick,
                                            float u_tree, float2 u) {
-    T0_GLOBAL const LightRecord* light;
-    float pick;           // the light's probability
-    float pick_per_area;  // for a triangle, over its area
-    const float distant =
-        T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE) ? distant_share(scene) : 1.0f;
-    if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE) && u_pick >= distant) {
-        const LightPick tree = light_tree_pick(scene, position, facing_normal, u_tree);
-        if (!(tree.pmf > 0.0f)) {
-            return no_light_sample();
-        }
-        light = &scene->lights[tree.light];
-        pick = (1.0f - distant) * tree.pmf;
-        pick_per_area = light->ids.y == T0_LIGHT_TRIANGLE
-                            ? pick / (0.5f * scene->triangles[light->ids.x].normal.w)
-                            : 0.0f;
-    } else {
-        light = &scene->lights[pick_light(scene, u_pick)];
-        pick = light->cdf.y;
-        pick_per_area = light->cdf.z;
+    const LightChoice choice = choose_light(scene, position, facing_normal, u_pick, u_tree);
+    if (!(choice.pick > 0.0f)) {
+        return no_light_sample();
     }
+    T0_GLOBAL const LightRecord* light = &scene->lights[choice.light];
+    const float pick = choice.pick;  // the light's probability
+    const float pick_per_area = choice.pick_per_area;
     if ((T0_HAS_FEATURE(scene, T0_FEATURE_LAMPS) ||
          T0_HAS_FEATURE(scene, T0_FEATURE_ENVIRONMENT)) &&
         light->ids.y != T0_LIGHT_TRIANGLE) {
