@@ -326,3 +326,32 @@ TEST_CASE("the light list: picks in proportion to power, densities per area", "[
     }
     REQUIRE(total == Approx(1.0).epsilon(1e-6));
 }
+
+TEST_CASE("the light list gives every light a probability, however small its share", "[nee]") {
+    // A sun of a million times the irradiance the lamp sends: the lamp's
+    // share, below 1e-12, rounds to nothing beside the sun's in float.
+    const Scene scene = parse_scene(
+        R"({"lights": [{"type": "sun", "direction": [0, 1, 0], "irradiance": 1e6}],
+            "materials": {"dim": {"type": "emissive", "color": [1, 1, 1], "emittance": 0.01},
+                          "white": {"type": "diffuse", "color": [0.5, 0.5, 0.5]}},
+            "shapes": [{"type": "plane", "material": "dim", "size": [0.01, 0.01]},
+                       {"type": "plane", "material": "white", "position": [0, -1, 0],
+                        "size": [4, 4]}]})",
+        "lights", ".");
+    const PackedScene packed = pack_scene(scene, with_integrator(Integrator::nee));
+    REQUIRE(packed.lights.size() == 3);
+    REQUIRE(packed.lights.back().cdf.x == 1.0f);
+    const kernel::SceneView view = packed.view();
+    float previous = 0.0f;
+    for (std::size_t k = 0; k < packed.lights.size(); ++k) {
+        const kernel::LightRecord& light = packed.lights[k];
+        CAPTURE(k, light.cdf.x, light.cdf.y);
+        REQUIRE(light.cdf.x > previous);
+        REQUIRE(light.cdf.y == light.cdf.x - previous);
+        // The inverse CDF picks it just below its CDF.
+        REQUIRE(kernel::pick_light(&view, std::nextafter(light.cdf.x, 0.0f)) == k);
+        previous = light.cdf.x;
+    }
+    // The sun keeps nearly all of it.
+    REQUIRE(packed.lights[0].cdf.y > 0.999999f);
+}

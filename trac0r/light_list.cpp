@@ -159,8 +159,9 @@ Candidate lamp_light(const Lamp& lamp, float scale, double radius) {
 // halved where it emits from one side (the radiance is the same over the
 // triangle; pi and the two sides are common factors, and the others'
 // powers are in the same unit). The CDF is summed in double and stored in
-// float; each probability is the difference of the stored floats, so it
-// is exactly what the inverse-CDF pick gives. The triangles are listed in
+// float, strictly increasing; each probability is the difference of the
+// stored floats, so it is exactly what the inverse-CDF pick gives, and
+// above zero. The triangles are listed in
 // the scene's order (packed_index maps it to the packed triangles), not
 // the structure's, so that a light sample picks the same triangle with the
 // flat list and with any BVH. Lights of no power are left out.
@@ -214,11 +215,24 @@ void pack_lights(const Scene& scene, PackedScene& packed,
     for (const Candidate& c : lights) {
         total += c.power;
     }
+    std::vector<float> cdfs(lights.size());
     double running = 0.0;
-    float previous_cdf = 0.0f;
     for (std::size_t k = 0; k < lights.size(); ++k) {
         running += lights[k].power;
-        const float cdf = k + 1 == lights.size() ? 1.0f : static_cast<float>(running / total);
+        cdfs[k] = k + 1 == lights.size() ? 1.0f : static_cast<float>(running / total);
+    }
+    // Strictly increasing: a light whose share rounds to nothing beside
+    // the next one's CDF (a small lamp after a bright sky) takes a float's
+    // step from the lights above it, so that every listed light can be
+    // picked: the light tree may pick any light for a light sample, and
+    // bidirectional path tracing weighs that against the light subpaths
+    // that start from it.
+    for (std::size_t k = lights.size(); k-- > 1;) {
+        cdfs[k - 1] = std::min(cdfs[k - 1], std::nextafter(cdfs[k], 0.0f));
+    }
+    float previous_cdf = 0.0f;
+    for (std::size_t k = 0; k < lights.size(); ++k) {
+        const float cdf = cdfs[k];
         const float probability = cdf - previous_cdf;
         kernel::LightRecord light = lights[k].record;
         light.cdf = glm::vec4(cdf, probability, 0.0f, 0.0f);
