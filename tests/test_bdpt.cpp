@@ -150,4 +150,10 @@ TEST_CASE("the BDPT kernel builds as OpenCL C and agrees with the CPU backend", 
     // A path that a last-bit difference turns differs outright, and so
     // do its splats: 80 % of the pixels agree to rounding.
     require_opencl_agrees_with_cpu(scene, bdpt, 16, 0.8);
+    // With the light tree (forced: the lamp is two triangles), whose picks
+    // the light samples take.
+    PackOptions tree = bdpt;
+    tree.light_sampler = LightSampler::tree;
+    REQUIRE((pack_scene(scene, tree).features & T0_FEATURE_LIGHT_TREE) != 0u);
+    require_opencl_agrees_with_cpu(scene, tree, 16, 0.8);
 }

@@ -82,10 +82,12 @@ Estimate strategy_estimate(const Renderer& r, int s, int t, int frames) {
     return estimate_of(frame_means(r, which, frames));
 }
 
-Renderer bdpt_renderer(const std::string& json, const std::string& base_dir = "") {
+Renderer bdpt_renderer(const std::string& json, const std::string& base_dir = "",
+                       LightSampler light_sampler = LightSampler::automatic) {
     PackOptions options;
     options.integrator = Integrator::bdpt;
     options.sampler = SamplerKind::random;
+    options.light_sampler = light_sampler;
     LoadOptions load;
     load.isolate_readers = false;
     return Renderer(parse_scene(json, "strategies.json", base_dir, load),
@@ -295,6 +297,19 @@ TEST_CASE("each bdpt strategy that can reach a delta light gives the same image"
     check_three_and_four(bdpt_renderer(lamps), 3000, 3000, false);
 }
 
+// With the light tree, light samples (s = 1) pick lights by the tree's
+// probabilities at the vertex, as next-event estimation does, while light
+// subpaths start from a light picked by power.
+TEST_CASE("each bdpt strategy alone gives the same image with the light tree",
+          "[bdpt][bdpt_strategies]") {
+    SECTION("area lights") {
+        check_three_and_four(bdpt_renderer(room, "", LightSampler::tree), 3000, 3000, true);
+    }
+    SECTION("a point lamp and a spot in the tree, a sun beside it") {
+        check_three_and_four(bdpt_renderer(lamps, "", LightSampler::tree), 3000, 3000, false);
+    }
+}
+
 TEST_CASE("the weighted strategies of a path length add up to its light",
           "[bdpt][bdpt_strategies]") {
     SECTION("under a large lamp") {
@@ -311,5 +326,26 @@ TEST_CASE("the weighted strategies of a path length add up to its light",
         const Renderer r = bdpt_renderer(outdoors);
         check_weights_add_up(r, 3, 3000);
         check_weights_add_up(r, 4, 12000);
+    }
+    SECTION("in the room of area lights, with the light tree") {
+        const Renderer r = bdpt_renderer(room, "", LightSampler::tree);
+        check_weights_add_up(r, 3, 3000);
+        check_weights_add_up(r, 4, 6000);
+    }
+    SECTION("under a large lamp, with the light tree") {
+        const Renderer r = bdpt_renderer(under_lamp, "", LightSampler::tree);
+        check_weights_add_up(r, 3, 3000);
+        check_weights_add_up(r, 4, 3000);
+    }
+    SECTION("through rough glass and vertex normals, with the light tree") {
+        const Renderer r = bdpt_renderer(glass_room, std::string(TRAC0R_SOURCE_DIR) + "/scenes",
+                                         LightSampler::tree);
+        check_weights_add_up(r, 3, 3000);
+        check_weights_add_up(r, 4, 3000);
+    }
+    SECTION("with delta lights, with the light tree") {
+        const Renderer r = bdpt_renderer(lamps, "", LightSampler::tree);
+        check_weights_add_up(r, 3, 3000);
+        check_weights_add_up(r, 4, 3000);
     }
 }

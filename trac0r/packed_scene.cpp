@@ -458,10 +458,8 @@ PackedScene pack_scene(const Scene& scene, const PackOptions& options) {
     pack_normals(usable, packed_index, packed);
     pack_textures(scene, usable, packed_index, packed);
     pack_tangents(scene, usable, packed_index, packed);
-    // Bidirectional path tracing picks lights by power alone (its
-    // densities have no place for the tree's dependence on the point).
     const bool bdpt = options.integrator == Integrator::bdpt;
-    pack_lights(scene, packed, packed_index, bdpt ? LightSampler::power : options.light_sampler);
+    pack_lights(scene, packed, packed_index, options.light_sampler);
     if (options.integrator == Integrator::nee && !packed.lights.empty()) {
         packed.features |= T0_FEATURE_NEE;
     }

@@ -39,7 +39,8 @@ enum class SamplerKind {
     sobol,   // Owen-scrambled Sobol points: stratified, less error per sample
 };
 
-// How next-event estimation picks a light (light_list.h).
+// How next-event estimation, and bidirectional path tracing's light
+// samples, pick a light (light_list.h).
 enum class LightSampler {
     power,      // in proportion to power alone, from one CDF
     tree,       // the light tree: by power, distance and orientation

@@ -136,7 +136,8 @@ void define_options(trac0r_cli::CommandLine& cl, Options& o) {
               "Owen-scrambled Sobol points, stratified (sobol, default), or the thesis' "
               "xorshift1024* numbers");
     cl.choice("--light-sampler", &o.light_sampler, "power|tree|auto",
-              "how next-event estimation picks a light: by power alone, or by a light tree "
+              "how next-event estimation and BDPT's light samples pick a light: by power "
+              "alone, or by a light tree "
               "(power, distance, orientation); auto (default): the tree from 32 lights with a "
               "position");
     cl.positive("--target-error", &o.target_error,

@@ -190,12 +190,16 @@ void print_lights(const trac0r::Scene& scene, const trac0r::PackedScene& p) {
             return !m.two_sided && std::max({e.x, e.y, e.z}) > 0.0f;
         }));
     const bool tree = (p.features & T0_FEATURE_LIGHT_TREE) != 0u;
-    std::fprintf(stderr, "light list: %zu lights, picked by %s (shares of power: %s)%s\n",
-                 p.lights.size(), tree ? "a light tree (distant lights by power)" : "power",
-                 list.empty() ? "none" : list.c_str(),
-                 one_sided > 0 ? (", " + std::to_string(one_sided) +
-                                  " one-sided emitting material(s)").c_str()
-                               : "");
+    const bool bdpt = (p.features & T0_FEATURE_BDPT) != 0u;
+    const char* how = !tree  ? "power"
+                      : bdpt ? "a light tree (distant lights, and light subpaths' starts, by power)"
+                             : "a light tree (distant lights by power)";
+    std::fprintf(
+        stderr, "light list: %zu lights, picked by %s (shares of power: %s)%s\n", p.lights.size(),
+        how, list.empty() ? "none" : list.c_str(),
+        one_sided > 0
+            ? (", " + std::to_string(one_sided) + " one-sided emitting material(s)").c_str()
+            : "");
 }
 
 void print_verbose(trac0r::Renderer& r, const Options& o) {
@@ -357,8 +361,7 @@ std::unique_ptr<trac0r::Renderer> Startup::make_renderer(const Options& options)
     }
     // Not an error (a scene may be built up light by light), but nothing
     // else would say why the image stays black.
-    const std::uint32_t lit =
-        T0_FEATURE_EMITTANCE | T0_FEATURE_ENVIRONMENT | T0_FEATURE_LAMPS;
+    const std::uint32_t lit = T0_FEATURE_EMITTANCE | T0_FEATURE_ENVIRONMENT | T0_FEATURE_LAMPS;
     if ((renderer->packed().features & lit) == 0u && !warned_dark_ && speaks_) {
         std::fprintf(stderr,
                      "%s: warning: nothing emits light (no material that emits is used: an "

@@ -6,10 +6,13 @@
 #     the caustic alone (the floor under the glass sphere, --region);
 #   caustic.json (here: a lamp inside a glass sphere) at 400 x 300;
 #   cornell_diffuse.json at 400 x 300 (what BDPT costs where it does not
-#     help; paths of 64 vertices, as the scene says).
+#     help; paths of 64 vertices, as the scene says);
+#   many_lights.json at 200 x 150, by relative MSE (64 bulbs: BDPT's light
+#     samples by the light tree, as NEE's, and by power).
 # The references are BDPT renders of 4096 samples a pixel (another seed),
 # kept in OUT (cornell_diffuse.json's: bench_convergence's own NEE render
-# of 8192, cached in OUT/cache); docs/bdpt.md explains the figures.
+# of 8192, cached in OUT/cache; many_lights.json's: an NEE render of 4096,
+# as docs/performance.md's); docs/bdpt.md explains the figures.
 #
 #   benchmarks/bdpt/run.sh [OUT]      (from the repository's root, after
 #                                      building into build/)
@@ -46,3 +49,14 @@ compare cornell_caustic scenes/cornell.json --max-spp 1024 --target-rmse 0.08 \
 compare caustic benchmarks/bdpt/caustic.json --max-spp 256 --target-rmse 0.15 \
     --reference "$out/caustic_reference.pfm"
 compare cornell_diffuse scenes/cornell_diffuse.json --max-spp 512 --target-rmse 0.015
+if [ ! -f "$out/many_lights_reference.pfm" ]; then
+    "$viewer" scenes/many_lights.json --headless --width 200 --height 150 --spp 4096 \
+        --light-sampler tree --seed 99 -o "$out/many_lights_reference.pfm"
+fi
+"$bench" scenes/many_lights.json --width 200 --height 150 --max-spp 1024 \
+    --target-relmse 0.02 --reference "$out/many_lights_reference.pfm" \
+    --config integrator=nee,sampler=sobol \
+    --config integrator=bdpt,sampler=sobol,light_sampler=power \
+    --config integrator=bdpt,sampler=sobol,light_sampler=tree \
+    --csv "$out/many_lights.csv" > "$out/many_lights.txt"
+grep -A3 "^To a relative MSE" "$out/many_lights.txt"

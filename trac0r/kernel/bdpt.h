@@ -91,8 +91,10 @@ T0_INLINE float3 connect_emission(const SceneView* scene, CameraRecord cam,
     return weighted ? l * mis_weight(scene, cam, camera, light, 0, t, 0, -1.0f, -1.0f) : l;
 }
 
-// s = 1: a light sampled for camera vertex t - 1 (next-event estimation,
-// with the numbers of the light dimensions of its depth).
+// s = 1: a light sampled for camera vertex t - 1 as next-event estimation
+// samples it (the light picked by choose_light, with the light tree where
+// the scene has one), with the numbers of the light dimensions of its
+// depth.
 T0_INLINE float3 connect_light_sample(const SceneView* scene, CameraRecord cam,
                                       const PathVertex* camera, int t, const PathVertex* light,
                                       Sampler* sampler, int weighted) {
@@ -103,7 +105,17 @@ T0_INLINE float3 connect_light_sample(const SceneView* scene, CameraRecord cam,
     const int depth = t - 2;
     const float u_pick = sample_1d(sampler, T0_DIM(depth, T0_DIM_LIGHT_PICK));
     const float2 u = sample_2d(sampler, T0_DIM(depth, T0_DIM_LIGHT_POINT));
-    const t0_u32 index = pick_light(scene, u_pick);
+    const float u_tree = T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)
+                             ? sample_1d(sampler, T0_DIM_LIGHT_TREE(depth))
+                             : 0.0f;
+    // (The tree's importance takes the triangle's normal here, as the
+    // weights take it at every vertex: the shading normal can depend on
+    // the side a subpath arrives from.)
+    const LightChoice choice = choose_light(scene, pt->p, pt->ng, u_pick, u_tree);
+    if (!(choice.pick > 0.0f)) {
+        return float3_splat(0.0f);
+    }
+    const t0_u32 index = choice.light;
     T0_GLOBAL const LightRecord* record = &scene->lights[index];
     const t0_u32 kind = record->ids.y;
     PathVertex q;
@@ -120,7 +132,9 @@ T0_INLINE float3 connect_light_sample(const SceneView* scene, CameraRecord cam,
     float3 arriving;
     float pdf;  // per solid angle at pt, with the pick; 1 x the pick for a delta
     float3 direction;
-    q.nee_ratio = 1.0f;
+    // Over a light subpath's start, whose pick is by power
+    // (light_sample_ratio).
+    q.nee_ratio = choice.pick / record->cdf.y;
     if (kind == T0_LIGHT_TRIANGLE) {
         // By solid angle where the triangle looks large, as next-event
         // estimation picks it (sample_light), else by area.
@@ -150,17 +164,17 @@ T0_INLINE float3 connect_light_sample(const SceneView* scene, CameraRecord cam,
         }
         arriving = triangle_light_radiance(scene, record->ids.x, q.u, q.v);
         if (by_solid_angle) {
-            pdf = record->cdf.y / seen.solid_angle;
-            q.nee_ratio = light_sample_area_ratio(tri, fabs(c), d2, seen.solid_angle);
+            pdf = choice.pick / seen.solid_angle;
+            q.nee_ratio *= light_sample_area_ratio(tri, fabs(c), d2, seen.solid_angle);
         } else {
-            pdf = record->cdf.z * d2 / fabs(c);
+            pdf = choice.pick_per_area * d2 / fabs(c);
         }
     } else if (kind == T0_LIGHT_POINT || kind == T0_LIGHT_SPOT) {
         const LightSample ls = sample_point_lamp(record, pt->p);
         q.p = xyz(record->a);
         direction = ls.direction;
         arriving = ls.radiance;
-        pdf = record->cdf.y;
+        pdf = choice.pick;
     } else {
         const LightSample ls = sample_distant_light(scene, record, u);
         if (kind == T0_LIGHT_ENVIRONMENT && !(ls.pdf > 0.0f)) {
@@ -170,7 +184,7 @@ T0_INLINE float3 connect_light_sample(const SceneView* scene, CameraRecord cam,
         q.ng = ls.direction;
         direction = ls.direction;
         arriving = ls.radiance;
-        pdf = record->cdf.y * (ls.pdf > 0.0f ? ls.pdf : 1.0f);
+        pdf = choice.pick * (ls.pdf > 0.0f ? ls.pdf : 1.0f);
     }
     q.arrival = -direction;
     if (!any3(arriving) || !(pdf > 0.0f)) {

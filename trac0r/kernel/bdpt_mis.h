@@ -33,34 +33,45 @@ T0_INLINE int bdpt_left_out(int s, int t) { return s == 2 && t == 1; }
 // The density per area with which a light sample picks a point of an
 // emitting triangle by solid angle omega, seen at squared distance d2 and
 // cosine cos_light to the triangle, over that of a light subpath's start
-// (uniform over the triangle's area; the pick of the light cancels).
+// (uniform over the triangle's area), the pick of the light aside.
 T0_INLINE float light_sample_area_ratio(T0_GLOBAL const TriangleRecord* tri, float cos_light,
                                         float d2, float omega) {
     return 0.5f * tri->normal.w * cos_light / (omega * d2);
 }
 
-// A light sample (s = 1, connect_light_sample) picks a point on an
-// emitting triangle as next-event estimation does: by solid angle where
-// the triangle looks large from `from` (emitter_seen_from), else by area,
-// as a light subpath starts. Its density per area at light vertex lv,
-// seen from `from`, over the light subpath's (1 for any other light).
-T0_INLINE float light_sample_ratio(const SceneView* scene, const PathVertex* lv, float3 from) {
+// A light sample (s = 1, connect_light_sample) picks the light as
+// next-event estimation does (choose_light: with the light tree where
+// the scene has one, else by power, as a light subpath's start), and a
+// point on an emitting triangle by solid angle where the triangle looks
+// large from `from` (emitter_seen_from), else by area, as a light subpath
+// starts. Its density per area at light vertex lv, seen from `from` with
+// normal from_normal, over the light subpath's start (1 for a distant
+// light).
+T0_INLINE float light_sample_ratio(const SceneView* scene, const PathVertex* lv, float3 from,
+                                   float3 from_normal) {
     if (lv->distant) {
         return 1.0f;
     }
     T0_GLOBAL const LightRecord* light = vertex_light(scene, lv);
-    if (light == 0 || light->ids.y != T0_LIGHT_TRIANGLE) {
+    if (light == 0) {
         return 1.0f;
+    }
+    float ratio = 1.0f;
+    if (T0_HAS_FEATURE(scene, T0_FEATURE_LIGHT_TREE)) {
+        ratio = light_pick_pmf(scene, light, from, from_normal) / light->cdf.y;
+    }
+    if (light->ids.y != T0_LIGHT_TRIANGLE) {
+        return ratio;
     }
     T0_GLOBAL const TriangleRecord* tri = &scene->triangles[light->ids.x];
     const float omega = emitter_seen_from(tri, from).solid_angle;
     if (!sample_by_solid_angle(omega)) {
-        return 1.0f;
+        return ratio;
     }
     const float3 d = lv->p - from;
     const float d2 = dot(d, d);
     const float cos_light = fabs(dot(d, xyz(tri->normal))) / sqrt(d2);
-    return light_sample_area_ratio(tri, cos_light, d2, omega);
+    return ratio * light_sample_area_ratio(tri, cos_light, d2, omega);
 }
 
 // The weight of strategy (s, t): its density over the sum of all the
@@ -113,17 +124,18 @@ T0_INLINE float mis_weight(const SceneView* scene, CameraRecord cam, const PathV
     }
     // Where strategy s = 1 makes the path, the squared ratio of the
     // densities with which it and a light subpath's start pick the light
-    // vertex (R = nee_ratio): for s = 0 and s >= 2, R^2, on the term of
-    // s = 1 alone; for s = 1 itself, 1 / R^2, on the terms of s >= 2
-    // (its own light vertex's pdf_fwd is already the sample's).
+    // vertex (R = nee_ratio): for s = 0 and s >= 2, R^2 (zero where s = 1
+    // cannot pick that point), on the term of s = 1 alone; for s = 1 itself, 1 / R^2, on the terms
+    // of s >= 2 (its own light vertex's pdf_fwd is already the sample's).
     float sample_ratio = 1.0f;
     if (s == 1) {
         sample_ratio = mis_ratio(1.0f, sampled->nee_ratio);
     } else if (s == 0 && pt_minus != 0 && !pt_minus->delta &&
                T0_HAS_FEATURE(scene, T0_FEATURE_EMITTANCE)) {
-        sample_ratio = mis_ratio(light_sample_ratio(scene, pt, pt_minus->p), 1.0f);
+        const float r = light_sample_ratio(scene, pt, pt_minus->p, pt_minus->ng);
+        sample_ratio = mis_product(r, r);
     } else if (s >= 2) {
-        sample_ratio = mis_ratio(light[0].nee_ratio, 1.0f);
+        sample_ratio = mis_product(light[0].nee_ratio, light[0].nee_ratio);
     }
     float sum = 0.0f;
     float ri = s == 1 ? sample_ratio : 1.0f;

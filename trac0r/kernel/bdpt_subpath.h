@@ -5,7 +5,8 @@
 // A light subpath's numbers (sampler.h), besides the camera subpath's
 // own (the same dimensions as the path tracer's, T0_DIM(depth, ...) for
 // its vertex `depth`, with s = 1 at that vertex drawing the light
-// dimensions), come from a second sampler of the pixel, seeded apart:
+// dimensions, T0_DIM_LIGHT_TREE(depth) among them where the scene has a
+// light tree), come from a second sampler of the pixel, seeded apart:
 //   T0_DIM_EMISSION_PICK, _POINT, _DIRECTION   the light, the point on it
 //                     (or its disc) and the direction (1-D, 2-D, 2-D);
 //   T0_DIM_LIGHT_SUBPATH(depth, T0_DIM_ROULETTE and T0_DIM_MATERIAL) and
@@ -280,7 +281,7 @@ T0_INLINE int light_subpath(const SceneView* scene, int max_depth, Sampler* samp
     const int n =
         bdpt_walk(scene, make_ray(from, e.direction), e.beta, pdf, path, 1, max_depth, 1, sampler);
     if (n > 1 && !path[1].delta) {  // (no light sample is taken at a delta vertex)
-        l->nee_ratio = light_sample_ratio(scene, l, path[1].p);
+        l->nee_ratio = light_sample_ratio(scene, l, path[1].p, path[1].ng);
     }
     return n;
 }
